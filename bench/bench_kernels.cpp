@@ -1,0 +1,72 @@
+// Google Benchmark kernels: the P2G and G2P transfers and the constitutive update, per particle,
+// on the column scene (APIC, quadratic B-spline). Counters report particles per second.
+#include <benchmark/benchmark.h>
+
+#include "../src/core/transfer.hpp"
+#include "bench_scenes.hpp"
+#include "mpm_sdem/core/constitutive.hpp"
+
+using namespace mpm_sdem;
+
+namespace {
+
+World settledWorld(long n, MaterialModel model) {
+  World w(bench::columnWorld(n, model));
+  for (int s = 0; s < 20; ++s) w.step(w.chooseTimeStep().dt);  // non-trivial stresses and B
+  return w;
+}
+
+void BM_P2G(benchmark::State& state) {
+  World w = settledWorld(state.range(0), MaterialModel::kLinearElastic);
+  Grid g = w.grid();
+  for (auto _ : state) {
+    detail::particleToGrid<QuadraticBSpline>(w.particles(), g, true, true, true);
+    benchmark::DoNotOptimize(g.mass.data());
+  }
+  state.counters["particles/s"] = benchmark::Counter(
+      static_cast<double>(w.particles().size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void BM_G2P(benchmark::State& state) {
+  World w = settledWorld(state.range(0), MaterialModel::kLinearElastic);
+  Particles backup = w.particles();
+  detail::G2PSettings s{TransferScheme::kApic, 0, 0.0, true, w.def().domain.min, w.def().domain.max};
+  for (auto _ : state) {
+    long clamped = 0;
+    bool finite = true;
+    detail::gridToParticle<QuadraticBSpline>(w.particles(), w.grid(), s, clamped, finite);
+    benchmark::DoNotOptimize(w.particles().vx.data());
+  }
+  state.counters["particles/s"] = benchmark::Counter(
+      static_cast<double>(backup.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void BM_Constitutive(benchmark::State& state) {
+  const auto model = state.range(1) ? MaterialModel::kDruckerPrager : MaterialModel::kLinearElastic;
+  World w = settledWorld(state.range(0), model);
+  const MaterialParams m = w.materialParams()[0];
+  Particles& P = w.particles();
+  const long n = static_cast<long>(P.size());
+  for (auto _ : state) {
+    for (long p = 0; p < n; ++p) {
+      Stress s{P.sxx[p], P.syy[p], P.sxy[p], P.szz[p]};
+      s = jaumannElasticUpdate(m, s, {P.lxx[p], P.lxy[p], P.lyx[p], P.lyy[p]}, 1e-6);
+      if (m.model == MaterialModel::kDruckerPrager) druckerPragerReturn(m, s);
+      P.sxx[p] = s.xx;
+      P.syy[p] = s.yy;
+      P.sxy[p] = s.xy;
+      P.szz[p] = s.zz;
+    }
+    benchmark::DoNotOptimize(P.sxx.data());
+  }
+  state.counters["particles/s"] =
+      benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+}  // namespace
+
+BENCHMARK(BM_P2G)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_G2P)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Constitutive)->Args({10000, 0})->Args({10000, 1})->Args({100000, 0})->Args({100000, 1})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_MAIN();

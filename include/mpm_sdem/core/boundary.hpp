@@ -1,0 +1,40 @@
+// Domain walls, imposed on the grid velocity of the nodes on and beyond each domain side.
+#pragma once
+
+#include <cmath>
+
+#include "mpm_sdem/core/types.hpp"
+
+namespace mpm_sdem {
+
+enum class WallType { kSticky, kSlip, kFriction };
+
+struct WallDef {
+  WallType type = WallType::kSlip;
+  Real friction = 0;  // Coulomb coefficient, kFriction only
+};
+
+// n is the unit normal pointing out of the domain (into the wall). Material moving away from the
+// wall is left alone (it may separate); moving into it, the normal velocity is removed and, for a
+// Coulomb wall, the tangential speed is reduced by friction * |normal velocity removed| without
+// reversing (the impulse form of Coulomb friction on a grid node).
+inline void applyWall(const WallDef& wall, Real n_x, Real n_y, Real& v_x, Real& v_y) {
+  if (wall.type == WallType::kSticky) {
+    v_x = 0;
+    v_y = 0;
+    return;
+  }
+  const Real vn = v_x * n_x + v_y * n_y;
+  if (vn <= 0) return;
+  Real tx = v_x - vn * n_x, ty = v_y - vn * n_y;
+  if (wall.type == WallType::kFriction) {
+    const Real vt = std::sqrt(tx * tx + ty * ty);
+    const Real scale = vt > wall.friction * vn ? 1 - wall.friction * vn / vt : Real(0);
+    tx *= scale;
+    ty *= scale;
+  }
+  v_x = tx;
+  v_y = ty;
+}
+
+}  // namespace mpm_sdem

@@ -1,0 +1,38 @@
+// Materials: user-facing definitions and the derived constants the constitutive update reads.
+#pragma once
+
+#include <string>
+
+#include "mpm_sdem/core/types.hpp"
+
+namespace mpm_sdem {
+
+enum class MaterialModel { kLinearElastic, kDruckerPrager };
+
+// What a scene declares for a material. Elasticity is given as bulk and shear moduli; the scene
+// layer converts Young's modulus and Poisson's ratio (K = E / (3 (1 - 2 nu)), G = E / (2 (1 + nu))).
+struct MaterialDef {
+  std::string name;
+  MaterialModel model = MaterialModel::kLinearElastic;
+  Real density = 0;       // kg/m^3 (plane strain: per unit thickness)
+  Real bulk_modulus = 0;  // Pa
+  Real shear_modulus = 0; // Pa
+  // Drucker-Prager only (seed 000 eq. 31-35).
+  Real friction_angle = 0;    // rad
+  Real dilation_angle = 0;    // rad, 0 <= psi <= phi
+  Real cohesion = 0;          // Pa
+  Real tensile_strength = 0;  // Pa, tension cut-off sigma^t (capped at the cone apex)
+};
+
+// Derived constants, computed once. Kept small: the constitutive loop reads one per particle.
+struct MaterialParams {
+  MaterialModel model = MaterialModel::kLinearElastic;
+  Real bulk = 0, shear = 0, lame = 0;  // K, G, lambda = K - 2G/3 (Pa)
+  Real q_phi = 0, k_phi = 0, q_psi = 0;  // seed 000 eq. 35 and its dilatant analogue
+  Real tension = 0;                      // effective tension cut-off (Pa)
+  Real modulus_over_density = 0;         // (K + 4G/3) / rho0: squared P-wave speed at J = 1
+};
+
+MaterialParams makeMaterialParams(const MaterialDef& def);
+
+}  // namespace mpm_sdem

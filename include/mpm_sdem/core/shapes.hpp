@@ -1,0 +1,42 @@
+// Regions a body of material points is filled from.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mpm_sdem/core/types.hpp"
+
+namespace mpm_sdem {
+
+enum class ShapeType { kRectangle, kPolygon, kDisk };
+
+struct ShapeDef {
+  ShapeType type = ShapeType::kRectangle;
+  Vec2 min{0, 0}, max{0, 0};   // rectangle corners (m)
+  std::vector<Vec2> vertices;  // polygon, convex or concave, either orientation (m)
+  Vec2 center{0, 0};           // disk centre (m)
+  Real radius = 0;             // disk radius (m)
+};
+
+// A body of material: a region filled at points_per_cell^2 points per grid cell, all of one
+// material, moving with a uniform initial velocity.
+struct BodyDef {
+  std::string name;
+  ShapeDef shape;
+  int material = 0;        // index into WorldDef::materials
+  int points_per_cell = 2; // per direction
+  Vec2 velocity{0, 0};     // m/s
+};
+
+bool contains(const ShapeDef& shape, const Vec2& p);
+void bounds(const ShapeDef& shape, Vec2& lo, Vec2& hi);
+Real signedArea(const std::vector<Vec2>& polygon);
+// True when two non-adjacent edges of the closed polygon cross or touch.
+bool selfIntersects(const std::vector<Vec2>& polygon);
+
+// The points a body is filled with: the centres of the sub-cells of a lattice of spacing
+// cell_size / points_per_cell anchored at the domain corner, kept where they lie inside the shape.
+std::vector<Vec2> fillPoints(const ShapeDef& shape, const Vec2& domain_min, Real cell_size,
+                             int points_per_cell);
+
+}  // namespace mpm_sdem

@@ -1,0 +1,114 @@
+// The MPM world: definitions in, a step pipeline, state out. No ROS, YAML or OpenCV here.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "mpm_sdem/core/boundary.hpp"
+#include "mpm_sdem/core/grid.hpp"
+#include "mpm_sdem/core/kernels.hpp"
+#include "mpm_sdem/core/material.hpp"
+#include "mpm_sdem/core/particles.hpp"
+#include "mpm_sdem/core/profile.hpp"
+#include "mpm_sdem/core/shapes.hpp"
+#include "mpm_sdem/core/types.hpp"
+
+namespace mpm_sdem {
+
+// Grid-to-particle velocity transfer (seed 000 eq. 26-31).
+enum class TransferScheme { kPic, kFlip, kApic };
+// Update stress first (seed 000 sec. 2.2) or last.
+enum class StressUpdate { kUsf, kUsl };
+
+struct SolverDef {
+  KernelType kernel = KernelType::kQuadraticBSpline;
+  TransferScheme transfer = TransferScheme::kApic;
+  Real pic_fraction = 0.01;  // alpha of eq. 28 (1 = PIC, 0 = FLIP); kFlip only
+  StressUpdate stress_update = StressUpdate::kUsf;
+  Vec2 gravity{0, -9.81};  // m/s^2
+};
+
+struct TimeStepDef {
+  bool automatic = true;  // CFL bound, re-evaluated every step
+  Real fixed = 0;         // s, when !automatic
+  Real cfl = 0.3;         // kappa_1 of seed 000 eq. 51: dt = cfl * h / max(c_p + |v_p|)
+  Real max = std::numeric_limits<Real>::infinity();  // s, upper bound on the automatic step
+};
+
+struct DomainDef {
+  Vec2 min{0, 0}, max{1, 1};  // m; each extent an integer number of cells
+  WallDef left, right, bottom, top;
+};
+
+struct WorldDef {
+  DomainDef domain;
+  Real cell_size = 0.01;  // m
+  SolverDef solver;
+  TimeStepDef time_step;
+  std::vector<MaterialDef> materials;
+  std::vector<BodyDef> bodies;
+};
+
+// Which term set the time step.
+enum class StepLimit { kFixed, kCfl, kMax };
+const char* stepLimitName(StepLimit limit);
+
+struct TimeStepChoice {
+  Real dt = 0;
+  StepLimit limit = StepLimit::kFixed;
+};
+
+struct StepInfo {
+  Real dt = 0;
+  bool finite = true;     // false: a particle position became NaN or infinite
+  long clamped = 0;       // particles put back inside the domain this step
+};
+
+class World {
+ public:
+  // Throws std::invalid_argument on a definition the scene layer should have refused.
+  explicit World(const WorldDef& def);
+
+  // The stable time step for the current state (CFL term of seed 000 eq. 51), or the fixed one.
+  TimeStepChoice chooseTimeStep();
+  // Advance by dt through the stage pipeline; returns what happened.
+  StepInfo step(Real dt);
+  // Mirror the trajectory in time: negate velocities and affine matrices and the leapfrog
+  // staggering, so that stepping again retraces the motion (seed 001 sec. 5.1 test).
+  void reverseVelocities();
+
+  const WorldDef& def() const { return def_; }
+  const std::vector<MaterialParams>& materialParams() const { return params_; }
+  const Particles& particles() const { return particles_; }
+  Particles& particles() { return particles_; }
+  const Grid& grid() const { return grid_; }
+  Real time() const { return time_; }
+  long stepCount() const { return steps_; }
+  const Profile& profile() const { return profile_; }
+  void resetProfile() { profile_ = Profile(); }
+
+ private:
+  void clearGrid();
+  void particleToGrid(bool momentum, bool force);
+  void gridVelocity(Real kick, bool after_force);
+  void gridToParticleGradient();
+  void gridToParticle(Real dt, StepInfo& info);
+  void constitutiveUpdate(Real dt);
+  void applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const;
+
+  WorldDef def_;
+  std::vector<MaterialParams> params_;
+  Particles particles_;
+  Grid grid_;
+  Profile profile_;
+  Real time_ = 0;
+  long steps_ = 0;
+  // Leapfrog bookkeeping (seed 000 eq. 17): positions live at time_, velocities at
+  // time_ - velocity_lag_, stresses at time_ - stress_lag_. Both start at 0, so the first kick
+  // is half a step and the first USF stress update is empty.
+  Real velocity_lag_ = 0;
+  Real stress_lag_ = 0;
+};
+
+}  // namespace mpm_sdem

@@ -1,0 +1,41 @@
+#include "mpm_sdem/core/diagnostics.hpp"
+
+#include <cmath>
+
+#include "mpm_sdem/core/constitutive.hpp"
+
+namespace mpm_sdem {
+
+Diagnostics measure(const World& world) {
+  const Particles& P = world.particles();
+  const auto& params = world.materialParams();
+  const Vec2 g = world.def().solver.gravity;
+  const Vec2 base = world.def().domain.min;
+  const bool apic = world.def().solver.transfer == TransferScheme::kApic;
+  Diagnostics d;
+  Real mx = 0, my = 0;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const Real m = P.mass[p];
+    const Real v2 = P.vx[p] * P.vx[p] + P.vy[p] * P.vy[p];
+    d.kinetic += Real(0.5) * m * v2;
+    const Stress s{P.sxx[p], P.syy[p], P.sxy[p], P.szz[p]};
+    d.elastic += P.volume0[p] * P.J[p] * elasticEnergyDensity(params[P.material[p]], s);
+    d.gravity -= m * (g.x() * (P.x[p] - base.x()) + g.y() * (P.y[p] - base.y()));
+    d.momentum += m * Vec2(P.vx[p], P.vy[p]);
+    // x_p x m v_p plus the affine part m (B_yx - B_xy), which is what the APIC transfer
+    // carries to the grid as angular momentum.
+    d.angular_momentum += m * (P.x[p] * P.vy[p] - P.y[p] * P.vx[p]);
+    if (apic) d.angular_momentum += m * (P.byx[p] - P.bxy[p]);
+    mx += m * P.x[p];
+    my += m * P.y[p];
+    d.mass += m;
+    d.max_speed = std::fmax(d.max_speed, std::sqrt(v2));
+  }
+  if (d.mass > 0) d.center_of_mass = Vec2(mx, my) / d.mass;
+  d.finite = std::isfinite(d.kinetic) && std::isfinite(d.elastic) && std::isfinite(d.gravity) &&
+             std::isfinite(d.angular_momentum) && d.momentum.allFinite() &&
+             d.center_of_mass.allFinite();
+  return d;
+}
+
+}  // namespace mpm_sdem

@@ -1,0 +1,108 @@
+#include "mpm_sdem/core/shapes.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mpm_sdem {
+
+namespace {
+Real cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+bool segmentsTouch(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const Real d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
+  const Real d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) {
+    return true;
+  }
+  auto onSegment = [](const Vec2& p, const Vec2& q, const Vec2& r, Real c) {
+    return c == 0 && std::min(p.x(), q.x()) <= r.x() && r.x() <= std::max(p.x(), q.x()) &&
+           std::min(p.y(), q.y()) <= r.y() && r.y() <= std::max(p.y(), q.y());
+  };
+  return onSegment(a, b, c, d1) || onSegment(a, b, d, d2) || onSegment(c, d, a, d3) ||
+         onSegment(c, d, b, d4);
+}
+}  // namespace
+
+Real signedArea(const std::vector<Vec2>& polygon) {
+  Real a = 0;
+  for (std::size_t i = 0, n = polygon.size(); i < n; ++i) a += cross(polygon[i], polygon[(i + 1) % n]);
+  return a / 2;
+}
+
+bool selfIntersects(const std::vector<Vec2>& polygon) {
+  const std::size_t n = polygon.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const bool adjacent = j == i + 1 || (i == 0 && j == n - 1);
+      if (adjacent) continue;
+      if (segmentsTouch(polygon[i], polygon[(i + 1) % n], polygon[j], polygon[(j + 1) % n])) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+bool contains(const ShapeDef& shape, const Vec2& p) {
+  switch (shape.type) {
+    case ShapeType::kRectangle:
+      return p.x() >= shape.min.x() && p.x() <= shape.max.x() && p.y() >= shape.min.y() &&
+             p.y() <= shape.max.y();
+    case ShapeType::kDisk:
+      return (p - shape.center).squaredNorm() <= shape.radius * shape.radius;
+    case ShapeType::kPolygon: {
+      // Even-odd ray casting: works for concave polygons of either orientation.
+      bool inside = false;
+      const auto& v = shape.vertices;
+      for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) {
+        if ((v[i].y() > p.y()) != (v[j].y() > p.y()) &&
+            p.x() < (v[j].x() - v[i].x()) * (p.y() - v[i].y()) / (v[j].y() - v[i].y()) + v[i].x()) {
+          inside = !inside;
+        }
+      }
+      return inside;
+    }
+  }
+  return false;
+}
+
+void bounds(const ShapeDef& shape, Vec2& lo, Vec2& hi) {
+  switch (shape.type) {
+    case ShapeType::kRectangle:
+      lo = shape.min;
+      hi = shape.max;
+      return;
+    case ShapeType::kDisk:
+      lo = shape.center.array() - shape.radius;
+      hi = shape.center.array() + shape.radius;
+      return;
+    case ShapeType::kPolygon:
+      lo = hi = shape.vertices.front();
+      for (const Vec2& v : shape.vertices) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+      }
+      return;
+  }
+}
+
+std::vector<Vec2> fillPoints(const ShapeDef& shape, const Vec2& domain_min, Real cell_size,
+                             int points_per_cell) {
+  Vec2 lo, hi;
+  bounds(shape, lo, hi);
+  const Real s = cell_size / points_per_cell;
+  const long i0 = static_cast<long>(std::floor((lo.x() - domain_min.x()) / s));
+  const long i1 = static_cast<long>(std::ceil((hi.x() - domain_min.x()) / s));
+  const long j0 = static_cast<long>(std::floor((lo.y() - domain_min.y()) / s));
+  const long j1 = static_cast<long>(std::ceil((hi.y() - domain_min.y()) / s));
+  std::vector<Vec2> points;
+  for (long j = j0; j < j1; ++j) {
+    for (long i = i0; i < i1; ++i) {
+      const Vec2 p = domain_min + s * Vec2(i + Real(0.5), j + Real(0.5));
+      if (contains(shape, p)) points.push_back(p);
+    }
+  }
+  return points;
+}
+
+}  // namespace mpm_sdem

@@ -1,0 +1,198 @@
+// Particle-grid transfers, one template instance per kernel so that the inner loops have fixed
+// trip counts and no calls. Internal header of the core library.
+#pragma once
+
+#include <cmath>
+
+#include "mpm_sdem/core/grid.hpp"
+#include "mpm_sdem/core/kernels.hpp"
+#include "mpm_sdem/core/particles.hpp"
+#include "mpm_sdem/core/world.hpp"
+
+namespace mpm_sdem::detail {
+
+template <class K>
+inline void stencils(const Grid& g, Real x, Real y, Real lp, Real& xg, Real& yg, Stencil1D& sx,
+                     Stencil1D& sy) {
+  xg = (x - g.origin.x()) * g.inv_h;
+  yg = (y - g.origin.y()) * g.inv_h;
+  K::stencil(xg, lp, sx);
+  K::stencil(yg, lp, sy);
+}
+
+// P2G: nodal mass (eq. 18), momentum (eq. 19, or eq. 30 with the APIC affine term) and internal
+// force f_I = -sum_p V_p sigma_p grad S_Ip (eq. 13). Gravity is added on the grid (eq. 14 with a
+// uniform body force equals m_I g).
+template <class K>
+void particleToGrid(const Particles& P, Grid& G, bool apic, bool momentum, bool force) {
+  constexpr int S = K::kSupport;
+  const Real inv_h = G.inv_h;
+  const int nx = G.nx;
+  Real* gm = G.mass.data();
+  Real* gpx = G.mom_x.data();
+  Real* gpy = G.mom_y.data();
+  Real* gfx = G.force_x.data();
+  Real* gfy = G.force_y.data();
+  const std::size_t n = P.size();
+  for (std::size_t p = 0; p < n; ++p) {
+    Real xg, yg;
+    Stencil1D sx, sy;
+    stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+    const Real m = P.mass[p];
+    const Real mvx = m * P.vx[p], mvy = m * P.vy[p];
+    // m B D^-1 (x_I - x_p) with D = diag(second moments) h^2 and offsets in grid units r h.
+    Real cxx = 0, cxy = 0, cyx = 0, cyy = 0;
+    if (apic) {
+      const Real ax = m * inv_h / sx.second_moment, ay = m * inv_h / sy.second_moment;
+      cxx = P.bxx[p] * ax;
+      cxy = P.bxy[p] * ay;
+      cyx = P.byx[p] * ax;
+      cyy = P.byy[p] * ay;
+    }
+    const Real vol = P.volume0[p] * P.J[p] * inv_h;
+    const Real sxx = vol * P.sxx[p], syy = vol * P.syy[p], sxy = vol * P.sxy[p];
+    for (int j = 0; j < S; ++j) {
+      const Real wy = sy.w[j], dwy = sy.dw[j];
+      const Real ry = (sy.base + j) - yg;
+      const int row = (sy.base + j) * nx + sx.base;
+      for (int i = 0; i < S; ++i) {
+        const int node = row + i;
+        const Real wx = sx.w[i];
+        const Real w = wx * wy;
+        if (momentum) {
+          const Real rx = (sx.base + i) - xg;
+          gm[node] += w * m;
+          gpx[node] += w * (mvx + cxx * rx + cxy * ry);
+          gpy[node] += w * (mvy + cyx * rx + cyy * ry);
+        }
+        if (force) {
+          const Real gx = sx.dw[i] * wy, gy = wx * dwy;
+          gfx[node] -= sxx * gx + sxy * gy;
+          gfy[node] -= sxy * gx + syy * gy;
+        }
+      }
+    }
+  }
+}
+
+// Velocity gradient L_p = sum_I v_I (grad S_Ip)^T from the pre-kick grid velocity (USF, eq. 21-22).
+template <class K>
+void gridToParticleGradient(Particles& P, const Grid& G) {
+  constexpr int S = K::kSupport;
+  const long n = static_cast<long>(P.size());
+#pragma omp parallel for schedule(static)
+  for (long p = 0; p < n; ++p) {
+    Real xg, yg;
+    Stencil1D sx, sy;
+    stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+    Real lxx = 0, lxy = 0, lyx = 0, lyy = 0;
+    for (int j = 0; j < S; ++j) {
+      const int row = (sy.base + j) * G.nx + sx.base;
+      for (int i = 0; i < S; ++i) {
+        const Real gx = sx.dw[i] * sy.w[j] * G.inv_h, gy = sx.w[i] * sy.dw[j] * G.inv_h;
+        const Real vx = G.vel0_x[row + i], vy = G.vel0_y[row + i];
+        lxx += vx * gx;
+        lxy += vx * gy;
+        lyx += vy * gx;
+        lyy += vy * gy;
+      }
+    }
+    P.lxx[p] = lxx;
+    P.lxy[p] = lxy;
+    P.lyx[p] = lyx;
+    P.lyy[p] = lyy;
+  }
+}
+
+struct G2PSettings {
+  TransferScheme scheme;
+  Real pic_fraction;
+  Real dt;
+  bool gradient;  // USL: also compute L_p from the post-kick velocity
+  Vec2 lo, hi;    // domain box: points are kept inside it
+};
+
+// G2P: PIC velocity (eq. 26), FLIP blend (eq. 28) or APIC affine matrix (eq. 31), then
+// x_p += dt sum_I S_Ip v_I (the PIC velocity moves the point in every scheme).
+template <class K>
+void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& clamped,
+                    bool& finite) {
+  constexpr int S = K::kSupport;
+  const long n = static_cast<long>(P.size());
+  const Real h = G.h, inv_h = G.inv_h;
+  long clamped_count = 0;
+  int bad = 0;
+#pragma omp parallel for schedule(static) reduction(+ : clamped_count) reduction(| : bad)
+  for (long p = 0; p < n; ++p) {
+    Real xg, yg;
+    Stencil1D sx, sy;
+    stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+    Real vx = 0, vy = 0, dvx = 0, dvy = 0;
+    Real bxx = 0, bxy = 0, byx = 0, byy = 0;
+    Real lxx = 0, lxy = 0, lyx = 0, lyy = 0;
+    for (int j = 0; j < S; ++j) {
+      const Real ry = ((sy.base + j) - yg) * h;
+      const int row = (sy.base + j) * G.nx + sx.base;
+      for (int i = 0; i < S; ++i) {
+        const int node = row + i;
+        const Real w = sx.w[i] * sy.w[j];
+        const Real gvx = G.vel_x[node], gvy = G.vel_y[node];
+        vx += w * gvx;
+        vy += w * gvy;
+        if (s.scheme == TransferScheme::kFlip) {
+          dvx += w * (gvx - G.vel0_x[node]);
+          dvy += w * (gvy - G.vel0_y[node]);
+        } else if (s.scheme == TransferScheme::kApic) {
+          const Real rx = ((sx.base + i) - xg) * h;
+          bxx += w * gvx * rx;
+          bxy += w * gvx * ry;
+          byx += w * gvy * rx;
+          byy += w * gvy * ry;
+        }
+        if (s.gradient) {
+          const Real gx = sx.dw[i] * sy.w[j] * inv_h, gy = sx.w[i] * sy.dw[j] * inv_h;
+          lxx += gvx * gx;
+          lxy += gvx * gy;
+          lyx += gvy * gx;
+          lyy += gvy * gy;
+        }
+      }
+    }
+    if (s.scheme == TransferScheme::kFlip) {
+      const Real a = s.pic_fraction;
+      P.vx[p] = a * vx + (1 - a) * (P.vx[p] + dvx);
+      P.vy[p] = a * vy + (1 - a) * (P.vy[p] + dvy);
+    } else {
+      P.vx[p] = vx;
+      P.vy[p] = vy;
+    }
+    if (s.scheme == TransferScheme::kApic) {
+      P.bxx[p] = bxx;
+      P.bxy[p] = bxy;
+      P.byx[p] = byx;
+      P.byy[p] = byy;
+    }
+    if (s.gradient) {
+      P.lxx[p] = lxx;
+      P.lxy[p] = lxy;
+      P.lyx[p] = lyx;
+      P.lyy[p] = lyy;
+    }
+    Real x = P.x[p] + s.dt * vx, y = P.y[p] + s.dt * vy;
+    if (!std::isfinite(x) || !std::isfinite(y)) {
+      bad = 1;  // keep the last finite position so that no stencil ever leaves the grid
+      continue;
+    }
+    if (x < s.lo.x() || x > s.hi.x() || y < s.lo.y() || y > s.hi.y()) {
+      ++clamped_count;
+      x = std::fmin(std::fmax(x, s.lo.x()), s.hi.x());
+      y = std::fmin(std::fmax(y, s.lo.y()), s.hi.y());
+    }
+    P.x[p] = x;
+    P.y[p] = y;
+  }
+  clamped += clamped_count;
+  if (bad) finite = false;
+}
+
+}  // namespace mpm_sdem::detail

@@ -1,0 +1,248 @@
+#include "mpm_sdem/core/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "mpm_sdem/core/constitutive.hpp"
+#include "transfer.hpp"
+
+namespace mpm_sdem {
+
+const char* stepLimitName(StepLimit limit) {
+  switch (limit) {
+    case StepLimit::kFixed: return "fixed";
+    case StepLimit::kCfl: return "cfl";
+    case StepLimit::kMax: return "max";
+  }
+  return "?";
+}
+
+namespace {
+
+int cellCount(Real extent, Real h, const char* what) {
+  const Real n = extent / h;
+  const long r = std::lround(n);
+  if (r < 1 || std::abs(n - r) > 1e-6 * std::max<Real>(1, n)) {
+    throw std::invalid_argument(std::string("domain ") + what +
+                                " is not a whole number of cells");
+  }
+  return static_cast<int>(r);
+}
+
+// Call f.template operator()<Kernel>() for the scene's kernel: one dispatch per stage, none per
+// particle.
+template <class F>
+void withKernel(KernelType k, F&& f) {
+  switch (k) {
+    case KernelType::kQuadraticBSpline: f(QuadraticBSpline{}); break;
+    case KernelType::kCubicBSpline: f(CubicBSpline{}); break;
+    case KernelType::kGimp: f(Gimp{}); break;
+  }
+}
+
+}  // namespace
+
+World::World(const WorldDef& def) : def_(def) {
+  if (!(def.cell_size > 0)) throw std::invalid_argument("cell_size must be positive");
+  const Vec2 size = def.domain.max - def.domain.min;
+  grid_.init(def.domain.min, cellCount(size.x(), def.cell_size, "width"),
+             cellCount(size.y(), def.cell_size, "height"), def.cell_size);
+  for (const MaterialDef& m : def.materials) params_.push_back(makeMaterialParams(m));
+
+  std::size_t count = 0;
+  std::vector<std::vector<Vec2>> filled;
+  for (const BodyDef& b : def.bodies) {
+    if (b.material < 0 || b.material >= static_cast<int>(params_.size())) {
+      throw std::invalid_argument("body '" + b.name + "' names no material");
+    }
+    if (b.points_per_cell < 1) throw std::invalid_argument("points_per_cell must be >= 1");
+    filled.push_back(fillPoints(b.shape, def.domain.min, def.cell_size, b.points_per_cell));
+    count += filled.back().size();
+  }
+  particles_.resize(count);
+  std::size_t p = 0;
+  for (std::size_t b = 0; b < def.bodies.size(); ++b) {
+    const BodyDef& body = def.bodies[b];
+    const MaterialDef& mat = def.materials[body.material];
+    const Real spacing = def.cell_size / body.points_per_cell;
+    for (const Vec2& x : filled[b]) {
+      particles_.x[p] = x.x();
+      particles_.y[p] = x.y();
+      particles_.vx[p] = body.velocity.x();
+      particles_.vy[p] = body.velocity.y();
+      particles_.volume0[p] = spacing * spacing;
+      particles_.mass[p] = mat.density * spacing * spacing;
+      particles_.half_size[p] = Real(0.5) / body.points_per_cell;
+      particles_.material[p] = static_cast<std::uint16_t>(body.material);
+      particles_.body[p] = static_cast<std::uint16_t>(b);
+      ++p;
+    }
+  }
+}
+
+TimeStepChoice World::chooseTimeStep() {
+  StageTimer timer(profile_, Stage::kTimeStep);
+  if (!def_.time_step.automatic) return {def_.time_step.fixed, StepLimit::kFixed};
+  // Seed 000 eq. 51, first term: dt = kappa_1 h / max_p (c_p + |v_p|), with the P-wave speed
+  // c_p = sqrt((K + 4G/3) / rho_p) at the current density rho_p = rho_0 / J_p.
+  const Particles& P = particles_;
+  const long n = static_cast<long>(P.size());
+  Real fastest = 0;
+#pragma omp parallel for schedule(static) reduction(max : fastest)
+  for (long p = 0; p < n; ++p) {
+    const Real c2 = params_[P.material[p]].modulus_over_density * P.J[p];
+    const Real s = std::sqrt(std::fmax(c2, Real(0))) + std::hypot(P.vx[p], P.vy[p]);
+    fastest = std::fmax(fastest, s);
+  }
+  const Real cfl_dt = fastest > 0 ? def_.time_step.cfl * grid_.h / fastest
+                                  : std::numeric_limits<Real>::infinity();
+  if (cfl_dt < def_.time_step.max) return {cfl_dt, StepLimit::kCfl};
+  return {def_.time_step.max, StepLimit::kMax};
+}
+
+StepInfo World::step(Real dt) {
+  StepInfo info;
+  info.dt = dt;
+  // Seed 000 eq. 17: p^{n+1/2} = p^{n-1/2} + f^n dt. The kick spans from the velocity's time to
+  // half a step past the positions' time.
+  const Real kick = Real(0.5) * dt + velocity_lag_;
+  clearGrid();
+  if (def_.solver.stress_update == StressUpdate::kUsf) {
+    particleToGrid(true, false);
+    gridVelocity(0, false);
+    gridToParticleGradient();
+    constitutiveUpdate(stress_lag_);
+    particleToGrid(false, true);
+    gridVelocity(kick, true);
+    gridToParticle(dt, info);
+    stress_lag_ = dt;
+  } else {
+    particleToGrid(true, true);
+    gridVelocity(0, false);
+    gridVelocity(kick, true);
+    gridToParticle(dt, info);
+    constitutiveUpdate(dt);
+    stress_lag_ = 0;
+  }
+  velocity_lag_ = Real(0.5) * dt;
+  time_ += dt;
+  ++steps_;
+  ++profile_.steps;
+  return info;
+}
+
+void World::reverseVelocities() {
+  Particles& P = particles_;
+  for (auto* v : {&P.vx, &P.vy, &P.bxx, &P.bxy, &P.byx, &P.byy}) {
+    for (Real& a : *v) a = -a;
+  }
+  velocity_lag_ = -velocity_lag_;
+  stress_lag_ = -stress_lag_;
+}
+
+void World::clearGrid() {
+  StageTimer timer(profile_, Stage::kClearGrid);
+  for (auto* v : {&grid_.mass, &grid_.mom_x, &grid_.mom_y, &grid_.force_x, &grid_.force_y}) {
+    std::fill(v->begin(), v->end(), Real(0));
+  }
+}
+
+void World::particleToGrid(bool momentum, bool force) {
+  StageTimer timer(profile_, Stage::kP2G);
+  const bool apic = def_.solver.transfer == TransferScheme::kApic;
+  withKernel(def_.solver.kernel, [&](auto k) {
+    detail::particleToGrid<decltype(k)>(particles_, grid_, apic, momentum, force);
+  });
+}
+
+void World::gridVelocity(Real kick, bool after_force) {
+  StageTimer timer(profile_, Stage::kGridUpdate);
+  Grid& G = grid_;
+  const long n = static_cast<long>(G.nodeCount());
+  if (!after_force) {
+    // Eq. 20: v_I = p_I / m_I; nodes without mass carry no velocity.
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i) {
+      const Real m = G.mass[i];
+      G.vel0_x[i] = m > 0 ? G.mom_x[i] / m : Real(0);
+      G.vel0_y[i] = m > 0 ? G.mom_y[i] / m : Real(0);
+    }
+    applyWalls(G.vel0_x, G.vel0_y);
+    return;
+  }
+  const Real gx = def_.solver.gravity.x(), gy = def_.solver.gravity.y();
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) {
+    const Real m = G.mass[i];
+    if (m > 0) {
+      G.vel_x[i] = G.vel0_x[i] + kick * (G.force_x[i] / m + gx);
+      G.vel_y[i] = G.vel0_y[i] + kick * (G.force_y[i] / m + gy);
+    } else {
+      G.vel_x[i] = 0;
+      G.vel_y[i] = 0;
+    }
+  }
+  applyWalls(G.vel_x, G.vel_y);
+}
+
+void World::applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const {
+  // Nodes on and beyond a domain side belong to its wall; corner nodes see both walls.
+  const Grid& G = grid_;
+  const int left = Grid::kPad, right = Grid::kPad + G.cells_x;
+  const int bottom = Grid::kPad, top = Grid::kPad + G.cells_y;
+  const DomainDef& d = def_.domain;
+  for (int j = 0; j < G.ny; ++j) {
+    for (int i = 0; i < G.nx; ++i) {
+      if (i > left && i < right && j > bottom && j < top) {
+        i = right - 1;  // skip the interior of the row
+        continue;
+      }
+      const int k = G.index(i, j);
+      if (i <= left) applyWall(d.left, -1, 0, vx[k], vy[k]);
+      if (i >= right) applyWall(d.right, 1, 0, vx[k], vy[k]);
+      if (j <= bottom) applyWall(d.bottom, 0, -1, vx[k], vy[k]);
+      if (j >= top) applyWall(d.top, 0, 1, vx[k], vy[k]);
+    }
+  }
+}
+
+void World::gridToParticleGradient() {
+  StageTimer timer(profile_, Stage::kG2P);
+  withKernel(def_.solver.kernel, [&](auto k) {
+    detail::gridToParticleGradient<decltype(k)>(particles_, grid_);
+  });
+}
+
+void World::gridToParticle(Real dt, StepInfo& info) {
+  StageTimer timer(profile_, Stage::kG2P);
+  detail::G2PSettings s{def_.solver.transfer, def_.solver.pic_fraction, dt,
+                        def_.solver.stress_update == StressUpdate::kUsl, def_.domain.min,
+                        def_.domain.max};
+  withKernel(def_.solver.kernel, [&](auto k) {
+    detail::gridToParticle<decltype(k)>(particles_, grid_, s, info.clamped, info.finite);
+  });
+}
+
+void World::constitutiveUpdate(Real dt) {
+  StageTimer timer(profile_, Stage::kConstitutive);
+  if (dt == 0) return;
+  Particles& P = particles_;
+  const long n = static_cast<long>(P.size());
+#pragma omp parallel for schedule(static)
+  for (long p = 0; p < n; ++p) {
+    const MaterialParams& m = params_[P.material[p]];
+    const VelocityGradient L{P.lxx[p], P.lxy[p], P.lyx[p], P.lyy[p]};
+    Stress s{P.sxx[p], P.syy[p], P.sxy[p], P.szz[p]};
+    s = jaumannElasticUpdate(m, s, L, dt);
+    if (m.model == MaterialModel::kDruckerPrager) druckerPragerReturn(m, s);
+    P.sxx[p] = s.xx;
+    P.syy[p] = s.yy;
+    P.sxy[p] = s.xy;
+    P.szz[p] = s.zz;
+    // V^{n+1} = det(I + dt L) V^n.
+    P.J[p] *= (1 + dt * L.xx) * (1 + dt * L.yy) - dt * dt * L.xy * L.yx;
+  }
+}
+
+}  // namespace mpm_sdem

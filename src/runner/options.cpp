@@ -1,0 +1,70 @@
+#include "options.hpp"
+
+#include <cstdlib>
+
+namespace mpm_sdem::runner {
+
+const char* usage() {
+  return "usage: mpm_sdem_run <scene.yaml> [--out DIR] [--set key=value ...] [--threads N] "
+         "[--quiet]\n"
+         "  --out DIR        write timeseries.csv, particles.csv and profile.csv to DIR\n"
+         "                   (default: out/<scene file name without .yaml>)\n"
+         "  --set key=value  override a scene value, e.g. --set time.end=0.5 or\n"
+         "                   --set materials.sand.density=1500 (repeatable)\n"
+         "  --threads N      OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
+         "  --quiet          no progress line\n"
+         "exit status: 0 done, 1 bad scene, 2 bad command line, 3 unstable state, 130 interrupted\n";
+}
+
+bool parseOptions(int argc, char** argv, Options& out, std::string& error, bool& help) {
+  help = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&](const char* flag) -> const char* {
+      if (i + 1 >= argc) {
+        error = std::string(flag) + " needs a value";
+        return nullptr;
+      }
+      return argv[++i];
+    };
+    if (a == "-h" || a == "--help") {
+      help = true;
+      return true;
+    } else if (a == "--out") {
+      const char* v = value("--out");
+      if (!v) return false;
+      out.out_dir = v;
+    } else if (a == "--set") {
+      const char* v = value("--set");
+      if (!v) return false;
+      out.overrides.push_back(v);
+    } else if (a == "--threads") {
+      const char* v = value("--threads");
+      if (!v) return false;
+      char* end = nullptr;
+      const long n = std::strtol(v, &end, 10);
+      if (*end != '\0' || n < 1 || n > 1024) {
+        error = std::string("--threads takes a whole number >= 1, got '") + v + "'";
+        return false;
+      }
+      out.threads = static_cast<int>(n);
+    } else if (a == "--quiet") {
+      out.quiet = true;
+    } else if (!a.empty() && a[0] == '-') {
+      error = "unknown option '" + a + "'";
+      return false;
+    } else if (out.scene.empty()) {
+      out.scene = a;
+    } else {
+      error = "more than one scene file given ('" + out.scene + "', '" + a + "')";
+      return false;
+    }
+  }
+  if (out.scene.empty()) {
+    error = "no scene file given";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace mpm_sdem::runner

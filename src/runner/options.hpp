@@ -1,0 +1,21 @@
+// Command line of mpm_sdem_run.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace mpm_sdem::runner {
+
+struct Options {
+  std::string scene;
+  std::string out_dir;  // empty: out/<scene file stem>
+  std::vector<std::string> overrides;
+  int threads = 0;  // 0: OpenMP default (OMP_NUM_THREADS or all cores)
+  bool quiet = false;
+};
+
+// Returns false and fills error on a bad command line; help is set for --help.
+bool parseOptions(int argc, char** argv, Options& out, std::string& error, bool& help);
+const char* usage();
+
+}  // namespace mpm_sdem::runner

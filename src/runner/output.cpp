@@ -1,0 +1,56 @@
+#include "output.hpp"
+
+#include <stdexcept>
+
+#include "mpm_sdem/core/constitutive.hpp"
+
+namespace mpm_sdem::runner {
+
+namespace {
+std::ofstream openCsv(const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  out.precision(10);
+  return out;
+}
+}  // namespace
+
+TimeSeriesWriter::TimeSeriesWriter(const std::string& path) : out_(openCsv(path)) {
+  out_ << "time,step,dt,dt_limit,kinetic_energy,elastic_energy,gravity_energy,total_energy,"
+          "momentum_x,momentum_y,angular_momentum,com_x,com_y,max_speed\n";
+  out_.flush();
+}
+
+void TimeSeriesWriter::write(const World& w, const Diagnostics& d, const TimeStepChoice& dt) {
+  out_ << w.time() << ',' << w.stepCount() << ',' << dt.dt << ',' << stepLimitName(dt.limit)
+       << ',' << d.kinetic << ',' << d.elastic << ',' << d.gravity << ',' << d.total() << ','
+       << d.momentum.x() << ',' << d.momentum.y() << ',' << d.angular_momentum << ','
+       << d.center_of_mass.x() << ',' << d.center_of_mass.y() << ',' << d.max_speed << '\n';
+  out_.flush();
+}
+
+void writeParticles(const World& world, const std::string& path) {
+  std::ofstream out = openCsv(path);
+  const Particles& P = world.particles();
+  out << "id,body,material,x,y,vx,vy,mass,volume,sxx,syy,sxy,szz,pressure\n";
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const Stress s{P.sxx[p], P.syy[p], P.sxy[p], P.szz[p]};
+    out << p << ',' << P.body[p] << ',' << P.material[p] << ',' << P.x[p] << ',' << P.y[p] << ','
+        << P.vx[p] << ',' << P.vy[p] << ',' << P.mass[p] << ',' << P.volume0[p] * P.J[p] << ','
+        << s.xx << ',' << s.yy << ',' << s.xy << ',' << s.zz << ',' << -meanStress(s) << '\n';
+  }
+}
+
+void writeProfile(const World& world, const std::string& path) {
+  std::ofstream out = openCsv(path);
+  const Profile& prof = world.profile();
+  out << "stage,seconds,seconds_per_step,fraction\n";
+  const double total = prof.total();
+  for (int s = 0; s < static_cast<int>(Stage::kCount); ++s) {
+    out << stageName(static_cast<Stage>(s)) << ',' << prof.seconds[s] << ','
+        << (prof.steps ? prof.seconds[s] / prof.steps : 0) << ','
+        << (total > 0 ? prof.seconds[s] / total : 0) << '\n';
+  }
+}
+
+}  // namespace mpm_sdem::runner

@@ -1,0 +1,25 @@
+// CSV outputs of the headless runner. Rows are flushed as they are written, so a run that stops
+// early keeps everything up to its last sample.
+#pragma once
+
+#include <fstream>
+#include <string>
+
+#include "mpm_sdem/core/diagnostics.hpp"
+#include "mpm_sdem/core/world.hpp"
+
+namespace mpm_sdem::runner {
+
+class TimeSeriesWriter {
+ public:
+  explicit TimeSeriesWriter(const std::string& path);
+  void write(const World& world, const Diagnostics& d, const TimeStepChoice& dt);
+
+ private:
+  std::ofstream out_;
+};
+
+void writeParticles(const World& world, const std::string& path);
+void writeProfile(const World& world, const std::string& path);
+
+}  // namespace mpm_sdem::runner

@@ -1,0 +1,414 @@
+#include "mpm_sdem/scene/scene.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "mpm_sdem/core/shapes.hpp"
+#include "yaml_reader.hpp"
+
+namespace mpm_sdem {
+
+namespace {
+
+using scene::Context;
+using scene::MapReader;
+
+constexpr Real kDeg = M_PI / 180;
+
+std::string num(Real v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+void applyOverride(YAML::Node root, const std::string& spec, Context& ctx) {
+  const auto eq = spec.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw SceneError("--set " + spec + ": expected key=value, e.g. --set time.end=0.5");
+  }
+  std::vector<std::string> parts;
+  std::stringstream keys(spec.substr(0, eq));
+  for (std::string part; std::getline(keys, part, '.');) parts.push_back(part);
+  YAML::Node cur;
+  cur.reset(root);
+  std::string walked;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const std::string& key = parts[i];
+    const bool last = i + 1 == parts.size();
+    YAML::Node next;
+    if (cur.IsSequence()) {
+      // A list element by index or by its name field.
+      bool found = false;
+      for (std::size_t k = 0; k < cur.size() && !found; ++k) {
+        const YAML::Node el = cur[k];
+        if (key == std::to_string(k) || (el.IsMap() && el["name"] && el["name"].Scalar() == key)) {
+          next.reset(el);
+          found = true;
+        }
+      }
+      if (!found || last) {
+        throw SceneError("--set " + spec + ": '" + walked + "' has no element '" + key +
+                         "' to set a key in (use an index or a name, then a key)");
+      }
+    } else if (cur.IsMap() || !cur.IsDefined() || cur.IsNull()) {
+      if (last) {
+        YAML::Node value = YAML::Load(spec.substr(eq + 1));
+        cur[key] = value;
+        ctx.addOverride(cur[key], spec);
+        return;
+      }
+      const YAML::Node& const_cur = cur;
+      if (!const_cur[key]) cur[key] = YAML::Node(YAML::NodeType::Map);
+      next.reset(cur[key]);
+    } else {
+      throw SceneError("--set " + spec + ": '" + walked + "' is a value, not a section");
+    }
+    walked += (walked.empty() ? "" : ".") + key;
+    cur.reset(next);
+  }
+}
+
+WallDef parseWall(const Context& ctx, const MapReader& walls, const char* side) {
+  WallDef w;
+  if (!walls.has(side)) return w;
+  const YAML::Node n = walls.node(side);
+  const std::string path = walls.path(side);
+  auto type = [&](const YAML::Node& t, const std::string& p) {
+    return walls.choiceOf<WallType>(t, p,
+                                    {{"sticky", WallType::kSticky},
+                                     {"slip", WallType::kSlip},
+                                     {"friction", WallType::kFriction}});
+  };
+  if (n.IsScalar()) {
+    w.type = type(n, path);
+    if (w.type == WallType::kFriction) {
+      ctx.fail(n, path, "a friction wall needs a coefficient: {type: friction, friction: 0.3}");
+    }
+    return w;
+  }
+  MapReader m(ctx, n, path);
+  w.type = type(m.node("type"), m.path("type"));
+  if (w.type == WallType::kFriction) {
+    w.friction = m.number("friction", "(dimensionless)");
+    m.require(w.friction >= 0, "friction", "must be >= 0, got " + num(w.friction));
+  }
+  m.finish();
+  return w;
+}
+
+void parseDomain(const Context& ctx, const MapReader& top, Scene& s) {
+  MapReader d(ctx, top.node("domain"), "domain");
+  DomainDef& dom = s.world.domain;
+  dom.min = d.vec2("min", "m");
+  dom.max = d.vec2("max", "m");
+  d.require(dom.max.x() > dom.min.x() && dom.max.y() > dom.min.y(), "max",
+            "must exceed domain.min in both x and y");
+  if (d.has("walls")) {
+    MapReader w(ctx, d.node("walls"), "domain.walls");
+    dom.left = parseWall(ctx, w, "left");
+    dom.right = parseWall(ctx, w, "right");
+    dom.bottom = parseWall(ctx, w, "bottom");
+    dom.top = parseWall(ctx, w, "top");
+    w.finish();
+  }
+  d.finish();
+}
+
+void parseGrid(const Context& ctx, const MapReader& top, Scene& s) {
+  MapReader g(ctx, top.node("grid"), "grid");
+  const Real h = g.number("cell_size", "m");
+  g.require(h > 0, "cell_size", "must be > 0 m, got " + num(h));
+  const Vec2 size = s.world.domain.max - s.world.domain.min;
+  for (int a = 0; a < 2; ++a) {
+    const Real n = size[a] / h;
+    if (std::abs(n - std::round(n)) > 1e-6 * std::max<Real>(1, n)) {
+      g.require(false, "cell_size",
+                "the domain " + std::string(a == 0 ? "width " : "height ") + num(size[a]) +
+                    " m is not a whole number of cells of " + num(h) + " m; use e.g. " +
+                    num(size[a] / std::ceil(n)) + " or make the domain " +
+                    num(std::round(n) * h) + " m");
+    }
+  }
+  s.world.cell_size = h;
+  g.finish();
+}
+
+void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
+  if (!top.has("solver")) return;
+  MapReader r(ctx, top.node("solver"), "solver");
+  SolverDef& sol = s.world.solver;
+  sol.kernel = r.choice<KernelType>("kernel",
+                                    {{"quadratic_bspline", KernelType::kQuadraticBSpline},
+                                     {"cubic_bspline", KernelType::kCubicBSpline},
+                                     {"gimp", KernelType::kGimp}},
+                                    sol.kernel);
+  sol.transfer = r.choice<TransferScheme>(
+      "transfer",
+      {{"apic", TransferScheme::kApic}, {"pic", TransferScheme::kPic}, {"flip", TransferScheme::kFlip}},
+      sol.transfer);
+  if (r.has("pic_fraction")) {
+    r.require(sol.transfer == TransferScheme::kFlip, "pic_fraction",
+              "applies only to transfer: flip (it is alpha of seed 000 eq. 28)");
+    sol.pic_fraction = r.number("pic_fraction", "(dimensionless)");
+    r.require(sol.pic_fraction >= 0 && sol.pic_fraction <= 1, "pic_fraction",
+              "must be in [0, 1] (0 = FLIP, 1 = PIC), got " + num(sol.pic_fraction));
+  }
+  sol.stress_update = r.choice<StressUpdate>(
+      "stress_update", {{"usf", StressUpdate::kUsf}, {"usl", StressUpdate::kUsl}}, sol.stress_update);
+  sol.gravity = r.vec2("gravity", "m/s^2", sol.gravity);
+  r.finish();
+}
+
+void parseTime(const Context& ctx, const MapReader& top, Scene& s) {
+  MapReader t(ctx, top.node("time"), "time");
+  s.end_time = t.number("end", "s");
+  t.require(s.end_time > 0, "end", "must be > 0 s, got " + num(s.end_time));
+  TimeStepDef& ts = s.world.time_step;
+  if (t.has("dt") && !(t.node("dt").IsScalar() && t.node("dt").Scalar() == "auto")) {
+    ts.automatic = false;
+    ts.fixed = t.number("dt", "s (or 'auto')");
+    t.require(ts.fixed > 0 && ts.fixed <= s.end_time, "dt",
+              "must be in (0, time.end] s or 'auto', got " + num(ts.fixed));
+  }
+  if (t.has("cfl")) {
+    t.require(ts.automatic, "cfl", "applies only with dt: auto");
+    ts.cfl = t.number("cfl", "(dimensionless)");
+    t.require(ts.cfl > 0 && ts.cfl <= 1, "cfl", "must be in (0, 1], got " + num(ts.cfl));
+  }
+  if (t.has("dt_max")) {
+    t.require(ts.automatic, "dt_max", "applies only with dt: auto");
+    ts.max = t.number("dt_max", "s");
+    t.require(ts.max > 0, "dt_max", "must be > 0 s, got " + num(ts.max));
+  }
+  t.finish();
+}
+
+MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::string& path) {
+  MapReader r(ctx, n, path);
+  MaterialDef m;
+  m.name = r.text("name");
+  m.model = r.choiceOf<MaterialModel>(r.node("model"), r.path("model"),
+                                      {{"linear_elastic", MaterialModel::kLinearElastic},
+                                       {"drucker_prager", MaterialModel::kDruckerPrager}});
+  m.density = r.number("density", "kg/m^3");
+  r.require(m.density > 0, "density", "must be > 0 kg/m^3, got " + num(m.density));
+  const bool e_nu = r.has("youngs_modulus") || r.has("poisson_ratio");
+  const bool k_g = r.has("bulk_modulus") || r.has("shear_modulus");
+  if (e_nu == k_g) {
+    ctx.fail(n, path, "give the elasticity either as youngs_modulus and poisson_ratio or as "
+                      "bulk_modulus and shear_modulus (Pa)");
+  }
+  if (e_nu) {
+    const Real E = r.number("youngs_modulus", "Pa");
+    r.require(E > 0, "youngs_modulus", "must be > 0 Pa, got " + num(E));
+    const Real nu = r.number("poisson_ratio", "(dimensionless)");
+    r.require(nu > -1 && nu < 0.5, "poisson_ratio",
+              "must be in (-1, 0.5) (0.5 is incompressible), got " + num(nu));
+    m.bulk_modulus = E / (3 * (1 - 2 * nu));
+    m.shear_modulus = E / (2 * (1 + nu));
+  } else {
+    m.bulk_modulus = r.number("bulk_modulus", "Pa");
+    r.require(m.bulk_modulus > 0, "bulk_modulus", "must be > 0 Pa, got " + num(m.bulk_modulus));
+    m.shear_modulus = r.number("shear_modulus", "Pa");
+    r.require(m.shear_modulus > 0, "shear_modulus", "must be > 0 Pa, got " + num(m.shear_modulus));
+  }
+  const char* plastic_keys[] = {"friction_angle", "dilation_angle", "cohesion", "tensile_strength"};
+  if (m.model == MaterialModel::kDruckerPrager) {
+    const Real phi = r.number("friction_angle", "deg");
+    r.require(phi >= 0 && phi < 90, "friction_angle", "must be in [0, 90) deg, got " + num(phi));
+    const Real psi = r.number("dilation_angle", "deg", 0);
+    r.require(psi >= 0 && psi <= phi, "dilation_angle",
+              "must be in [0, friction_angle] deg, got " + num(psi));
+    m.friction_angle = phi * kDeg;
+    m.dilation_angle = psi * kDeg;
+    m.cohesion = r.number("cohesion", "Pa", 0);
+    r.require(m.cohesion >= 0, "cohesion", "must be >= 0 Pa, got " + num(m.cohesion));
+    m.tensile_strength = r.number("tensile_strength", "Pa", 0);
+    r.require(m.tensile_strength >= 0, "tensile_strength",
+              "must be >= 0 Pa, got " + num(m.tensile_strength));
+  } else {
+    for (const char* k : plastic_keys) {
+      r.require(!r.has(k), k, "applies only to model: drucker_prager");
+    }
+  }
+  r.finish();
+  return m;
+}
+
+ShapeDef parseShape(const Context& ctx, const MapReader& r) {
+  ShapeDef sh;
+  sh.type = r.choiceOf<ShapeType>(r.node("shape"), r.path("shape"),
+                                  {{"rectangle", ShapeType::kRectangle},
+                                   {"polygon", ShapeType::kPolygon},
+                                   {"disk", ShapeType::kDisk}});
+  switch (sh.type) {
+    case ShapeType::kRectangle:
+      sh.min = r.vec2("min", "m");
+      sh.max = r.vec2("max", "m");
+      r.require(sh.max.x() > sh.min.x() && sh.max.y() > sh.min.y(), "max",
+                "must exceed min in both x and y");
+      break;
+    case ShapeType::kDisk:
+      sh.center = r.vec2("center", "m");
+      sh.radius = r.number("radius", "m");
+      r.require(sh.radius > 0, "radius", "must be > 0 m, got " + num(sh.radius));
+      break;
+    case ShapeType::kPolygon: {
+      const YAML::Node v = r.node("vertices");
+      if (!v.IsSequence() || v.size() < 3) {
+        ctx.fail(v, r.path("vertices"), "expected a list of at least 3 [x, y] points in m");
+      }
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        sh.vertices.push_back(
+            MapReader::toVec2(ctx, v[i], r.path("vertices") + "[" + std::to_string(i) + "]", "m"));
+      }
+      r.require(std::abs(signedArea(sh.vertices)) > 0, "vertices",
+                "the polygon has zero area; list the corners of a region");
+      r.require(!selfIntersects(sh.vertices), "vertices",
+                "the polygon's edges cross; list the corners in order around the outline");
+      break;
+    }
+  }
+  return sh;
+}
+
+void parseBodies(const Context& ctx, const MapReader& top, Scene& s,
+                 const std::map<std::string, int>& materials) {
+  const YAML::Node list = top.node("bodies");
+  if (!list.IsSequence() || list.size() == 0) {
+    ctx.fail(list, "bodies", "expected a list of at least one body");
+  }
+  const DomainDef& dom = s.world.domain;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string path = "bodies[" + std::to_string(i) + "]";
+    MapReader r(ctx, list[i], path);
+    BodyDef b;
+    b.name = r.text("name");
+    const std::string mat = r.text("material");
+    const auto it = materials.find(mat);
+    if (it == materials.end()) {
+      std::string names;
+      for (const auto& m : materials) names += (names.empty() ? "" : ", ") + m.first;
+      r.require(false, "material", "no material named '" + mat + "'; defined: " + names);
+    }
+    b.material = it->second;
+    b.shape = parseShape(ctx, r);
+    b.points_per_cell = r.integer("points_per_cell", b.points_per_cell);
+    r.require(b.points_per_cell >= 1 && b.points_per_cell <= 8, "points_per_cell",
+              "must be a whole number in [1, 8] (points per cell per direction), got " +
+                  std::to_string(b.points_per_cell));
+    b.velocity = r.vec2("velocity", "m/s", b.velocity);
+    r.finish();
+
+    Vec2 lo, hi;
+    bounds(b.shape, lo, hi);
+    if (lo.x() < dom.min.x() || lo.y() < dom.min.y() || hi.x() > dom.max.x() ||
+        hi.y() > dom.max.y()) {
+      ctx.fail(list[i], path, "body '" + b.name + "' reaches outside the domain [" +
+                                  num(dom.min.x()) + ", " + num(dom.max.x()) + "] x [" +
+                                  num(dom.min.y()) + ", " + num(dom.max.y()) +
+                                  "] m; move it inside or enlarge domain.min/max");
+    }
+    const auto points =
+        fillPoints(b.shape, dom.min, s.world.cell_size, b.points_per_cell);
+    if (points.empty()) {
+      ctx.fail(list[i], path, "body '" + b.name + "' contains no material point; make it larger "
+                              "than a cell or raise points_per_cell");
+    }
+    for (std::size_t k = 0; k < s.world.bodies.size(); ++k) {
+      for (const Vec2& p : points) {
+        if (contains(s.world.bodies[k].shape, p)) {
+          ctx.fail(list[i], path, "body '" + b.name + "' overlaps body '" +
+                                      s.world.bodies[k].name +
+                                      "'; move or shrink one of them so that no region is "
+                                      "filled twice");
+        }
+      }
+      if (s.world.bodies[k].name == b.name) {
+        ctx.fail(list[i], path, "a body named '" + b.name + "' exists already");
+      }
+    }
+    s.world.bodies.push_back(std::move(b));
+  }
+}
+
+Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& source) {
+  Scene s;
+  s.source = source;
+  MapReader top(ctx, root, "");
+  s.name = top.text("name", "");
+  s.description = top.text("description", "");
+  parseDomain(ctx, top, s);
+  parseGrid(ctx, top, s);
+  parseSolver(ctx, top, s);
+  parseTime(ctx, top, s);
+
+  const YAML::Node mats = top.node("materials");
+  if (!mats.IsSequence() || mats.size() == 0) {
+    ctx.fail(mats, "materials", "expected a list of at least one material");
+  }
+  std::map<std::string, int> by_name;
+  for (std::size_t i = 0; i < mats.size(); ++i) {
+    const std::string path = "materials[" + std::to_string(i) + "]";
+    MaterialDef m = parseMaterial(ctx, mats[i], path);
+    if (by_name.count(m.name)) ctx.fail(mats[i], path, "a material named '" + m.name + "' exists already");
+    by_name[m.name] = static_cast<int>(s.world.materials.size());
+    s.world.materials.push_back(std::move(m));
+  }
+  parseBodies(ctx, top, s, by_name);
+
+  if (top.has("output")) {
+    MapReader o(ctx, top.node("output"), "output");
+    s.output.interval = o.number("interval", "s", 0);
+    o.require(s.output.interval > 0 && s.output.interval <= s.end_time, "interval",
+              "must be in (0, time.end] s, got " + num(s.output.interval));
+    s.output.particles = o.boolean("particles", s.output.particles);
+    o.finish();
+  }
+  if (s.output.interval <= 0) s.output.interval = s.end_time / 100;
+  if (top.has("limits")) {
+    MapReader l(ctx, top.node("limits"), "limits");
+    s.limits.energy_growth = l.number("energy_growth", "(fraction of the initial energy)",
+                                      s.limits.energy_growth);
+    l.require(s.limits.energy_growth > 0, "energy_growth",
+              "must be > 0, got " + num(s.limits.energy_growth));
+    l.finish();
+  }
+  top.finish();
+  return s;
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& yaml_text, const std::string& source_name,
+                 const std::vector<std::string>& overrides) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::ParserException& e) {
+    throw SceneError(source_name + ":" + std::to_string(e.mark.line + 1) + ":" +
+                     std::to_string(e.mark.column + 1) + ": not valid YAML: " + e.msg);
+  }
+  Context ctx(source_name);
+  if (!root.IsMap()) throw SceneError(source_name + ": expected a map of sections (domain, grid, ...)");
+  for (const std::string& o : overrides) {
+    try {
+      applyOverride(root, o, ctx);
+    } catch (const YAML::Exception& e) {
+      throw SceneError("--set " + o + ": the value is not valid YAML: " + e.msg);
+    }
+  }
+  return parseTree(root, ctx, source_name);
+}
+
+Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path);
+  if (!in) throw SceneError(path + ": cannot open the scene file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parseScene(text.str(), path, overrides);
+}
+
+}  // namespace mpm_sdem

@@ -1,0 +1,70 @@
+// Small builders for test worlds (SI units).
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include "mpm_sdem/core/diagnostics.hpp"
+#include "mpm_sdem/core/world.hpp"
+
+namespace mpm_sdem::test {
+
+inline MaterialDef elastic(Real density, Real E, Real nu) {
+  MaterialDef m;
+  m.name = "elastic";
+  m.model = MaterialModel::kLinearElastic;
+  m.density = density;
+  m.bulk_modulus = E / (3 * (1 - 2 * nu));
+  m.shear_modulus = E / (2 * (1 + nu));
+  return m;
+}
+
+inline MaterialDef druckerPrager(Real density, Real E, Real nu, Real phi_deg, Real psi_deg) {
+  MaterialDef m = elastic(density, E, nu);
+  m.name = "granular";
+  m.model = MaterialModel::kDruckerPrager;
+  m.friction_angle = phi_deg * M_PI / 180;
+  m.dilation_angle = psi_deg * M_PI / 180;
+  return m;
+}
+
+inline BodyDef rectangle(const Vec2& lo, const Vec2& hi, int ppc, int material = 0) {
+  BodyDef b;
+  b.name = "rect";
+  b.shape.type = ShapeType::kRectangle;
+  b.shape.min = lo;
+  b.shape.max = hi;
+  b.points_per_cell = ppc;
+  b.material = material;
+  return b;
+}
+
+inline BodyDef disk(const Vec2& c, Real r, int ppc, int material = 0) {
+  BodyDef b;
+  b.name = "disk";
+  b.shape.type = ShapeType::kDisk;
+  b.shape.center = c;
+  b.shape.radius = r;
+  b.points_per_cell = ppc;
+  b.material = material;
+  return b;
+}
+
+inline WorldDef box(const Vec2& lo, const Vec2& hi, Real h) {
+  WorldDef d;
+  d.domain.min = lo;
+  d.domain.max = hi;
+  d.cell_size = h;
+  return d;
+}
+
+// Steps with the world's own time-step choice until time t.
+inline void runUntil(World& w, Real t) {
+  while (w.time() < t - 1e-12) w.step(std::fmin(w.chooseTimeStep().dt, t - w.time()));
+}
+
+inline std::string sourcePath(const std::string& rel) {
+  return std::string(MPM_SDEM_SOURCE_DIR) + "/" + rel;
+}
+
+}  // namespace mpm_sdem::test

@@ -1,0 +1,109 @@
+// Test 8: bad scene input is refused with one message naming the file, line, key and a valid
+// value, and the runner exits non-zero before simulating (no output written). The shipped scenes
+// parse.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "helpers.hpp"
+#include "mpm_sdem/scene/scene.hpp"
+
+using namespace mpm_sdem;
+
+namespace {
+
+std::string errorOf(const std::string& file, const std::vector<std::string>& overrides = {}) {
+  try {
+    loadScene(test::sourcePath("test/data/" + file), overrides);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void expectError(const std::string& msg, const std::string& where, const std::string& key,
+                 const std::string& hint) {
+  ASSERT_FALSE(msg.empty()) << "the scene was accepted";
+  EXPECT_NE(msg.find(where), std::string::npos) << msg;
+  EXPECT_NE(msg.find(key), std::string::npos) << msg;
+  EXPECT_NE(msg.find(hint), std::string::npos) << msg;
+}
+
+}  // namespace
+
+TEST(SceneErrors, ValidBaseSceneParses) { EXPECT_EQ(errorOf("valid.yaml"), ""); }
+
+TEST(SceneErrors, UnknownKey) {
+  expectError(errorOf("unknown_key.yaml"), "unknown_key.yaml:25:5", "materials[0].densty",
+              "did you mean 'density'?");
+}
+TEST(SceneErrors, MissingRequiredKey) {
+  expectError(errorOf("missing_key.yaml"), "missing_key.yaml:4:3", "grid",
+              "missing required key 'cell_size'");
+}
+TEST(SceneErrors, WrongType) {
+  expectError(errorOf("wrong_type.yaml"), "wrong_type.yaml:15:8", "time.end",
+              "expected a finite number in s, got 'soon'");
+}
+TEST(SceneErrors, NonPositiveDensity) {
+  expectError(errorOf("bad_density.yaml"), "bad_density.yaml:20:14", "materials[0].density",
+              "must be > 0 kg/m^3");
+}
+TEST(SceneErrors, PoissonRatioOutOfRange) {
+  expectError(errorOf("bad_poisson.yaml"), "bad_poisson.yaml:22:20", "materials[0].poisson_ratio",
+              "must be in (-1, 0.5)");
+}
+TEST(SceneErrors, NonPositiveYoungsModulus) {
+  expectError(errorOf("bad_youngs.yaml"), "bad_youngs.yaml:21:21", "materials[0].youngs_modulus",
+              "must be > 0 Pa");
+}
+TEST(SceneErrors, NonPositiveCellSize) {
+  expectError(errorOf("bad_cell_size.yaml"), "bad_cell_size.yaml:10:14", "grid.cell_size",
+              "must be > 0 m");
+}
+TEST(SceneErrors, BodyOutsideDomain) {
+  expectError(errorOf("body_outside.yaml"), "body_outside.yaml:27:5", "bodies[0]",
+              "reaches outside the domain");
+}
+TEST(SceneErrors, UnknownMaterialName) {
+  expectError(errorOf("unknown_material.yaml"), "unknown_material.yaml:28:15",
+              "bodies[0].material", "no material named 'sandd'; defined: sand");
+}
+TEST(SceneErrors, DomainNotWholeCells) {
+  expectError(errorOf("valid.yaml", {"grid.cell_size=0.03"}), "--set grid.cell_size=0.03",
+              "grid.cell_size", "not a whole number of cells");
+}
+TEST(SceneErrors, OverrideOfUnknownKey) {
+  expectError(errorOf("valid.yaml", {"time.ends=1"}), "--set time.ends=1", "time.ends",
+              "did you mean 'end'?");
+}
+TEST(SceneErrors, OverrideByMaterialName) {
+  EXPECT_EQ(errorOf("valid.yaml", {"materials.sand.density=1500"}), "");
+  expectError(errorOf("valid.yaml", {"materials.sand.density=-3"}), "--set materials.sand.density=-3",
+              "materials[0].density", "must be > 0 kg/m^3");
+}
+
+TEST(SceneErrors, RunnerExitsNonZeroBeforeSimulating) {
+  namespace fs = std::filesystem;
+  const fs::path out = fs::temp_directory_path() / "mpm_sdem_test_bad_scene";
+  fs::remove_all(out);
+  const std::string cmd = std::string(MPM_SDEM_RUNNER) + " " +
+                          test::sourcePath("test/data/bad_density.yaml") + " --quiet --out " +
+                          out.string() + " 2>/dev/null";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  EXPECT_FALSE(fs::exists(out / "timeseries.csv"));
+}
+
+TEST(SceneErrors, ShippedScenesParse) {
+  namespace fs = std::filesystem;
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(test::sourcePath("config/scenes"))) {
+    if (e.path().extension() != ".yaml") continue;
+    ++n;
+    EXPECT_NO_THROW(loadScene(e.path().string())) << e.path();
+  }
+  EXPECT_GE(n, 1);
+}
