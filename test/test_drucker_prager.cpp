@@ -30,16 +30,20 @@ Real magnitude(const Stress& s) {
   return std::sqrt(s.xx * s.xx + s.yy * s.yy + s.zz * s.zz + 2 * s.xy * s.xy);
 }
 
-Stress randomStress(std::mt19937& rng, Real scale) {
-  std::uniform_real_distribution<Real> u(-scale, scale);
-  return Stress{u(rng), u(rng), u(rng), u(rng)};
+// Mean stress from tension to deep compression, deviatoric parts over three decades, so that
+// elastic states, shear returns and tensile returns are all well represented.
+Stress randomStress(std::mt19937& rng) {
+  std::uniform_real_distribution<Real> mean(-2e5, 5e4), unit(-1, 1), decade(2, 5);
+  const Real m = mean(rng), scale = std::pow(10.0, decade(rng));
+  const Real dx = scale * unit(rng), dy = scale * unit(rng), dxy = scale * unit(rng);
+  return Stress{m + dx, m + dy, dxy, m - dx - dy};
 }
 
 void checkReturns(const MaterialParams& m) {
   std::mt19937 rng(7);
   int outside = 0, inside = 0;
   for (int i = 0; i < 20000; ++i) {
-    const Stress trial = randomStress(rng, 1e5);
+    const Stress trial = randomStress(rng);
     Stress s = trial;
     const PlasticReturn r = druckerPragerReturn(m, s);
     const Real scale = magnitude(trial);
@@ -98,7 +102,9 @@ TEST(DruckerPrager, PlasticVolumeChangeFollowsDilationAngle) {
     const Real plastic_shear = (equivalentShear(trial) - equivalentShear(s)) / m.shear;
     EXPECT_NEAR(plastic_shear, r.multiplier, 1e-12);
     EXPECT_NEAR(plastic_volume, m.q_psi * plastic_shear, 1e-12) << "psi = " << psi;
-    if (psi == 0) EXPECT_EQ(meanStress(trial), meanStress(s));
+    if (psi == 0) {
+      EXPECT_EQ(meanStress(trial), meanStress(s));
+    }
     // The deviatoric direction is kept (radial return in the deviatoric plane).
     const Real kx = (s.xx - meanStress(s)) / (trial.xx - meanStress(trial));
     EXPECT_NEAR(s.xy / trial.xy, kx, 1e-12);

@@ -35,27 +35,27 @@ void expectError(const std::string& msg, const std::string& where, const std::st
 TEST(SceneErrors, ValidBaseSceneParses) { EXPECT_EQ(errorOf("valid.yaml"), ""); }
 
 TEST(SceneErrors, UnknownKey) {
-  expectError(errorOf("unknown_key.yaml"), "unknown_key.yaml:25:5", "materials[0].densty",
+  expectError(errorOf("unknown_key.yaml"), "unknown_key.yaml:21:5", "materials[0].densty",
               "did you mean 'density'?");
 }
 TEST(SceneErrors, MissingRequiredKey) {
-  expectError(errorOf("missing_key.yaml"), "missing_key.yaml:4:3", "grid",
-              "missing required key 'cell_size'");
+  expectError(errorOf("missing_key.yaml"), "missing_key.yaml:15:3", "time",
+              "missing required key 'end'");
 }
 TEST(SceneErrors, WrongType) {
   expectError(errorOf("wrong_type.yaml"), "wrong_type.yaml:15:8", "time.end",
               "expected a finite number in s, got 'soon'");
 }
 TEST(SceneErrors, NonPositiveDensity) {
-  expectError(errorOf("bad_density.yaml"), "bad_density.yaml:20:14", "materials[0].density",
+  expectError(errorOf("bad_density.yaml"), "bad_density.yaml:21:14", "materials[0].density",
               "must be > 0 kg/m^3");
 }
 TEST(SceneErrors, PoissonRatioOutOfRange) {
-  expectError(errorOf("bad_poisson.yaml"), "bad_poisson.yaml:22:20", "materials[0].poisson_ratio",
+  expectError(errorOf("bad_poisson.yaml"), "bad_poisson.yaml:23:20", "materials[0].poisson_ratio",
               "must be in (-1, 0.5)");
 }
 TEST(SceneErrors, NonPositiveYoungsModulus) {
-  expectError(errorOf("bad_youngs.yaml"), "bad_youngs.yaml:21:21", "materials[0].youngs_modulus",
+  expectError(errorOf("bad_youngs.yaml"), "bad_youngs.yaml:22:21", "materials[0].youngs_modulus",
               "must be > 0 Pa");
 }
 TEST(SceneErrors, NonPositiveCellSize) {

@@ -172,12 +172,19 @@ void World::gridVelocity(Real kick, bool after_force) {
     return;
   }
   const Real gx = def_.solver.gravity.x(), gy = def_.solver.gravity.y();
+  const Real damping = def_.solver.damping;
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
     const Real m = G.mass[i];
     if (m > 0) {
-      G.vel_x[i] = G.vel0_x[i] + kick * (G.force_x[i] / m + gx);
-      G.vel_y[i] = G.vel0_y[i] + kick * (G.force_y[i] / m + gy);
+      // Eq. 11 and 17: total nodal force, internal plus gravity (eq. 13-14).
+      Real fx = G.force_x[i] + m * gx, fy = G.force_y[i] + m * gy;
+      if (damping > 0) {
+        fx -= damping * std::abs(fx) * (G.vel0_x[i] > 0 ? 1 : G.vel0_x[i] < 0 ? -1 : 0);
+        fy -= damping * std::abs(fy) * (G.vel0_y[i] > 0 ? 1 : G.vel0_y[i] < 0 ? -1 : 0);
+      }
+      G.vel_x[i] = G.vel0_x[i] + kick * fx / m;
+      G.vel_y[i] = G.vel0_y[i] + kick * fy / m;
     } else {
       G.vel_x[i] = 0;
       G.vel_y[i] = 0;

@@ -56,7 +56,12 @@ void applyOverride(YAML::Node root, const std::string& spec, Context& ctx) {
       if (last) {
         YAML::Node value = YAML::Load(spec.substr(eq + 1));
         cur[key] = value;
-        ctx.addOverride(cur[key], spec);
+        for (const auto& kv : cur) {
+          if (kv.first.Scalar() == key) {
+            ctx.addOverride(kv.first, spec);
+            ctx.addOverride(kv.second, spec);
+          }
+        }
         return;
       }
       const YAML::Node& const_cur = cur;
@@ -88,36 +93,33 @@ WallDef parseWall(const Context& ctx, const MapReader& walls, const char* side) 
     }
     return w;
   }
-  MapReader m(ctx, n, path);
+  MapReader m(ctx, n, path, {"type", "friction"});
   w.type = type(m.node("type"), m.path("type"));
   if (w.type == WallType::kFriction) {
     w.friction = m.number("friction", "(dimensionless)");
     m.require(w.friction >= 0, "friction", "must be >= 0, got " + num(w.friction));
   }
-  m.finish();
   return w;
 }
 
 void parseDomain(const Context& ctx, const MapReader& top, Scene& s) {
-  MapReader d(ctx, top.node("domain"), "domain");
+  MapReader d(ctx, top.node("domain"), "domain", {"min", "max", "walls"});
   DomainDef& dom = s.world.domain;
   dom.min = d.vec2("min", "m");
   dom.max = d.vec2("max", "m");
   d.require(dom.max.x() > dom.min.x() && dom.max.y() > dom.min.y(), "max",
             "must exceed domain.min in both x and y");
   if (d.has("walls")) {
-    MapReader w(ctx, d.node("walls"), "domain.walls");
+    MapReader w(ctx, d.node("walls"), "domain.walls", {"left", "right", "bottom", "top"});
     dom.left = parseWall(ctx, w, "left");
     dom.right = parseWall(ctx, w, "right");
     dom.bottom = parseWall(ctx, w, "bottom");
     dom.top = parseWall(ctx, w, "top");
-    w.finish();
   }
-  d.finish();
 }
 
 void parseGrid(const Context& ctx, const MapReader& top, Scene& s) {
-  MapReader g(ctx, top.node("grid"), "grid");
+  MapReader g(ctx, top.node("grid"), "grid", {"cell_size"});
   const Real h = g.number("cell_size", "m");
   g.require(h > 0, "cell_size", "must be > 0 m, got " + num(h));
   const Vec2 size = s.world.domain.max - s.world.domain.min;
@@ -132,12 +134,12 @@ void parseGrid(const Context& ctx, const MapReader& top, Scene& s) {
     }
   }
   s.world.cell_size = h;
-  g.finish();
 }
 
 void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
   if (!top.has("solver")) return;
-  MapReader r(ctx, top.node("solver"), "solver");
+  MapReader r(ctx, top.node("solver"), "solver",
+              {"kernel", "transfer", "pic_fraction", "stress_update", "gravity", "damping"});
   SolverDef& sol = s.world.solver;
   sol.kernel = r.choice<KernelType>("kernel",
                                     {{"quadratic_bspline", KernelType::kQuadraticBSpline},
@@ -158,11 +160,14 @@ void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
   sol.stress_update = r.choice<StressUpdate>(
       "stress_update", {{"usf", StressUpdate::kUsf}, {"usl", StressUpdate::kUsl}}, sol.stress_update);
   sol.gravity = r.vec2("gravity", "m/s^2", sol.gravity);
-  r.finish();
+  sol.damping = r.number("damping", "(dimensionless)", sol.damping);
+  r.require(sol.damping >= 0 && sol.damping < 1, "damping",
+            "must be in [0, 1) (0 = none; 0.05 to 0.2 settles a static state), got " +
+                num(sol.damping));
 }
 
 void parseTime(const Context& ctx, const MapReader& top, Scene& s) {
-  MapReader t(ctx, top.node("time"), "time");
+  MapReader t(ctx, top.node("time"), "time", {"end", "dt", "cfl", "dt_max"});
   s.end_time = t.number("end", "s");
   t.require(s.end_time > 0, "end", "must be > 0 s, got " + num(s.end_time));
   TimeStepDef& ts = s.world.time_step;
@@ -182,11 +187,12 @@ void parseTime(const Context& ctx, const MapReader& top, Scene& s) {
     ts.max = t.number("dt_max", "s");
     t.require(ts.max > 0, "dt_max", "must be > 0 s, got " + num(ts.max));
   }
-  t.finish();
 }
 
 MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::string& path) {
-  MapReader r(ctx, n, path);
+  MapReader r(ctx, n, path,
+              {"name", "model", "density", "youngs_modulus", "poisson_ratio", "bulk_modulus",
+               "shear_modulus", "friction_angle", "dilation_angle", "cohesion", "tensile_strength"});
   MaterialDef m;
   m.name = r.text("name");
   m.model = r.choiceOf<MaterialModel>(r.node("model"), r.path("model"),
@@ -233,7 +239,6 @@ MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::st
       r.require(!r.has(k), k, "applies only to model: drucker_prager");
     }
   }
-  r.finish();
   return m;
 }
 
@@ -243,6 +248,14 @@ ShapeDef parseShape(const Context& ctx, const MapReader& r) {
                                   {{"rectangle", ShapeType::kRectangle},
                                    {"polygon", ShapeType::kPolygon},
                                    {"disk", ShapeType::kDisk}});
+  const std::pair<const char*, ShapeType> owner[] = {
+      {"min", ShapeType::kRectangle}, {"max", ShapeType::kRectangle},
+      {"vertices", ShapeType::kPolygon}, {"center", ShapeType::kDisk}, {"radius", ShapeType::kDisk}};
+  const char* shape_names[] = {"rectangle", "polygon", "disk"};
+  for (const auto& [key, type] : owner) {
+    r.require(type == sh.type || !r.has(key), key,
+              std::string("applies only to shape: ") + shape_names[static_cast<int>(type)]);
+  }
   switch (sh.type) {
     case ShapeType::kRectangle:
       sh.min = r.vec2("min", "m");
@@ -283,7 +296,9 @@ void parseBodies(const Context& ctx, const MapReader& top, Scene& s,
   const DomainDef& dom = s.world.domain;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string path = "bodies[" + std::to_string(i) + "]";
-    MapReader r(ctx, list[i], path);
+    MapReader r(ctx, list[i], path,
+                {"name", "material", "shape", "min", "max", "vertices", "center", "radius",
+                 "points_per_cell", "velocity"});
     BodyDef b;
     b.name = r.text("name");
     const std::string mat = r.text("material");
@@ -300,7 +315,6 @@ void parseBodies(const Context& ctx, const MapReader& top, Scene& s,
               "must be a whole number in [1, 8] (points per cell per direction), got " +
                   std::to_string(b.points_per_cell));
     b.velocity = r.vec2("velocity", "m/s", b.velocity);
-    r.finish();
 
     Vec2 lo, hi;
     bounds(b.shape, lo, hi);
@@ -337,7 +351,9 @@ void parseBodies(const Context& ctx, const MapReader& top, Scene& s,
 Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& source) {
   Scene s;
   s.source = source;
-  MapReader top(ctx, root, "");
+  MapReader top(ctx, root, "",
+                {"name", "description", "domain", "grid", "solver", "time", "materials", "bodies",
+                 "output", "limits"});
   s.name = top.text("name", "");
   s.description = top.text("description", "");
   parseDomain(ctx, top, s);
@@ -360,23 +376,20 @@ Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& s
   parseBodies(ctx, top, s, by_name);
 
   if (top.has("output")) {
-    MapReader o(ctx, top.node("output"), "output");
+    MapReader o(ctx, top.node("output"), "output", {"interval", "particles"});
     s.output.interval = o.number("interval", "s", 0);
     o.require(s.output.interval > 0 && s.output.interval <= s.end_time, "interval",
               "must be in (0, time.end] s, got " + num(s.output.interval));
     s.output.particles = o.boolean("particles", s.output.particles);
-    o.finish();
   }
   if (s.output.interval <= 0) s.output.interval = s.end_time / 100;
   if (top.has("limits")) {
-    MapReader l(ctx, top.node("limits"), "limits");
+    MapReader l(ctx, top.node("limits"), "limits", {"energy_growth"});
     s.limits.energy_growth = l.number("energy_growth", "(fraction of the initial energy)",
                                       s.limits.energy_growth);
     l.require(s.limits.energy_growth > 0, "energy_growth",
               "must be > 0, got " + num(s.limits.energy_growth));
-    l.finish();
   }
-  top.finish();
   return s;
 }
 

@@ -51,9 +51,32 @@ void Context::fail(const YAML::Node& at, const std::string& key, const std::stri
   throw SceneError(where(at) + ": " + key + ": " + what);
 }
 
-MapReader::MapReader(const Context& ctx, const YAML::Node& node, std::string path)
+MapReader::MapReader(const Context& ctx, const YAML::Node& node, std::string path,
+                     std::initializer_list<const char*> keys)
     : ctx_(ctx), node_(node), path_(std::move(path)) {
-  if (!node_.IsMap()) ctx_.fail(node_, path_, "expected a map of keys, got '" + describe(node_) + "'");
+  if (!node_.IsMap()) {
+    ctx_.fail(node_, path_.empty() ? "(top level)" : path_,
+              "expected a map of keys, got '" + describe(node_) + "'");
+  }
+  for (const auto& kv : node_) {
+    const std::string key = kv.first.Scalar();
+    std::string best, valid;
+    std::size_t best_d = 3;  // suggest only close spellings
+    bool known = false;
+    for (const char* k : keys) {
+      known = known || key == k;
+      const std::size_t d = editDistance(key, k);
+      if (d < best_d) {
+        best_d = d;
+        best = k;
+      }
+      valid += (valid.empty() ? "" : ", ") + std::string(k);
+    }
+    if (known) continue;
+    ctx_.fail(kv.first, this->path(key.c_str()),
+              "unknown key" + (best.empty() ? std::string() : "; did you mean '" + best + "'?") +
+                  " Valid keys here: " + valid);
+  }
 }
 
 std::string MapReader::path(const char* key) const {
@@ -61,7 +84,6 @@ std::string MapReader::path(const char* key) const {
 }
 
 bool MapReader::has(const char* key) const {
-  read_.insert(key);
   const YAML::Node n = node_[key];
   return n.IsDefined() && !n.IsNull();
 }
@@ -142,27 +164,6 @@ Vec2 MapReader::vec2(const char* key, const char* unit, const Vec2& fallback) co
 
 void MapReader::require(bool ok, const char* key, const std::string& what) const {
   if (!ok) ctx_.fail(has(key) ? node_[key] : node_, path(key), what);
-}
-
-void MapReader::finish() const {
-  for (const auto& kv : node_) {
-    const std::string key = kv.first.Scalar();
-    if (read_.count(key)) continue;
-    std::string best;
-    std::size_t best_d = 3;  // suggest only close spellings
-    for (const std::string& k : read_) {
-      const std::size_t d = editDistance(key, k);
-      if (d < best_d) {
-        best_d = d;
-        best = k;
-      }
-    }
-    std::string valid;
-    for (const std::string& k : read_) valid += (valid.empty() ? "" : ", ") + k;
-    ctx_.fail(kv.first, path_.empty() ? key : path_ + "." + key,
-              "unknown key" + (best.empty() ? std::string() : "; did you mean '" + best + "'?") +
-                  " Valid keys here: " + valid);
-  }
 }
 
 }  // namespace mpm_sdem::scene

@@ -2,7 +2,6 @@
 #pragma once
 
 #include <initializer_list>
-#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,10 +27,12 @@ class Context {
   std::vector<std::pair<YAML::Node, std::string>> overrides_;
 };
 
-// Reads one YAML map; every key read is remembered so that finish() can refuse the others.
+// Reads one YAML map whose keys must all be among `keys`; an unknown key (a typo, most often) is
+// refused on construction, before any complaint about a missing one.
 class MapReader {
  public:
-  MapReader(const Context& ctx, const YAML::Node& node, std::string path);
+  MapReader(const Context& ctx, const YAML::Node& node, std::string path,
+            std::initializer_list<const char*> keys);
 
   bool has(const char* key) const;
   YAML::Node node(const char* key) const;  // required
@@ -69,8 +70,6 @@ class MapReader {
 
   // Fails on a value that is out of range, at that key's line.
   void require(bool ok, const char* key, const std::string& what) const;
-  // Fails on any key that was not read.
-  void finish() const;
 
   static std::string describe(const YAML::Node& n);
   static Real toNumber(const Context& ctx, const YAML::Node& n, const std::string& key_path,
@@ -82,7 +81,6 @@ class MapReader {
   const Context& ctx_;
   YAML::Node node_;
   std::string path_;
-  mutable std::set<std::string> read_;
 };
 
 }  // namespace mpm_sdem::scene

@@ -27,6 +27,10 @@ struct SolverDef {
   Real pic_fraction = 0.01;  // alpha of eq. 28 (1 = PIC, 0 = FLIP); kFlip only
   StressUpdate stress_update = StressUpdate::kUsf;
   Vec2 gravity{0, -9.81};  // m/s^2
+  // Local non-viscous (Cundall) damping factor in [0, 1): each nodal force component is reduced
+  // by damping * |F| against the node's velocity. It removes kinetic energy without changing
+  // the static equilibrium; for settling quasi-static states only (0 = off).
+  Real damping = 0;
 };
 
 struct TimeStepDef {
