@@ -23,22 +23,23 @@ void BM_P2G(benchmark::State& state) {
     detail::particleToGrid<QuadraticBSpline>(w.particles(), g, true, true, true);
     benchmark::DoNotOptimize(g.mass.data());
   }
-  state.counters["particles/s"] = benchmark::Counter(
-      static_cast<double>(w.particles().size()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["particles/s"] = benchmark::Counter(static_cast<double>(w.particles().size()),
+                                                     benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void BM_G2P(benchmark::State& state) {
   World w = settledWorld(state.range(0), MaterialModel::kLinearElastic);
   Particles backup = w.particles();
-  detail::G2PSettings s{TransferScheme::kApic, 0, 0.0, true, w.def().domain.min, w.def().domain.max};
+  detail::G2PSettings s{TransferScheme::kApic, 0, 0.0, true, w.def().domain.min,
+                        w.def().domain.max};
   for (auto _ : state) {
     long clamped = 0;
     bool finite = true;
     detail::gridToParticle<QuadraticBSpline>(w.particles(), w.grid(), s, clamped, finite);
     benchmark::DoNotOptimize(w.particles().vx.data());
   }
-  state.counters["particles/s"] = benchmark::Counter(
-      static_cast<double>(backup.size()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["particles/s"] = benchmark::Counter(static_cast<double>(backup.size()),
+                                                     benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void BM_Constitutive(benchmark::State& state) {
@@ -67,6 +68,10 @@ void BM_Constitutive(benchmark::State& state) {
 
 BENCHMARK(BM_P2G)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_G2P)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_Constitutive)->Args({10000, 0})->Args({10000, 1})->Args({100000, 0})->Args({100000, 1})
+BENCHMARK(BM_Constitutive)
+    ->Args({10000, 0})
+    ->Args({10000, 1})
+    ->Args({100000, 0})
+    ->Args({100000, 1})
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_MAIN();

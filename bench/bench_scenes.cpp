@@ -12,7 +12,8 @@ WorldDef columnWorld(long target_particles, MaterialModel model) {
   const int ppc = 2;
   const Real h = 0.01;
   // Column of w x 2w cells holds 2 w^2 ppc^2 points.
-  const int w = std::max(2, static_cast<int>(std::lround(std::sqrt(target_particles / (2.0 * ppc * ppc)))));
+  const int w =
+      std::max(2, static_cast<int>(std::lround(std::sqrt(target_particles / (2.0 * ppc * ppc)))));
   WorldDef def;
   def.cell_size = h;
   def.domain.min = Vec2(0, 0);

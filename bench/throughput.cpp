@@ -38,14 +38,21 @@ int main(int argc, char** argv) {
   const char* csv = nullptr;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
-    if (a == "--particles") sizes = parseList(argv[i + 1]);
-    else if (a == "--threads") threads = parseList(argv[i + 1]);
-    else if (a == "--steps") steps = std::atoi(argv[i + 1]);
-    else if (a == "--repeats") repeats = std::atoi(argv[i + 1]);
-    else if (a == "--csv") csv = argv[i + 1];
+    if (a == "--particles")
+      sizes = parseList(argv[i + 1]);
+    else if (a == "--threads")
+      threads = parseList(argv[i + 1]);
+    else if (a == "--steps")
+      steps = std::atoi(argv[i + 1]);
+    else if (a == "--repeats")
+      repeats = std::atoi(argv[i + 1]);
+    else if (a == "--csv")
+      csv = argv[i + 1];
     else {
-      std::fprintf(stderr, "usage: %s [--particles 10000,100000] [--threads 1,2] [--steps 200] "
-                           "[--repeats 5] [--csv FILE]\n", argv[0]);
+      std::fprintf(stderr,
+                   "usage: %s [--particles 10000,100000] [--threads 1,2] [--steps 200] "
+                   "[--repeats 5] [--csv FILE]\n",
+                   argv[0]);
       return 2;
     }
   }
@@ -65,7 +72,8 @@ int main(int argc, char** argv) {
           for (int s = 0; s < 10; ++s) world.step(world.chooseTimeStep().dt);  // warm-up
           const auto t0 = std::chrono::steady_clock::now();
           for (int s = 0; s < steps; ++s) world.step(world.chooseTimeStep().dt);
-          const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          const double sec =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
           rates.push_back(static_cast<double>(count) * steps / sec);
         }
         const double med = median(rates);

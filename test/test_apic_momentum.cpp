@@ -35,7 +35,8 @@ void spinDisk(KernelType kernel, StressUpdate update) {
     w.step(w.chooseTimeStep().dt);
     const Diagnostics d = measure(w);
     ASSERT_LT((d.momentum - prev.momentum).norm() / p_scale, 1e-10) << "step " << n;
-    ASSERT_LT(std::abs(d.angular_momentum - prev.angular_momentum) / l_scale, 1e-10) << "step " << n;
+    ASSERT_LT(std::abs(d.angular_momentum - prev.angular_momentum) / l_scale, 1e-10)
+        << "step " << n;
     prev = d;
   }
   // The disk did deform (stresses are not trivially zero), so the check had something to test.
@@ -46,7 +47,15 @@ void spinDisk(KernelType kernel, StressUpdate update) {
 
 }  // namespace
 
-TEST(ApicMomentum, QuadraticUsf) { spinDisk(KernelType::kQuadraticBSpline, StressUpdate::kUsf); }
-TEST(ApicMomentum, QuadraticUsl) { spinDisk(KernelType::kQuadraticBSpline, StressUpdate::kUsl); }
-TEST(ApicMomentum, CubicUsf) { spinDisk(KernelType::kCubicBSpline, StressUpdate::kUsf); }
-TEST(ApicMomentum, GimpUsf) { spinDisk(KernelType::kGimp, StressUpdate::kUsf); }
+TEST(ApicMomentum, QuadraticUsf) {
+  spinDisk(KernelType::kQuadraticBSpline, StressUpdate::kUsf);
+}
+TEST(ApicMomentum, QuadraticUsl) {
+  spinDisk(KernelType::kQuadraticBSpline, StressUpdate::kUsl);
+}
+TEST(ApicMomentum, CubicUsf) {
+  spinDisk(KernelType::kCubicBSpline, StressUpdate::kUsf);
+}
+TEST(ApicMomentum, GimpUsf) {
+  spinDisk(KernelType::kGimp, StressUpdate::kUsf);
+}

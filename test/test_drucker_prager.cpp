@@ -8,8 +8,8 @@
 
 #include <random>
 
-#include "mpm_sdem/core/constitutive.hpp"
 #include "helpers.hpp"
+#include "mpm_sdem/core/constitutive.hpp"
 
 using namespace mpm_sdem;
 
@@ -70,9 +70,15 @@ void checkReturns(const MaterialParams& m) {
 
 }  // namespace
 
-TEST(DruckerPrager, CohesionlessReturnsToSurface) { checkReturns(params(30, 0, 0, 0)); }
-TEST(DruckerPrager, CohesiveWithTensionCutOff) { checkReturns(params(35, 10, 2e4, 1e4)); }
-TEST(DruckerPrager, AssociatedFlow) { checkReturns(params(25, 25, 5e3, 0)); }
+TEST(DruckerPrager, CohesionlessReturnsToSurface) {
+  checkReturns(params(30, 0, 0, 0));
+}
+TEST(DruckerPrager, CohesiveWithTensionCutOff) {
+  checkReturns(params(35, 10, 2e4, 1e4));
+}
+TEST(DruckerPrager, AssociatedFlow) {
+  checkReturns(params(25, 25, 5e3, 0));
+}
 
 TEST(DruckerPrager, TensionCutOffIsCappedAtTheApex) {
   // A requested tensile strength beyond the apex k_phi / q_phi is meaningless: capped there.

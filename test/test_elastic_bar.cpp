@@ -27,7 +27,9 @@ WorldDef strip(Real length, Real height, Real h, const MaterialDef& m, int ppc) 
   return def;
 }
 
-Real momentumX(const World& w) { return measure(w).momentum.x(); }
+Real momentumX(const World& w) {
+  return measure(w).momentum.x();
+}
 
 Real measuredPeriod(const WorldDef& def, Real L, Real v0) {
   World w(def);

@@ -47,7 +47,8 @@ TEST_P(FreeFall, FollowsTheParabola) {
 
 INSTANTIATE_TEST_SUITE_P(
     AllSchemes, FreeFall,
-    ::testing::Values(Case{KernelType::kQuadraticBSpline, TransferScheme::kApic, StressUpdate::kUsf},
+    ::testing::Values(Case{KernelType::kQuadraticBSpline, TransferScheme::kApic,
+                           StressUpdate::kUsf},
                       Case{KernelType::kQuadraticBSpline, TransferScheme::kPic, StressUpdate::kUsl},
                       Case{KernelType::kCubicBSpline, TransferScheme::kFlip, StressUpdate::kUsf},
                       Case{KernelType::kGimp, TransferScheme::kFlip, StressUpdate::kUsl},

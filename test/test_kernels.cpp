@@ -59,11 +59,21 @@ void checkKernel(Real lp) {
 
 }  // namespace
 
-TEST(Kernels, QuadraticBSpline) { checkKernel<QuadraticBSpline>(0); }
-TEST(Kernels, CubicBSpline) { checkKernel<CubicBSpline>(0); }
-TEST(Kernels, GimpTwoPointsPerCell) { checkKernel<Gimp>(0.25); }
-TEST(Kernels, GimpOnePointPerCell) { checkKernel<Gimp>(0.5); }
-TEST(Kernels, GimpFourPointsPerCell) { checkKernel<Gimp>(0.125); }
+TEST(Kernels, QuadraticBSpline) {
+  checkKernel<QuadraticBSpline>(0);
+}
+TEST(Kernels, CubicBSpline) {
+  checkKernel<CubicBSpline>(0);
+}
+TEST(Kernels, GimpTwoPointsPerCell) {
+  checkKernel<Gimp>(0.25);
+}
+TEST(Kernels, GimpOnePointPerCell) {
+  checkKernel<Gimp>(0.5);
+}
+TEST(Kernels, GimpFourPointsPerCell) {
+  checkKernel<Gimp>(0.125);
+}
 
 // Gao et al. (cited in seed 000 sec. 2.1): GIMP with l_p = L/2 equals the quadratic B-spline.
 TEST(Kernels, GimpWithHalfCellEqualsQuadraticBSpline) {

@@ -32,7 +32,9 @@ void expectError(const std::string& msg, const std::string& where, const std::st
 
 }  // namespace
 
-TEST(SceneErrors, ValidBaseSceneParses) { EXPECT_EQ(errorOf("valid.yaml"), ""); }
+TEST(SceneErrors, ValidBaseSceneParses) {
+  EXPECT_EQ(errorOf("valid.yaml"), "");
+}
 
 TEST(SceneErrors, UnknownKey) {
   expectError(errorOf("unknown_key.yaml"), "unknown_key.yaml:21:5", "materials[0].densty",
@@ -67,8 +69,8 @@ TEST(SceneErrors, BodyOutsideDomain) {
               "reaches outside the domain");
 }
 TEST(SceneErrors, UnknownMaterialName) {
-  expectError(errorOf("unknown_material.yaml"), "unknown_material.yaml:28:15",
-              "bodies[0].material", "no material named 'sandd'; defined: sand");
+  expectError(errorOf("unknown_material.yaml"), "unknown_material.yaml:28:15", "bodies[0].material",
+              "no material named 'sandd'; defined: sand");
 }
 TEST(SceneErrors, DomainNotWholeCells) {
   expectError(errorOf("valid.yaml", {"grid.cell_size=0.03"}), "--set grid.cell_size=0.03",
@@ -80,8 +82,8 @@ TEST(SceneErrors, OverrideOfUnknownKey) {
 }
 TEST(SceneErrors, OverrideByMaterialName) {
   EXPECT_EQ(errorOf("valid.yaml", {"materials.sand.density=1500"}), "");
-  expectError(errorOf("valid.yaml", {"materials.sand.density=-3"}), "--set materials.sand.density=-3",
-              "materials[0].density", "must be > 0 kg/m^3");
+  expectError(errorOf("valid.yaml", {"materials.sand.density=-3"}),
+              "--set materials.sand.density=-3", "materials[0].density", "must be > 0 kg/m^3");
 }
 
 TEST(SceneErrors, RunnerExitsNonZeroBeforeSimulating) {

@@ -4,13 +4,20 @@ namespace mpm_sdem {
 
 const char* stageName(Stage stage) {
   switch (stage) {
-    case Stage::kTimeStep: return "time_step";
-    case Stage::kClearGrid: return "clear_grid";
-    case Stage::kP2G: return "p2g";
-    case Stage::kGridUpdate: return "grid_update";
-    case Stage::kG2P: return "g2p";
-    case Stage::kConstitutive: return "constitutive";
-    case Stage::kCount: break;
+    case Stage::kTimeStep:
+      return "time_step";
+    case Stage::kClearGrid:
+      return "clear_grid";
+    case Stage::kP2G:
+      return "p2g";
+    case Stage::kGridUpdate:
+      return "grid_update";
+    case Stage::kG2P:
+      return "g2p";
+    case Stage::kConstitutive:
+      return "constitutive";
+    case Stage::kCount:
+      break;
   }
   return "?";
 }

@@ -6,7 +6,9 @@
 namespace mpm_sdem {
 
 namespace {
-Real cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+Real cross(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 bool segmentsTouch(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
   const Real d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
@@ -25,7 +27,8 @@ bool segmentsTouch(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
 
 Real signedArea(const std::vector<Vec2>& polygon) {
   Real a = 0;
-  for (std::size_t i = 0, n = polygon.size(); i < n; ++i) a += cross(polygon[i], polygon[(i + 1) % n]);
+  for (std::size_t i = 0, n = polygon.size(); i < n; ++i)
+    a += cross(polygon[i], polygon[(i + 1) % n]);
   return a / 2;
 }
 

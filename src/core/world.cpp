@@ -11,9 +11,12 @@ namespace mpm_sdem {
 
 const char* stepLimitName(StepLimit limit) {
   switch (limit) {
-    case StepLimit::kFixed: return "fixed";
-    case StepLimit::kCfl: return "cfl";
-    case StepLimit::kMax: return "max";
+    case StepLimit::kFixed:
+      return "fixed";
+    case StepLimit::kCfl:
+      return "cfl";
+    case StepLimit::kMax:
+      return "max";
   }
   return "?";
 }
@@ -24,8 +27,7 @@ int cellCount(Real extent, Real h, const char* what) {
   const Real n = extent / h;
   const long r = std::lround(n);
   if (r < 1 || std::abs(n - r) > 1e-6 * std::max<Real>(1, n)) {
-    throw std::invalid_argument(std::string("domain ") + what +
-                                " is not a whole number of cells");
+    throw std::invalid_argument(std::string("domain ") + what + " is not a whole number of cells");
   }
   return static_cast<int>(r);
 }
@@ -35,9 +37,15 @@ int cellCount(Real extent, Real h, const char* what) {
 template <class F>
 void withKernel(KernelType k, F&& f) {
   switch (k) {
-    case KernelType::kQuadraticBSpline: f(QuadraticBSpline{}); break;
-    case KernelType::kCubicBSpline: f(CubicBSpline{}); break;
-    case KernelType::kGimp: f(Gimp{}); break;
+    case KernelType::kQuadraticBSpline:
+      f(QuadraticBSpline{});
+      break;
+    case KernelType::kCubicBSpline:
+      f(CubicBSpline{});
+      break;
+    case KernelType::kGimp:
+      f(Gimp{});
+      break;
   }
 }
 
@@ -95,8 +103,8 @@ TimeStepChoice World::chooseTimeStep() {
     const Real s = std::sqrt(std::fmax(c2, Real(0))) + std::hypot(P.vx[p], P.vy[p]);
     fastest = std::fmax(fastest, s);
   }
-  const Real cfl_dt = fastest > 0 ? def_.time_step.cfl * grid_.h / fastest
-                                  : std::numeric_limits<Real>::infinity();
+  const Real cfl_dt =
+      fastest > 0 ? def_.time_step.cfl * grid_.h / fastest : std::numeric_limits<Real>::infinity();
   if (cfl_dt < def_.time_step.max) return {cfl_dt, StepLimit::kCfl};
   return {def_.time_step.max, StepLimit::kMax};
 }
@@ -216,15 +224,17 @@ void World::applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const {
 
 void World::gridToParticleGradient() {
   StageTimer timer(profile_, Stage::kG2P);
-  withKernel(def_.solver.kernel, [&](auto k) {
-    detail::gridToParticleGradient<decltype(k)>(particles_, grid_);
-  });
+  withKernel(def_.solver.kernel,
+             [&](auto k) { detail::gridToParticleGradient<decltype(k)>(particles_, grid_); });
 }
 
 void World::gridToParticle(Real dt, StepInfo& info) {
   StageTimer timer(profile_, Stage::kG2P);
-  detail::G2PSettings s{def_.solver.transfer, def_.solver.pic_fraction, dt,
-                        def_.solver.stress_update == StressUpdate::kUsl, def_.domain.min,
+  detail::G2PSettings s{def_.solver.transfer,
+                        def_.solver.pic_fraction,
+                        dt,
+                        def_.solver.stress_update == StressUpdate::kUsl,
+                        def_.domain.min,
                         def_.domain.max};
   withKernel(def_.solver.kernel, [&](auto k) {
     detail::gridToParticle<decltype(k)>(particles_, grid_, s, info.clamped, info.finite);

@@ -20,14 +20,16 @@ using namespace mpm_sdem;
 namespace {
 
 volatile std::sig_atomic_t g_interrupted = 0;
-void onSignal(int) { g_interrupted = 1; }
+void onSignal(int) {
+  g_interrupted = 1;
+}
 
 void printSummary(const Scene& s, const World& w) {
   const WorldDef& d = w.def();
-  std::fprintf(stderr, "scene %s (%s): %zu material points, grid %d x %d cells of %g m, %s dt, end %g s\n",
-               s.name.c_str(), s.source.c_str(), w.particles().size(), w.grid().cells_x,
-               w.grid().cells_y, d.cell_size, d.time_step.automatic ? "automatic" : "fixed",
-               s.end_time);
+  std::fprintf(
+      stderr, "scene %s (%s): %zu material points, grid %d x %d cells of %g m, %s dt, end %g s\n",
+      s.name.c_str(), s.source.c_str(), w.particles().size(), w.grid().cells_x, w.grid().cells_y,
+      d.cell_size, d.time_step.automatic ? "automatic" : "fixed", s.end_time);
 }
 
 }  // namespace
@@ -61,8 +63,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   World& world = *world_ptr;
-  const fs::path out = opt.out_dir.empty() ? fs::path("out") / fs::path(opt.scene).stem()
-                                           : fs::path(opt.out_dir);
+  const fs::path out =
+      opt.out_dir.empty() ? fs::path("out") / fs::path(opt.scene).stem() : fs::path(opt.out_dir);
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec) {
@@ -88,7 +90,8 @@ int main(int argc, char** argv) {
     dt = world.chooseTimeStep();
     // Land exactly on the end time; merge a sliver of a last step into the one before it.
     const Real remaining = scene.end_time - world.time();
-    const Real h = remaining < 1.5 * dt.dt && remaining > dt.dt ? 0.5 * remaining : std::min(dt.dt, remaining);
+    const Real h =
+        remaining < 1.5 * dt.dt && remaining > dt.dt ? 0.5 * remaining : std::min(dt.dt, remaining);
     const StepInfo info = world.step(h);
     if (!info.finite) {
       std::cerr << "\nerror: the state became non-finite at step " << world.stepCount()
@@ -117,14 +120,16 @@ int main(int argc, char** argv) {
       series.write(world, d, dt);
       while (next_sample <= world.time() + eps) next_sample += scene.output.interval;
     }
-    progress.update(world.stepCount(), world.time(), h, static_cast<long>(world.particles().size()));
+    progress.update(world.stepCount(), world.time(), h,
+                    static_cast<long>(world.particles().size()));
   }
   progress.finish(world.stepCount(), world.time(), static_cast<long>(world.particles().size()));
   if (g_interrupted) {
     std::cerr << "interrupted at t = " << world.time() << " s; writing the state reached\n";
     status = 130;
   }
-  if (scene.output.particles && status != 3) runner::writeParticles(world, (out / "particles.csv").string());
+  if (scene.output.particles && status != 3)
+    runner::writeParticles(world, (out / "particles.csv").string());
   runner::writeProfile(world, (out / "profile.csv").string());
   const Profile& prof = world.profile();
   std::fprintf(stderr, "per-stage time (ms/step):");

@@ -13,7 +13,8 @@ const char* usage() {
          "                   --set materials.sand.density=1500 (repeatable)\n"
          "  --threads N      OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
          "  --quiet          no progress line\n"
-         "exit status: 0 done, 1 bad scene, 2 bad command line, 3 unstable state, 130 interrupted\n";
+         "exit status: 0 done, 1 bad scene, 2 bad command line, 3 unstable state, 130 "
+         "interrupted\n";
 }
 
 bool parseOptions(int argc, char** argv, Options& out, std::string& error, bool& help) {

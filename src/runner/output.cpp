@@ -22,8 +22,8 @@ TimeSeriesWriter::TimeSeriesWriter(const std::string& path) : out_(openCsv(path)
 }
 
 void TimeSeriesWriter::write(const World& w, const Diagnostics& d, const TimeStepChoice& dt) {
-  out_ << w.time() << ',' << w.stepCount() << ',' << dt.dt << ',' << stepLimitName(dt.limit)
-       << ',' << d.kinetic << ',' << d.elastic << ',' << d.gravity << ',' << d.total() << ','
+  out_ << w.time() << ',' << w.stepCount() << ',' << dt.dt << ',' << stepLimitName(dt.limit) << ','
+       << d.kinetic << ',' << d.elastic << ',' << d.gravity << ',' << d.total() << ','
        << d.momentum.x() << ',' << d.momentum.y() << ',' << d.angular_momentum << ','
        << d.center_of_mass.x() << ',' << d.center_of_mass.y() << ',' << d.max_speed << '\n';
   out_.flush();

@@ -32,7 +32,8 @@ void Progress::print(long step, Real sim_time, Real dt, long particles, bool fin
   const double eta = rtf > 0 ? (end_time_ - sim_time) / rtf : 0;
   const double rate = wall > 0 ? static_cast<double>(step) * particles / wall : 0;
   if (final) {
-    std::fprintf(stderr, "%sstep %ld  t = %.4g s  wall %.1f s  real-time factor %.3g  %.3g Mpart-steps/s\n",
+    std::fprintf(stderr,
+                 "%sstep %ld  t = %.4g s  wall %.1f s  real-time factor %.3g  %.3g Mpart-steps/s\n",
                  tty_ ? "\r\033[K" : "", step, sim_time, wall, rtf, rate * 1e-6);
     return;
   }

@@ -129,8 +129,8 @@ void parseGrid(const Context& ctx, const MapReader& top, Scene& s) {
       g.require(false, "cell_size",
                 "the domain " + std::string(a == 0 ? "width " : "height ") + num(size[a]) +
                     " m is not a whole number of cells of " + num(h) + " m; use e.g. " +
-                    num(size[a] / std::ceil(n)) + " or make the domain " +
-                    num(std::round(n) * h) + " m");
+                    num(size[a] / std::ceil(n)) + " or make the domain " + num(std::round(n) * h) +
+                    " m");
     }
   }
   s.world.cell_size = h;
@@ -146,10 +146,11 @@ void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
                                      {"cubic_bspline", KernelType::kCubicBSpline},
                                      {"gimp", KernelType::kGimp}},
                                     sol.kernel);
-  sol.transfer = r.choice<TransferScheme>(
-      "transfer",
-      {{"apic", TransferScheme::kApic}, {"pic", TransferScheme::kPic}, {"flip", TransferScheme::kFlip}},
-      sol.transfer);
+  sol.transfer = r.choice<TransferScheme>("transfer",
+                                          {{"apic", TransferScheme::kApic},
+                                           {"pic", TransferScheme::kPic},
+                                           {"flip", TransferScheme::kFlip}},
+                                          sol.transfer);
   if (r.has("pic_fraction")) {
     r.require(sol.transfer == TransferScheme::kFlip, "pic_fraction",
               "applies only to transfer: flip (it is alpha of seed 000 eq. 28)");
@@ -158,12 +159,13 @@ void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
               "must be in [0, 1] (0 = FLIP, 1 = PIC), got " + num(sol.pic_fraction));
   }
   sol.stress_update = r.choice<StressUpdate>(
-      "stress_update", {{"usf", StressUpdate::kUsf}, {"usl", StressUpdate::kUsl}}, sol.stress_update);
+      "stress_update", {{"usf", StressUpdate::kUsf}, {"usl", StressUpdate::kUsl}},
+      sol.stress_update);
   sol.gravity = r.vec2("gravity", "m/s^2", sol.gravity);
   sol.damping = r.number("damping", "(dimensionless)", sol.damping);
-  r.require(sol.damping >= 0 && sol.damping < 1, "damping",
-            "must be in [0, 1) (0 = none; 0.05 to 0.2 settles a static state), got " +
-                num(sol.damping));
+  r.require(
+      sol.damping >= 0 && sol.damping < 1, "damping",
+      "must be in [0, 1) (0 = none; 0.05 to 0.2 settles a static state), got " + num(sol.damping));
 }
 
 void parseTime(const Context& ctx, const MapReader& top, Scene& s) {
@@ -190,9 +192,10 @@ void parseTime(const Context& ctx, const MapReader& top, Scene& s) {
 }
 
 MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::string& path) {
-  MapReader r(ctx, n, path,
-              {"name", "model", "density", "youngs_modulus", "poisson_ratio", "bulk_modulus",
-               "shear_modulus", "friction_angle", "dilation_angle", "cohesion", "tensile_strength"});
+  MapReader r(
+      ctx, n, path,
+      {"name", "model", "density", "youngs_modulus", "poisson_ratio", "bulk_modulus",
+       "shear_modulus", "friction_angle", "dilation_angle", "cohesion", "tensile_strength"});
   MaterialDef m;
   m.name = r.text("name");
   m.model = r.choiceOf<MaterialModel>(r.node("model"), r.path("model"),
@@ -203,8 +206,9 @@ MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::st
   const bool e_nu = r.has("youngs_modulus") || r.has("poisson_ratio");
   const bool k_g = r.has("bulk_modulus") || r.has("shear_modulus");
   if (e_nu == k_g) {
-    ctx.fail(n, path, "give the elasticity either as youngs_modulus and poisson_ratio or as "
-                      "bulk_modulus and shear_modulus (Pa)");
+    ctx.fail(n, path,
+             "give the elasticity either as youngs_modulus and poisson_ratio or as "
+             "bulk_modulus and shear_modulus (Pa)");
   }
   if (e_nu) {
     const Real E = r.number("youngs_modulus", "Pa");
@@ -248,9 +252,11 @@ ShapeDef parseShape(const Context& ctx, const MapReader& r) {
                                   {{"rectangle", ShapeType::kRectangle},
                                    {"polygon", ShapeType::kPolygon},
                                    {"disk", ShapeType::kDisk}});
-  const std::pair<const char*, ShapeType> owner[] = {
-      {"min", ShapeType::kRectangle}, {"max", ShapeType::kRectangle},
-      {"vertices", ShapeType::kPolygon}, {"center", ShapeType::kDisk}, {"radius", ShapeType::kDisk}};
+  const std::pair<const char*, ShapeType> owner[] = {{"min", ShapeType::kRectangle},
+                                                     {"max", ShapeType::kRectangle},
+                                                     {"vertices", ShapeType::kPolygon},
+                                                     {"center", ShapeType::kDisk},
+                                                     {"radius", ShapeType::kDisk}};
   const char* shape_names[] = {"rectangle", "polygon", "disk"};
   for (const auto& [key, type] : owner) {
     r.require(type == sh.type || !r.has(key), key,
@@ -320,24 +326,25 @@ void parseBodies(const Context& ctx, const MapReader& top, Scene& s,
     bounds(b.shape, lo, hi);
     if (lo.x() < dom.min.x() || lo.y() < dom.min.y() || hi.x() > dom.max.x() ||
         hi.y() > dom.max.y()) {
-      ctx.fail(list[i], path, "body '" + b.name + "' reaches outside the domain [" +
-                                  num(dom.min.x()) + ", " + num(dom.max.x()) + "] x [" +
-                                  num(dom.min.y()) + ", " + num(dom.max.y()) +
-                                  "] m; move it inside or enlarge domain.min/max");
+      ctx.fail(list[i], path,
+               "body '" + b.name + "' reaches outside the domain [" + num(dom.min.x()) + ", " +
+                   num(dom.max.x()) + "] x [" + num(dom.min.y()) + ", " + num(dom.max.y()) +
+                   "] m; move it inside or enlarge domain.min/max");
     }
-    const auto points =
-        fillPoints(b.shape, dom.min, s.world.cell_size, b.points_per_cell);
+    const auto points = fillPoints(b.shape, dom.min, s.world.cell_size, b.points_per_cell);
     if (points.empty()) {
-      ctx.fail(list[i], path, "body '" + b.name + "' contains no material point; make it larger "
-                              "than a cell or raise points_per_cell");
+      ctx.fail(list[i], path,
+               "body '" + b.name +
+                   "' contains no material point; make it larger "
+                   "than a cell or raise points_per_cell");
     }
     for (std::size_t k = 0; k < s.world.bodies.size(); ++k) {
       for (const Vec2& p : points) {
         if (contains(s.world.bodies[k].shape, p)) {
-          ctx.fail(list[i], path, "body '" + b.name + "' overlaps body '" +
-                                      s.world.bodies[k].name +
-                                      "'; move or shrink one of them so that no region is "
-                                      "filled twice");
+          ctx.fail(list[i], path,
+                   "body '" + b.name + "' overlaps body '" + s.world.bodies[k].name +
+                       "'; move or shrink one of them so that no region is "
+                       "filled twice");
         }
       }
       if (s.world.bodies[k].name == b.name) {
@@ -369,7 +376,8 @@ Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& s
   for (std::size_t i = 0; i < mats.size(); ++i) {
     const std::string path = "materials[" + std::to_string(i) + "]";
     MaterialDef m = parseMaterial(ctx, mats[i], path);
-    if (by_name.count(m.name)) ctx.fail(mats[i], path, "a material named '" + m.name + "' exists already");
+    if (by_name.count(m.name))
+      ctx.fail(mats[i], path, "a material named '" + m.name + "' exists already");
     by_name[m.name] = static_cast<int>(s.world.materials.size());
     s.world.materials.push_back(std::move(m));
   }
@@ -385,8 +393,8 @@ Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& s
   if (s.output.interval <= 0) s.output.interval = s.end_time / 100;
   if (top.has("limits")) {
     MapReader l(ctx, top.node("limits"), "limits", {"energy_growth"});
-    s.limits.energy_growth = l.number("energy_growth", "(fraction of the initial energy)",
-                                      s.limits.energy_growth);
+    s.limits.energy_growth =
+        l.number("energy_growth", "(fraction of the initial energy)", s.limits.energy_growth);
     l.require(s.limits.energy_growth > 0, "energy_growth",
               "must be > 0, got " + num(s.limits.energy_growth));
   }
@@ -405,7 +413,8 @@ Scene parseScene(const std::string& yaml_text, const std::string& source_name,
                      std::to_string(e.mark.column + 1) + ": not valid YAML: " + e.msg);
   }
   Context ctx(source_name);
-  if (!root.IsMap()) throw SceneError(source_name + ": expected a map of sections (domain, grid, ...)");
+  if (!root.IsMap())
+    throw SceneError(source_name + ": expected a map of sections (domain, grid, ...)");
   for (const std::string& o : overrides) {
     try {
       applyOverride(root, o, ctx);

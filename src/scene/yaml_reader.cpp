@@ -89,7 +89,9 @@ bool MapReader::has(const char* key) const {
 }
 
 YAML::Node MapReader::node(const char* key) const {
-  if (!has(key)) ctx_.fail(node_, path_.empty() ? "(top level)" : path_, std::string("missing required key '") + key + "'");
+  if (!has(key))
+    ctx_.fail(node_, path_.empty() ? "(top level)" : path_,
+              std::string("missing required key '") + key + "'");
   return node_[key];
 }
 
@@ -104,8 +106,8 @@ Real MapReader::toNumber(const Context& ctx, const YAML::Node& n, const std::str
                          const char* unit) {
   double v = 0;
   if (!n.IsScalar() || !YAML::convert<double>::decode(n, v) || !std::isfinite(v)) {
-    ctx.fail(n, key_path, "expected a finite number in " + std::string(unit) + ", got '" +
-                              describe(n) + "'");
+    ctx.fail(n, key_path,
+             "expected a finite number in " + std::string(unit) + ", got '" + describe(n) + "'");
   }
   return v;
 }
@@ -113,10 +115,11 @@ Real MapReader::toNumber(const Context& ctx, const YAML::Node& n, const std::str
 Vec2 MapReader::toVec2(const Context& ctx, const YAML::Node& n, const std::string& key_path,
                        const char* unit) {
   if (!n.IsSequence() || n.size() != 2) {
-    ctx.fail(n, key_path, "expected a pair [x, y] in " + std::string(unit) + ", got '" +
-                              describe(n) + "'");
+    ctx.fail(n, key_path,
+             "expected a pair [x, y] in " + std::string(unit) + ", got '" + describe(n) + "'");
   }
-  return Vec2(toNumber(ctx, n[0], key_path + "[0]", unit), toNumber(ctx, n[1], key_path + "[1]", unit));
+  return Vec2(toNumber(ctx, n[0], key_path + "[0]", unit),
+              toNumber(ctx, n[1], key_path + "[1]", unit));
 }
 
 Real MapReader::number(const char* key, const char* unit) const {

@@ -19,7 +19,8 @@ class Context {
   void addOverride(const YAML::Node& node, const std::string& spec) {
     overrides_.emplace_back(node, spec);
   }
-  [[noreturn]] void fail(const YAML::Node& at, const std::string& key, const std::string& what) const;
+  [[noreturn]] void fail(const YAML::Node& at, const std::string& key,
+                         const std::string& what) const;
 
  private:
   std::string where(const YAML::Node& at) const;

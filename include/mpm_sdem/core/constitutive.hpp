@@ -36,7 +36,9 @@ inline Stress jaumannElasticUpdate(const MaterialParams& m, const Stress& s,
 }
 
 // Stress invariants of seed 000 eq. 33-34: mean stress sigma_m and tau = sqrt(J2).
-inline Real meanStress(const Stress& s) { return (s.xx + s.yy + s.zz) / 3; }
+inline Real meanStress(const Stress& s) {
+  return (s.xx + s.yy + s.zz) / 3;
+}
 inline Real equivalentShear(const Stress& s) {
   const Real m = meanStress(s);
   const Real ax = s.xx - m, ay = s.yy - m, az = s.zz - m;

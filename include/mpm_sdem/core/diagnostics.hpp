@@ -7,11 +7,11 @@
 namespace mpm_sdem {
 
 struct Diagnostics {
-  Real kinetic = 0;   // J per metre of thickness, 1/2 sum m |v|^2 (staggered velocities)
-  Real elastic = 0;   // J/m, recoverable strain energy from the stress, sum V w(sigma)
-  Real gravity = 0;   // J/m, -sum m g . (x - domain min)
+  Real kinetic = 0;  // J per metre of thickness, 1/2 sum m |v|^2 (staggered velocities)
+  Real elastic = 0;  // J/m, recoverable strain energy from the stress, sum V w(sigma)
+  Real gravity = 0;  // J/m, -sum m g . (x - domain min)
   Real total() const { return kinetic + elastic + gravity; }
-  Vec2 momentum{0, 0};      // kg m/s per metre
+  Vec2 momentum{0, 0};        // kg m/s per metre
   Real angular_momentum = 0;  // kg m^2/s per metre about the world origin, with the APIC spin
   Vec2 center_of_mass{0, 0};  // m
   Real mass = 0;              // kg per metre

@@ -12,13 +12,13 @@ namespace mpm_sdem {
 struct Grid {
   static constexpr int kPad = 2;  // ghost nodes beyond each domain side
 
-  Real h = 0, inv_h = 0;  // cell size (m) and its inverse
-  Vec2 origin{0, 0};      // position of node (0, 0) (m)
-  int nx = 0, ny = 0;     // node counts
+  Real h = 0, inv_h = 0;         // cell size (m) and its inverse
+  Vec2 origin{0, 0};             // position of node (0, 0) (m)
+  int nx = 0, ny = 0;            // node counts
   int cells_x = 0, cells_y = 0;  // cells inside the domain
 
-  std::vector<Real> mass;          // kg
-  std::vector<Real> mom_x, mom_y;  // momentum (kg m/s)
+  std::vector<Real> mass;              // kg
+  std::vector<Real> mom_x, mom_y;      // momentum (kg m/s)
   std::vector<Real> force_x, force_y;  // internal force (N)
   std::vector<Real> vel_x, vel_y;      // velocity after the kick (m/s)
   std::vector<Real> vel0_x, vel0_y;    // velocity before the kick (m/s)

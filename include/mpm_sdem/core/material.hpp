@@ -10,13 +10,14 @@ namespace mpm_sdem {
 enum class MaterialModel { kLinearElastic, kDruckerPrager };
 
 // What a scene declares for a material. Elasticity is given as bulk and shear moduli; the scene
-// layer converts Young's modulus and Poisson's ratio (K = E / (3 (1 - 2 nu)), G = E / (2 (1 + nu))).
+// layer converts Young's modulus and Poisson's ratio (K = E / (3 (1 - 2 nu)), G = E / (2 (1 +
+// nu))).
 struct MaterialDef {
   std::string name;
   MaterialModel model = MaterialModel::kLinearElastic;
-  Real density = 0;       // kg/m^3 (plane strain: per unit thickness)
-  Real bulk_modulus = 0;  // Pa
-  Real shear_modulus = 0; // Pa
+  Real density = 0;        // kg/m^3 (plane strain: per unit thickness)
+  Real bulk_modulus = 0;   // Pa
+  Real shear_modulus = 0;  // Pa
   // Drucker-Prager only (seed 000 eq. 31-35).
   Real friction_angle = 0;    // rad
   Real dilation_angle = 0;    // rad, 0 <= psi <= phi
@@ -27,7 +28,7 @@ struct MaterialDef {
 // Derived constants, computed once. Kept small: the constitutive loop reads one per particle.
 struct MaterialParams {
   MaterialModel model = MaterialModel::kLinearElastic;
-  Real bulk = 0, shear = 0, lame = 0;  // K, G, lambda = K - 2G/3 (Pa)
+  Real bulk = 0, shear = 0, lame = 0;    // K, G, lambda = K - 2G/3 (Pa)
   Real q_phi = 0, k_phi = 0, q_psi = 0;  // seed 000 eq. 35 and its dilatant analogue
   Real tension = 0;                      // effective tension cut-off (Pa)
   Real modulus_over_density = 0;         // (K + 4G/3) / rho0: squared P-wave speed at J = 1

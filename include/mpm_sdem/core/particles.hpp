@@ -12,17 +12,17 @@
 namespace mpm_sdem {
 
 struct Particles {
-  std::vector<Real> x, y;                 // position (m)
-  std::vector<Real> vx, vy;               // velocity (m/s), staggered half a step (leapfrog)
-  std::vector<Real> bxx, bxy, byx, byy;   // APIC affine matrix B_p (m^2/s), seed 000 eq. 31
-  std::vector<Real> sxx, syy, sxy, szz;   // Cauchy stress (Pa), plane strain
-  std::vector<Real> lxx, lxy, lyx, lyy;   // velocity gradient of the last G2P (1/s)
-  std::vector<Real> mass;                 // kg per metre of thickness
-  std::vector<Real> volume0;              // initial area (m^2 per metre of thickness)
-  std::vector<Real> J;                    // volume ratio V / V0
-  std::vector<Real> half_size;            // GIMP half size l_p (grid units)
-  std::vector<std::uint16_t> material;    // index into the world's materials
-  std::vector<std::uint16_t> body;        // index of the body the point was filled from
+  std::vector<Real> x, y;                // position (m)
+  std::vector<Real> vx, vy;              // velocity (m/s), staggered half a step (leapfrog)
+  std::vector<Real> bxx, bxy, byx, byy;  // APIC affine matrix B_p (m^2/s), seed 000 eq. 31
+  std::vector<Real> sxx, syy, sxy, szz;  // Cauchy stress (Pa), plane strain
+  std::vector<Real> lxx, lxy, lyx, lyy;  // velocity gradient of the last G2P (1/s)
+  std::vector<Real> mass;                // kg per metre of thickness
+  std::vector<Real> volume0;             // initial area (m^2 per metre of thickness)
+  std::vector<Real> J;                   // volume ratio V / V0
+  std::vector<Real> half_size;           // GIMP half size l_p (grid units)
+  std::vector<std::uint16_t> material;   // index into the world's materials
+  std::vector<std::uint16_t> body;       // index of the body the point was filled from
 
   std::size_t size() const { return x.size(); }
   void resize(std::size_t n);

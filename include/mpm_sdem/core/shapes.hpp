@@ -23,9 +23,9 @@ struct ShapeDef {
 struct BodyDef {
   std::string name;
   ShapeDef shape;
-  int material = 0;        // index into WorldDef::materials
-  int points_per_cell = 2; // per direction
-  Vec2 velocity{0, 0};     // m/s
+  int material = 0;         // index into WorldDef::materials
+  int points_per_cell = 2;  // per direction
+  Vec2 velocity{0, 0};      // m/s
 };
 
 bool contains(const ShapeDef& shape, const Vec2& p);

@@ -65,8 +65,8 @@ struct TimeStepChoice {
 
 struct StepInfo {
   Real dt = 0;
-  bool finite = true;     // false: a particle position became NaN or infinite
-  long clamped = 0;       // particles put back inside the domain this step
+  bool finite = true;  // false: a particle position became NaN or infinite
+  long clamped = 0;    // particles put back inside the domain this step
 };
 
 class World {
