@@ -36,7 +36,7 @@ mpm_sdem_install_deps() {
   if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq -o DPkg::Lock::Timeout=300 \
-    --no-install-recommends "${missing[@]}"
+    "${missing[@]}"
 }
 
 mpm_sdem_build() {

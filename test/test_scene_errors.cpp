@@ -36,54 +36,102 @@ TEST(SceneErrors, ValidBaseSceneParses) {
   EXPECT_EQ(errorOf("valid.yaml"), "");
 }
 
-TEST(SceneErrors, UnknownKey) {
-  expectError(errorOf("unknown_key.yaml"), "unknown_key.yaml:21:5", "materials[0].densty",
-              "did you mean 'density'?");
+struct BadScene {
+  const char* test;  // test name
+  const char* file;  // under test/data/
+  std::vector<std::string> overrides;
+  const char *where, *key, *hint;  // expected in the message
+};
+
+class BadSceneInput : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(BadSceneInput, IsRefusedWithItsMessage) {
+  const BadScene& c = GetParam();
+  expectError(errorOf(c.file, c.overrides), c.where, c.key, c.hint);
 }
-TEST(SceneErrors, MissingRequiredKey) {
-  expectError(errorOf("missing_key.yaml"), "missing_key.yaml:15:3", "time",
-              "missing required key 'end'");
-}
-TEST(SceneErrors, WrongType) {
-  expectError(errorOf("wrong_type.yaml"), "wrong_type.yaml:15:8", "time.end",
-              "expected a finite number in s, got 'soon'");
-}
-TEST(SceneErrors, NonPositiveDensity) {
-  expectError(errorOf("bad_density.yaml"), "bad_density.yaml:21:14", "materials[0].density",
-              "must be > 0 kg/m^3");
-}
-TEST(SceneErrors, PoissonRatioOutOfRange) {
-  expectError(errorOf("bad_poisson.yaml"), "bad_poisson.yaml:23:20", "materials[0].poisson_ratio",
-              "must be in (-1, 0.5)");
-}
-TEST(SceneErrors, NonPositiveYoungsModulus) {
-  expectError(errorOf("bad_youngs.yaml"), "bad_youngs.yaml:22:21", "materials[0].youngs_modulus",
-              "must be > 0 Pa");
-}
-TEST(SceneErrors, NonPositiveCellSize) {
-  expectError(errorOf("bad_cell_size.yaml"), "bad_cell_size.yaml:10:14", "grid.cell_size",
-              "must be > 0 m");
-}
-TEST(SceneErrors, BodyOutsideDomain) {
-  expectError(errorOf("body_outside.yaml"), "body_outside.yaml:27:5", "bodies[0]",
-              "reaches outside the domain");
-}
-TEST(SceneErrors, UnknownMaterialName) {
-  expectError(errorOf("unknown_material.yaml"), "unknown_material.yaml:28:15", "bodies[0].material",
-              "no material named 'sandd'; defined: sand");
-}
-TEST(SceneErrors, DomainNotWholeCells) {
-  expectError(errorOf("valid.yaml", {"grid.cell_size=0.03"}), "--set grid.cell_size=0.03",
-              "grid.cell_size", "not a whole number of cells");
-}
-TEST(SceneErrors, OverrideOfUnknownKey) {
-  expectError(errorOf("valid.yaml", {"time.ends=1"}), "--set time.ends=1", "time.ends",
-              "did you mean 'end'?");
-}
-TEST(SceneErrors, OverrideByMaterialName) {
-  EXPECT_EQ(errorOf("valid.yaml", {"materials.sand.density=1500"}), "");
-  expectError(errorOf("valid.yaml", {"materials.sand.density=-3"}),
-              "--set materials.sand.density=-3", "materials[0].density", "must be > 0 kg/m^3");
+
+// One case per kind of bad input; every bad_*.yaml differs from valid.yaml in one line.
+INSTANTIATE_TEST_SUITE_P(EachBadInput, BadSceneInput,
+                         ::testing::Values(BadScene{"UnknownKey",
+                                                    "unknown_key.yaml",
+                                                    {},
+                                                    "unknown_key.yaml:21:5",
+                                                    "materials[0].densty",
+                                                    "did you mean 'density'?"},
+                                           BadScene{"MissingRequiredKey",
+                                                    "missing_key.yaml",
+                                                    {},
+                                                    "missing_key.yaml:15:3",
+                                                    "time",
+                                                    "missing required key 'end'"},
+                                           BadScene{"WrongType",
+                                                    "wrong_type.yaml",
+                                                    {},
+                                                    "wrong_type.yaml:15:8",
+                                                    "time.end",
+                                                    "expected a finite number in s, got 'soon'"},
+                                           BadScene{"NonPositiveDensity",
+                                                    "bad_density.yaml",
+                                                    {},
+                                                    "bad_density.yaml:21:14",
+                                                    "materials[0].density",
+                                                    "must be > 0 kg/m^3"},
+                                           BadScene{"PoissonRatioOutOfRange",
+                                                    "bad_poisson.yaml",
+                                                    {},
+                                                    "bad_poisson.yaml:23:20",
+                                                    "materials[0].poisson_ratio",
+                                                    "must be in (-1, 0.5)"},
+                                           BadScene{"NonPositiveYoungsModulus",
+                                                    "bad_youngs.yaml",
+                                                    {},
+                                                    "bad_youngs.yaml:22:21",
+                                                    "materials[0].youngs_modulus",
+                                                    "must be > 0 Pa"},
+                                           BadScene{"NonPositiveCellSize",
+                                                    "bad_cell_size.yaml",
+                                                    {},
+                                                    "bad_cell_size.yaml:10:14",
+                                                    "grid.cell_size",
+                                                    "must be > 0 m"},
+                                           BadScene{"BodyOutsideDomain",
+                                                    "body_outside.yaml",
+                                                    {},
+                                                    "body_outside.yaml:27:5",
+                                                    "bodies[0]",
+                                                    "reaches outside the domain"},
+                                           BadScene{"UnknownMaterialName",
+                                                    "unknown_material.yaml",
+                                                    {},
+                                                    "unknown_material.yaml:28:15",
+                                                    "bodies[0].material",
+                                                    "no material named 'sandd'; defined: sand"},
+                                           BadScene{"DomainNotWholeCells",
+                                                    "valid.yaml",
+                                                    {"grid.cell_size=0.03"},
+                                                    "--set grid.cell_size=0.03",
+                                                    "grid.cell_size",
+                                                    "not a whole number of cells"},
+                                           BadScene{"OverrideOfUnknownKey",
+                                                    "valid.yaml",
+                                                    {"time.ends=1"},
+                                                    "--set time.ends=1",
+                                                    "time.ends",
+                                                    "did you mean 'end'?"},
+                                           BadScene{"OverrideOutOfRange",
+                                                    "valid.yaml",
+                                                    {"materials.sand.density=-3"},
+                                                    "--set materials.sand.density=-3",
+                                                    "materials[0].density",
+                                                    "must be > 0 kg/m^3"}),
+                         [](const ::testing::TestParamInfo<BadScene>& info) {
+                           return std::string(info.param.test);
+                         });
+
+TEST(SceneErrors, OverrideByMaterialNameIsApplied) {
+  const Scene s =
+      loadScene(test::sourcePath("test/data/valid.yaml"), {"materials.sand.density=1500"});
+  EXPECT_EQ(s.world.materials[0].density, 1500);
 }
 
 TEST(SceneErrors, RunnerExitsNonZeroBeforeSimulating) {
