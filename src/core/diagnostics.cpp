@@ -32,6 +32,23 @@ Diagnostics measure(const World& world) {
     d.max_speed = std::fmax(d.max_speed, std::sqrt(v2));
   }
   if (d.mass > 0) d.center_of_mass = Vec2(mx, my) / d.mass;
+  if (const Blocks* B = world.blocks()) {
+    for (int b = 0; b < B->count(); ++b) {
+      if (B->def(b).type != BodyType::kDynamic) continue;
+      const BlockState& s = B->state(b);
+      const MassProperties& m = B->massProperties(b);
+      const Real ke = Real(0.5) * (m.mass * s.velocity.squaredNorm() +
+                                   m.inertia * s.angular_velocity * s.angular_velocity);
+      d.block_kinetic += ke;
+      d.kinetic += ke;
+      d.gravity -= m.mass * g.dot(s.position - base);
+      d.block_momentum += m.mass * s.velocity;
+      d.angular_momentum +=
+          m.mass * (s.position.x() * s.velocity.y() - s.position.y() * s.velocity.x()) +
+          m.inertia * s.angular_velocity;
+    }
+    d.momentum += d.block_momentum;
+  }
   d.finite = std::isfinite(d.kinetic) && std::isfinite(d.elastic) && std::isfinite(d.gravity) &&
              std::isfinite(d.angular_momentum) && d.momentum.allFinite() &&
              d.center_of_mass.allFinite();

@@ -6,6 +6,8 @@ const char* stageName(Stage stage) {
   switch (stage) {
     case Stage::kTimeStep:
       return "time_step";
+    case Stage::kContact:
+      return "contact";
     case Stage::kClearGrid:
       return "clear_grid";
     case Stage::kP2G:
@@ -16,6 +18,8 @@ const char* stageName(Stage stage) {
       return "g2p";
     case Stage::kConstitutive:
       return "constitutive";
+    case Stage::kBlocks:
+      return "blocks";
     case Stage::kCount:
       break;
   }

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "mpm_sdem/core/grid.hpp"
+#include "mpm_sdem/core/imp_coupling.hpp"
 #include "mpm_sdem/core/kernels.hpp"
 #include "mpm_sdem/core/particles.hpp"
 #include "mpm_sdem/core/world.hpp"
@@ -193,6 +194,27 @@ void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& cla
   }
   clamped += clamped_count;
   if (bad) finite = false;
+}
+
+// Eq. 47: the contact force of each IMP goes to the grid like an external point load.
+template <class K>
+void spreadContactForces(const std::vector<ImpCoupling::Contact>& contacts, const Particles& P,
+                         Grid& G) {
+  constexpr int S = K::kSupport;
+  for (const ImpCoupling::Contact& c : contacts) {
+    if (c.force.x() == 0 && c.force.y() == 0) continue;
+    Real xg, yg;
+    Stencil1D sx, sy;
+    stencils<K>(G, P.x[c.particle], P.y[c.particle], P.half_size[c.particle], xg, yg, sx, sy);
+    for (int j = 0; j < S; ++j) {
+      const int row = (sy.base + j) * G.nx + sx.base;
+      for (int i = 0; i < S; ++i) {
+        const Real w = sx.w[i] * sy.w[j];
+        G.force_x[row + i] += w * c.force.x();
+        G.force_y[row + i] += w * c.force.y();
+      }
+    }
+  }
 }
 
 }  // namespace mpm_sdem::detail

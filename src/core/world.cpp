@@ -15,6 +15,8 @@ const char* stepLimitName(StepLimit limit) {
       return "fixed";
     case StepLimit::kCfl:
       return "cfl";
+    case StepLimit::kContact:
+      return "contact";
     case StepLimit::kMax:
       return "max";
   }
@@ -87,6 +89,19 @@ World::World(const WorldDef& def) : def_(def) {
       ++p;
     }
   }
+  lightest_point_ = std::numeric_limits<Real>::infinity();
+  for (Real m : particles_.mass) lightest_point_ = std::fmin(lightest_point_, m);
+
+  if (!def.blocks.empty()) {
+    blocks_ = std::make_unique<Blocks>(def.blocks, def.block_contact, def.solver.gravity);
+    CouplingDef c = def.coupling;
+    int ppc = 1;
+    for (const BodyDef& b : def.bodies) ppc = std::max(ppc, b.points_per_cell);
+    // Eq. 45 asks h / sqrt(n) < r_p < h with n points per cell: the geometric mean of the bounds.
+    if (c.contact_radius <= 0) c.contact_radius = def.cell_size / std::sqrt(static_cast<Real>(ppc));
+    if (c.verlet_distance <= 0) c.verlet_distance = 0.5 * def.cell_size;
+    coupling_.init(c, def.domain.min, def.domain.max, def.cell_size);
+  }
 }
 
 TimeStepChoice World::chooseTimeStep() {
@@ -105,8 +120,21 @@ TimeStepChoice World::chooseTimeStep() {
   }
   const Real cfl_dt =
       fastest > 0 ? def_.time_step.cfl * grid_.h / fastest : std::numeric_limits<Real>::infinity();
-  if (cfl_dt < def_.time_step.max) return {cfl_dt, StepLimit::kCfl};
-  return {def_.time_step.max, StepLimit::kMax};
+  TimeStepChoice choice{def_.time_step.max, StepLimit::kMax};
+  if (cfl_dt < choice.dt) choice = {cfl_dt, StepLimit::kCfl};
+  if (blocks_) {
+    // Eq. 51, second term, for the IMP springs (lightest point or block) and for the block-block
+    // springs (reduced mass of two of the lightest blocks).
+    const Real two_pi_k = 2 * M_PI * def_.time_step.contact_factor;
+    const Real block = blocks_->lightestDynamicMass();
+    Real dt =
+        two_pi_k * std::sqrt(std::fmin(lightest_point_, block) / coupling_.def().normal_stiffness);
+    if (def_.block_contact.model == BlockContactModel::kPenalty && std::isfinite(block)) {
+      dt = std::fmin(dt, two_pi_k * std::sqrt(0.5 * block / def_.block_contact.normal_stiffness));
+    }
+    if (dt < choice.dt) choice = {dt, StepLimit::kContact};
+  }
+  return choice;
 }
 
 StepInfo World::step(Real dt) {
@@ -115,6 +143,9 @@ StepInfo World::step(Real dt) {
   // Seed 000 eq. 17: p^{n+1/2} = p^{n-1/2} + f^n dt. The kick spans from the velocity's time to
   // half a step past the positions' time.
   const Real kick = Real(0.5) * dt + velocity_lag_;
+  // Seed 000 sec. 4.2: contact forces from the state at the start of the step, the MPM step with
+  // them on the grid (eq. 48), then the blocks with the reactions.
+  if (blocks_) contactForces(dt);
   clearGrid();
   if (def_.solver.stress_update == StressUpdate::kUsf) {
     particleToGrid(true, false);
@@ -122,17 +153,20 @@ StepInfo World::step(Real dt) {
     gridToParticleGradient();
     constitutiveUpdate(stress_lag_);
     particleToGrid(false, true);
+    if (blocks_) contactForcesToGrid();
     gridVelocity(kick, true);
     gridToParticle(dt, info);
     stress_lag_ = dt;
   } else {
     particleToGrid(true, true);
+    if (blocks_) contactForcesToGrid();
     gridVelocity(0, false);
     gridVelocity(kick, true);
     gridToParticle(dt, info);
     constitutiveUpdate(dt);
     stress_lag_ = 0;
   }
+  if (blocks_) stepBlocks(dt);
   velocity_lag_ = Real(0.5) * dt;
   time_ += dt;
   ++steps_;
@@ -147,6 +181,23 @@ void World::reverseVelocities() {
   }
   velocity_lag_ = -velocity_lag_;
   stress_lag_ = -stress_lag_;
+}
+
+void World::contactForces(Real dt) {
+  StageTimer timer(profile_, Stage::kContact);
+  coupling_.computeForces(particles_, *blocks_, dt);
+}
+
+void World::contactForcesToGrid() {
+  StageTimer timer(profile_, Stage::kContact);
+  withKernel(def_.solver.kernel, [&](auto k) {
+    detail::spreadContactForces<decltype(k)>(coupling_.contacts(), particles_, grid_);
+  });
+}
+
+void World::stepBlocks(Real dt) {
+  StageTimer timer(profile_, Stage::kBlocks);
+  blocks_->step(dt);
 }
 
 void World::clearGrid() {

@@ -15,7 +15,10 @@ struct Diagnostics {
   Real angular_momentum = 0;  // kg m^2/s per metre about the world origin, with the APIC spin
   Vec2 center_of_mass{0, 0};  // m
   Real mass = 0;              // kg per metre
-  Real max_speed = 0;         // m/s
+  Real max_speed = 0;         // m/s (material points)
+  // Dynamic blocks, included in the energies and momenta above as well.
+  Real block_kinetic = 0;     // J/m, translation and rotation
+  Vec2 block_momentum{0, 0};  // kg m/s per metre
   bool finite = true;         // every summed quantity is finite
 };
 

@@ -5,7 +5,17 @@
 
 namespace mpm_sdem {
 
-enum class Stage : int { kTimeStep, kClearGrid, kP2G, kGridUpdate, kG2P, kConstitutive, kCount };
+enum class Stage : int {
+  kTimeStep,
+  kContact,
+  kClearGrid,
+  kP2G,
+  kGridUpdate,
+  kG2P,
+  kConstitutive,
+  kBlocks,
+  kCount
+};
 
 const char* stageName(Stage stage);
 

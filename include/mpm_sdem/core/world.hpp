@@ -2,11 +2,14 @@
 #pragma once
 
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "mpm_sdem/core/blocks.hpp"
 #include "mpm_sdem/core/boundary.hpp"
 #include "mpm_sdem/core/grid.hpp"
+#include "mpm_sdem/core/imp_coupling.hpp"
 #include "mpm_sdem/core/kernels.hpp"
 #include "mpm_sdem/core/material.hpp"
 #include "mpm_sdem/core/particles.hpp"
@@ -38,6 +41,9 @@ struct TimeStepDef {
   Real fixed = 0;         // s, when !automatic
   Real cfl = 0.3;         // kappa_1 of seed 000 eq. 51: dt = cfl * h / max(c_p + |v_p|)
   Real max = std::numeric_limits<Real>::infinity();  // s, upper bound on the automatic step
+  // kappa_2 of seed 000 eq. 51: dt <= 2 pi kappa_2 sqrt(m_min / k_n) for every spring contact,
+  // m_min the lightest mass on either side (an IMP spring acts on one light material point).
+  Real contact_factor = 0.1;
 };
 
 struct DomainDef {
@@ -52,10 +58,13 @@ struct WorldDef {
   TimeStepDef time_step;
   std::vector<MaterialDef> materials;
   std::vector<BodyDef> bodies;
+  std::vector<BlockDef> blocks;
+  BlockContactDef block_contact;
+  CouplingDef coupling;  // IMP contact between material and blocks
 };
 
 // Which term set the time step.
-enum class StepLimit { kFixed, kCfl, kMax };
+enum class StepLimit { kFixed, kCfl, kContact, kMax };
 const char* stepLimitName(StepLimit limit);
 
 struct TimeStepChoice {
@@ -84,6 +93,12 @@ class World {
 
   const WorldDef& def() const { return def_; }
   const std::vector<MaterialParams>& materialParams() const { return params_; }
+  // The rigid blocks, or nullptr in a scene without any (no block or coupling work is done).
+  const Blocks* blocks() const { return blocks_.get(); }
+  Blocks* blocks() { return blocks_.get(); }
+  const ImpCoupling& coupling() const { return coupling_; }
+  // The coupling settings with their defaults resolved (r_p, V_d in metres).
+  const CouplingDef& resolvedCoupling() const { return coupling_.def(); }
   const Particles& particles() const { return particles_; }
   Particles& particles() { return particles_; }
   const Grid& grid() const { return grid_; }
@@ -100,12 +115,18 @@ class World {
   void gridToParticle(Real dt, StepInfo& info);
   void constitutiveUpdate(Real dt);
   void applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const;
+  void contactForces(Real dt);
+  void contactForcesToGrid();
+  void stepBlocks(Real dt);
 
   WorldDef def_;
   std::vector<MaterialParams> params_;
   Particles particles_;
   Grid grid_;
   Profile profile_;
+  std::unique_ptr<Blocks> blocks_;
+  ImpCoupling coupling_;
+  Real lightest_point_ = 0;  // kg/m, for the contact term of the time step
   Real time_ = 0;
   long steps_ = 0;
   // Leapfrog bookkeeping (seed 000 eq. 17): positions live at time_, velocities at

@@ -1,0 +1,106 @@
+// Rigid blocks: spheropolygons integrated by Box2D 2.4 (kept behind this interface; no Box2D type
+// appears here). Box2D is tuned for bodies of 0.1 to 10 units in single precision, so the blocks
+// live in Box2D scaled by length_scale (Box2D units per metre), chosen so that the median block is
+// one unit across; every quantity crossing this interface is SI.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mpm_sdem/core/spheropolygon.hpp"
+#include "mpm_sdem/core/types.hpp"
+
+namespace mpm_sdem {
+
+enum class BodyType { kStatic, kKinematic, kDynamic };
+
+// Block-block contact: the seed's spheropolygon vertex-edge springs (eq. 38-43) with forces
+// applied through Box2D, or Box2D's own contact solver on the core polygon grown by the rounding.
+enum class BlockContactModel { kPenalty, kBox2D };
+
+struct BlockDef {
+  std::string name;
+  std::vector<Vec2> core;     // convex core polygon in the block frame (m); 1 vertex: disk
+  Real rounding = 0;          // sweeping disk radius a (m), > 0
+  Vec2 position{0, 0};        // block frame origin in the world (m)
+  Real angle = 0;             // rad, counter-clockwise
+  Vec2 velocity{0, 0};        // m/s, of the centre of mass
+  Real angular_velocity = 0;  // rad/s
+  BodyType type = BodyType::kDynamic;
+  Real density = 1000;     // kg/m^3
+  Real friction = 0.5;     // Coulomb coefficient with blocks, walls and material
+  Real restitution = 0.5;  // normal coefficient of restitution of its penalty contacts
+};
+
+struct BlockContactDef {
+  BlockContactModel model = BlockContactModel::kPenalty;
+  Real normal_stiffness = 1e7;      // N/m per metre of thickness, penalty model
+  Real tangential_stiffness = 5e6;  // N/m per metre
+};
+
+// Where a block is: centre of mass, orientation and velocities, SI.
+struct BlockState {
+  Vec2 position{0, 0};
+  Real angle = 0;
+  Vec2 velocity{0, 0};
+  Real angular_velocity = 0;
+};
+
+class Blocks {
+ public:
+  Blocks(const std::vector<BlockDef>& defs, const BlockContactDef& contact, const Vec2& gravity);
+  ~Blocks();
+  Blocks(const Blocks&) = delete;
+  Blocks& operator=(const Blocks&) = delete;
+
+  int count() const { return static_cast<int>(defs_.size()); }
+  const BlockDef& def(int i) const { return defs_[i]; }
+  const MassProperties& massProperties(int i) const { return mass_[i]; }
+  const BlockState& state(int i) const { return state_[i]; }
+  // Core vertices in the world frame, refreshed after every step.
+  const Vec2* vertices(int i) const { return &world_vertices_[i * kMaxBlockVertices]; }
+  int vertexCount(int i) const { return static_cast<int>(defs_[i].core.size()); }
+  Vec2 velocityAt(int i, const Vec2& point) const;
+  Real lengthScale() const { return scale_; }
+  // Lightest dynamic block (kg/m), infinite when there is none.
+  Real lightestDynamicMass() const;
+
+  // Forces for the next step, world frame (N/m), applied at a point (m); cleared by step().
+  void addForce(int i, const Vec2& force, const Vec2& point);
+  // Block-block contact forces (penalty model), then one Box2D step of dt.
+  void step(Real dt);
+
+  // What the material did to each block in the last step (for outputs).
+  struct Coupling {
+    Vec2 force{0, 0};  // N/m
+    Real torque = 0;   // N m/m about the centre of mass
+    int contacts = 0;
+  };
+  std::vector<Coupling>& coupling() { return coupling_; }
+  const std::vector<Coupling>& coupling() const { return coupling_; }
+
+ private:
+  void penaltyContacts(Real dt);
+  void refresh();
+
+  struct Box2D;
+  std::unique_ptr<Box2D> b2_;
+  std::vector<BlockDef> defs_;
+  std::vector<MassProperties> mass_;
+  std::vector<BlockState> state_;
+  std::vector<Vec2> world_vertices_;
+  std::vector<Vec2> force_;
+  std::vector<Real> torque_;
+  std::vector<Coupling> coupling_;
+  BlockContactDef contact_;
+  Real scale_ = 1;
+  // Tangential spring history of the penalty contacts, by (block i, block j, vertex, side).
+  std::vector<std::pair<unsigned long long, Vec2>> history_, next_history_;
+};
+
+// Damping coefficient of a linear spring of stiffness k between masses of reduced mass m that
+// gives the normal restitution coefficient e (e = 1: none).
+Real restitutionDamping(Real e, Real k, Real m);
+
+}  // namespace mpm_sdem

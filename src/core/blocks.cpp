@@ -1,0 +1,249 @@
+#include "mpm_sdem/core/blocks.hpp"
+
+#include <box2d/box2d.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace mpm_sdem {
+
+namespace {
+
+Real cross(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+b2Vec2 toB2(const Vec2& v, Real s) {
+  return b2Vec2(static_cast<float>(v.x() * s), static_cast<float>(v.y() * s));
+}
+Vec2 fromB2(const b2Vec2& v, Real s) {
+  return Vec2(v.x / s, v.y / s);
+}
+
+// The core with every edge pushed out by a: Box2D cannot round a polygon, so its contact solver
+// sees this polygon (exact along the edges, sharp instead of round at the corners).
+std::vector<Vec2> grownCore(const std::vector<Vec2>& core, Real a) {
+  const int n = static_cast<int>(core.size());
+  if (n == 2) {
+    const Vec2 e = (core[1] - core[0]).normalized();
+    const Vec2 nrm(e.y(), -e.x());
+    return {core[0] + a * nrm, core[1] + a * nrm, core[1] - a * nrm, core[0] - a * nrm};
+  }
+  std::vector<Vec2> out(n);
+  for (int i = 0; i < n; ++i) {
+    const Vec2& p = core[(i + n - 1) % n];
+    const Vec2& v = core[i];
+    const Vec2& q = core[(i + 1) % n];
+    const Vec2 e1 = (v - p).normalized(), e2 = (q - v).normalized();
+    const Vec2 n1(e1.y(), -e1.x()), n2(e2.y(), -e2.x());
+    out[i] = v + a * (n1 + n2) / (1 + n1.dot(n2));
+  }
+  return out;
+}
+
+}  // namespace
+
+Real restitutionDamping(Real e, Real k, Real m) {
+  if (e >= 1) return 0;
+  const Real zeta = e <= 0 ? 1 : -std::log(e) / std::sqrt(M_PI * M_PI + std::log(e) * std::log(e));
+  return 2 * zeta * std::sqrt(k * m);
+}
+
+struct Blocks::Box2D {
+  explicit Box2D(const b2Vec2& g) : world(g) {}
+  b2World world;
+  std::vector<b2Body*> bodies;
+};
+
+Blocks::Blocks(const std::vector<BlockDef>& defs, const BlockContactDef& contact,
+               const Vec2& gravity)
+    : defs_(defs), contact_(contact) {
+  // Length scale: the median block size (square root of its area) becomes one Box2D unit.
+  std::vector<Real> sizes;
+  for (BlockDef& d : defs_) {
+    const std::string problem = coreProblem(d.core);
+    if (!problem.empty()) throw std::invalid_argument("block '" + d.name + "': " + problem);
+    if (!(d.rounding > 0))
+      throw std::invalid_argument("block '" + d.name + "': rounding must be > 0");
+    makeCounterClockwise(d.core);
+    mass_.push_back(spheropolygonMass(d.core, d.rounding, d.density));
+    sizes.push_back(std::sqrt(mass_.back().area));
+  }
+  if (!sizes.empty()) {
+    std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
+    scale_ = 1 / sizes[sizes.size() / 2];
+  }
+  b2_ = std::make_unique<Box2D>(toB2(gravity, scale_));
+  for (std::size_t i = 0; i < defs_.size(); ++i) {
+    const BlockDef& d = defs_[i];
+    const MassProperties& m = mass_[i];
+    b2BodyDef bd;
+    bd.type = d.type == BodyType::kStatic      ? b2_staticBody
+              : d.type == BodyType::kKinematic ? b2_kinematicBody
+                                               : b2_dynamicBody;
+    bd.position = toB2(d.position, scale_);
+    bd.angle = static_cast<float>(d.angle);
+    bd.allowSleep = false;  // a sleeping body ignores the coupling forces
+    bd.bullet = d.type == BodyType::kDynamic && contact.model == BlockContactModel::kBox2D;
+    b2Body* body = b2_->world.CreateBody(&bd);
+    if (contact.model == BlockContactModel::kBox2D) {
+      b2FixtureDef fd;
+      fd.friction = static_cast<float>(d.friction);
+      fd.restitution = static_cast<float>(d.restitution);
+      fd.density = 0;  // mass set below, from the rounded shape
+      b2CircleShape circle;
+      b2PolygonShape polygon;
+      if (d.core.size() == 1) {
+        circle.m_p = toB2(d.core[0], scale_);
+        circle.m_radius = static_cast<float>(d.rounding * scale_);
+        fd.shape = &circle;
+      } else {
+        std::vector<b2Vec2> pts;
+        for (const Vec2& v : grownCore(d.core, d.rounding)) pts.push_back(toB2(v, scale_));
+        polygon.Set(pts.data(), static_cast<int32>(pts.size()));
+        fd.shape = &polygon;
+      }
+      body->CreateFixture(&fd);
+    }
+    if (d.type == BodyType::kDynamic) {
+      // Box2D's polygon mass ignores the rounding: set the spheropolygon's own (inertia about
+      // the body origin, in Box2D units).
+      b2MassData md;
+      md.mass = static_cast<float>(m.mass);
+      md.center = toB2(m.centroid, scale_);
+      md.I = static_cast<float>((m.inertia + m.mass * m.centroid.squaredNorm()) * scale_ * scale_);
+      body->SetMassData(&md);
+    }
+    if (d.type != BodyType::kStatic) {
+      body->SetLinearVelocity(toB2(d.velocity, scale_));
+      body->SetAngularVelocity(static_cast<float>(d.angular_velocity));
+    }
+    b2_->bodies.push_back(body);
+  }
+  state_.resize(defs_.size());
+  world_vertices_.resize(defs_.size() * kMaxBlockVertices);
+  force_.assign(defs_.size(), Vec2(0, 0));
+  torque_.assign(defs_.size(), 0);
+  coupling_.resize(defs_.size());
+  refresh();
+}
+
+Blocks::~Blocks() = default;
+
+void Blocks::refresh() {
+  for (std::size_t i = 0; i < defs_.size(); ++i) {
+    const b2Body* body = b2_->bodies[i];
+    BlockState& s = state_[i];
+    s.angle = body->GetAngle();
+    s.velocity = fromB2(body->GetLinearVelocity(), scale_);
+    s.angular_velocity = body->GetAngularVelocity();
+    const Vec2 origin = fromB2(body->GetPosition(), scale_);
+    const Real c = std::cos(s.angle), sn = std::sin(s.angle);
+    auto toWorld = [&](const Vec2& v) {
+      return Vec2(origin.x() + c * v.x() - sn * v.y(), origin.y() + sn * v.x() + c * v.y());
+    };
+    s.position = toWorld(mass_[i].centroid);
+    for (std::size_t k = 0; k < defs_[i].core.size(); ++k) {
+      world_vertices_[i * kMaxBlockVertices + k] = toWorld(defs_[i].core[k]);
+    }
+  }
+}
+
+Vec2 Blocks::velocityAt(int i, const Vec2& p) const {
+  const BlockState& s = state_[i];
+  const Vec2 r = p - s.position;
+  return s.velocity + s.angular_velocity * Vec2(-r.y(), r.x());
+}
+
+Real Blocks::lightestDynamicMass() const {
+  Real m = std::numeric_limits<Real>::infinity();
+  for (std::size_t i = 0; i < defs_.size(); ++i) {
+    if (defs_[i].type == BodyType::kDynamic) m = std::fmin(m, mass_[i].mass);
+  }
+  return m;
+}
+
+void Blocks::addForce(int i, const Vec2& f, const Vec2& point) {
+  force_[i] += f;
+  torque_[i] += cross(point - state_[i].position, f);
+}
+
+void Blocks::penaltyContacts(Real dt) {
+  next_history_.clear();
+  const int n = count();
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      if (defs_[i].type != BodyType::kDynamic && defs_[j].type != BodyType::kDynamic) continue;
+      // Seed 000 eq. 39: vertices of i against the edges of j, then vertices of j against i.
+      for (int side = 0; side < 2; ++side) {
+        const int a = side == 0 ? i : j, b = side == 0 ? j : i;
+        const int nb = vertexCount(b);
+        // A disk has no edges: its centre meets the other's edges in the other pass.
+        if (nb == 1 && (vertexCount(a) > 1 || side == 1)) continue;
+        const Real reach = defs_[a].rounding + defs_[b].rounding;
+        const Real ma = defs_[a].type == BodyType::kDynamic ? mass_[a].mass
+                                                            : std::numeric_limits<Real>::infinity();
+        const Real mb = defs_[b].type == BodyType::kDynamic ? mass_[b].mass
+                                                            : std::numeric_limits<Real>::infinity();
+        const Real m_red = std::isinf(ma) ? mb : std::isinf(mb) ? ma : ma * mb / (ma + mb);
+        const Real e = std::min(defs_[a].restitution, defs_[b].restitution);
+        const Real gamma = restitutionDamping(e, contact_.normal_stiffness, m_red);
+        const Real mu = std::min(defs_[a].friction, defs_[b].friction);
+        for (int k = 0; k < vertexCount(a); ++k) {
+          const Vec2 X = vertices(a)[k];
+          const CoreDistance c = closestOnCore(vertices(b), nb, X);
+          const Real xi = reach - c.distance;  // eq. 38
+          if (xi <= 0) continue;
+          // Eq. 41: the middle of the overlap along the normal.
+          const Vec2 p = X - (defs_[a].rounding - xi / 2) * c.normal;
+          const Vec2 v = velocityAt(a, p) - velocityAt(b, p);
+          const Real vn = v.dot(c.normal);
+          const Real fn = std::fmax(contact_.normal_stiffness * xi - gamma * vn, Real(0));
+          const unsigned long long key = (static_cast<unsigned long long>(i) << 40) |
+                                         (static_cast<unsigned long long>(j) << 16) |
+                                         (static_cast<unsigned long long>(k) << 1) | side;
+          Vec2 delta(0, 0);
+          const auto it =
+              std::lower_bound(history_.begin(), history_.end(), std::make_pair(key, Vec2(0, 0)),
+                               [](const auto& x, const auto& y) { return x.first < y.first; });
+          if (it != history_.end() && it->first == key) delta = it->second;
+          // Eq. 43: tangential spring on the accumulated sliding, capped by Coulomb.
+          delta += (v - vn * c.normal) * dt;
+          delta -= delta.dot(c.normal) * c.normal;
+          Vec2 ft = -contact_.tangential_stiffness * delta;
+          if (ft.norm() > mu * fn) {
+            ft *= mu * fn / ft.norm();
+            delta = -ft / contact_.tangential_stiffness;
+          }
+          next_history_.emplace_back(key, delta);
+          const Vec2 f = fn * c.normal + ft;
+          addForce(a, f, p);
+          addForce(b, -f, p);
+        }
+      }
+    }
+  }
+  std::sort(next_history_.begin(), next_history_.end(),
+            [](const auto& x, const auto& y) { return x.first < y.first; });
+  history_.swap(next_history_);
+}
+
+void Blocks::step(Real dt) {
+  if (defs_.empty()) return;
+  if (contact_.model == BlockContactModel::kPenalty) penaltyContacts(dt);
+  for (std::size_t i = 0; i < defs_.size(); ++i) {
+    b2Body* body = b2_->bodies[i];
+    if (defs_[i].type == BodyType::kDynamic) {
+      // F (N/m) and tau (N m/m) into Box2D units: lengths scale by s, masses do not.
+      body->ApplyForceToCenter(toB2(force_[i], scale_), true);
+      body->ApplyTorque(static_cast<float>(torque_[i] * scale_ * scale_), true);
+    }
+    force_[i].setZero();
+    torque_[i] = 0;
+  }
+  b2_->world.Step(static_cast<float>(dt), 8, 3);
+  refresh();
+}
+
+}  // namespace mpm_sdem
