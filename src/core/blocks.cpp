@@ -44,10 +44,19 @@ std::vector<Vec2> grownCore(const std::vector<Vec2>& core, Real a) {
 
 }  // namespace
 
-Real restitutionDamping(Real e, Real k, Real m) {
+Real restitutionDampingRatio(Real e) {
   if (e >= 1) return 0;
-  const Real zeta = e <= 0 ? 1 : -std::log(e) / std::sqrt(M_PI * M_PI + std::log(e) * std::log(e));
-  return 2 * zeta * std::sqrt(k * m);
+  if (e <= 0) return 1;
+  return -std::log(e) / std::sqrt(M_PI * M_PI + std::log(e) * std::log(e));
+}
+
+Real restitutionDamping(Real e, Real k, Real m) {
+  return 2 * restitutionDampingRatio(e) * std::sqrt(k * m);
+}
+
+Real contactTimeStep(Real m, Real k, Real zeta, int n, Real kappa2) {
+  const Real w = std::sqrt(n * k / m), z = std::sqrt(static_cast<Real>(n)) * zeta;
+  return M_PI * kappa2 * 2 / w * (std::sqrt(1 + z * z) - z);
 }
 
 struct Blocks::Box2D {

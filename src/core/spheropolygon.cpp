@@ -55,10 +55,9 @@ MassProperties spheropolygonMass(const std::vector<Vec2>& core, Real a, Real den
       const Vec2& p = core[i];
       const Vec2& q = core[(i + 1) % n];
       const Vec2 nrm = outwardNormal(p, q);
+      // Outward from p, along the edge, back in at q: counter-clockwise.
       const Vec2 quad[4] = {p, p + a * nrm, q + a * nrm, q};
-      // The quad is clockwise with an outward normal on the right: reverse it.
-      const Vec2 ccw[4] = {quad[0], quad[3], quad[2], quad[1]};
-      m.addPolygon(ccw, 4);
+      m.addPolygon(quad, 4);
       // Sector at q from this edge's normal to the next edge's normal (counter-clockwise).
       const Vec2 next = outwardNormal(q, core[(i + 2) % n]);
       const Real t0 = std::atan2(nrm.y(), nrm.x());

@@ -125,12 +125,16 @@ TimeStepChoice World::chooseTimeStep() {
   if (blocks_) {
     // Eq. 51, second term, for the IMP springs (lightest point or block) and for the block-block
     // springs (reduced mass of two of the lightest blocks).
-    const Real two_pi_k = 2 * M_PI * def_.time_step.contact_factor;
+    const Real kappa2 = def_.time_step.contact_factor;
+    Real zeta = 0;  // the most damped contact bounds the step
+    for (const BlockDef& b : def_.blocks)
+      zeta = std::fmax(zeta, restitutionDampingRatio(b.restitution));
     const Real block = blocks_->lightestDynamicMass();
-    Real dt =
-        two_pi_k * std::sqrt(std::fmin(lightest_point_, block) / coupling_.def().normal_stiffness);
+    Real dt = contactTimeStep(std::fmin(lightest_point_, block), coupling_.def().normal_stiffness,
+                              zeta, 1, kappa2);
     if (def_.block_contact.model == BlockContactModel::kPenalty && std::isfinite(block)) {
-      dt = std::fmin(dt, two_pi_k * std::sqrt(0.5 * block / def_.block_contact.normal_stiffness));
+      dt = std::fmin(
+          dt, contactTimeStep(0.5 * block, def_.block_contact.normal_stiffness, zeta, 4, kappa2));
     }
     if (dt < choice.dt) choice = {dt, StepLimit::kContact};
   }

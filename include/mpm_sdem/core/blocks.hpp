@@ -102,5 +102,12 @@ class Blocks {
 // Damping coefficient of a linear spring of stiffness k between masses of reduced mass m that
 // gives the normal restitution coefficient e (e = 1: none).
 Real restitutionDamping(Real e, Real k, Real m);
+Real restitutionDampingRatio(Real e);
+
+// Stable explicit step for n equal damped springs k acting in parallel on a reduced mass m:
+// pi * kappa_2 times the critical step (2 / w) (sqrt(1 + z^2) - z), w = sqrt(n k / m) and
+// z = sqrt(n) zeta. With n = 1 and no damping it is seed 000 eq. 51's 2 pi kappa_2 sqrt(m / k);
+// the damping and the four springs of a face-to-face spheropolygon contact (eq. 39) shorten it.
+Real contactTimeStep(Real m, Real k, Real zeta, int n, Real kappa2);
 
 }  // namespace mpm_sdem
