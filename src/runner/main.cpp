@@ -24,12 +24,22 @@ void onSignal(int) {
   g_interrupted = 1;
 }
 
-void printSummary(const Scene& s, const World& w) {
+void printSummary(const Scene& s, World& w) {
   const WorldDef& d = w.def();
   std::fprintf(
       stderr, "scene %s (%s): %zu material points, grid %d x %d cells of %g m, %s dt, end %g s\n",
       s.name.c_str(), s.source.c_str(), w.particles().size(), w.grid().cells_x, w.grid().cells_y,
       d.cell_size, d.time_step.automatic ? "automatic" : "fixed", s.end_time);
+  if (const Blocks* b = w.blocks()) {
+    const CouplingDef& c = w.resolvedCoupling();
+    std::fprintf(stderr,
+                 "%d blocks (Box2D scale %.4g units/m), IMP contact radius %g m, Verlet distance "
+                 "%g m, k_n %g N/m\n",
+                 b->count(), b->lengthScale(), c.contact_radius, c.verlet_distance,
+                 c.normal_stiffness);
+  }
+  const TimeStepChoice dt = w.chooseTimeStep();
+  std::fprintf(stderr, "time step %.4g s, set by the %s term\n", dt.dt, stepLimitName(dt.limit));
 }
 
 }  // namespace
@@ -76,6 +86,11 @@ int main(int argc, char** argv) {
   std::signal(SIGTERM, onSignal);
 
   runner::TimeSeriesWriter series((out / "timeseries.csv").string());
+  std::unique_ptr<runner::BlockSeriesWriter> block_series;
+  if (world.blocks()) {
+    block_series = std::make_unique<runner::BlockSeriesWriter>((out / "blocks.csv").string());
+    block_series->write(world);
+  }
   const Diagnostics initial = measure(world);
   // Energy scale for the growth limit: the initial total, which with potential energy measured
   // from the domain floor is the sum of non-negative terms.
@@ -118,6 +133,7 @@ int main(int argc, char** argv) {
         break;
       }
       series.write(world, d, dt);
+      if (block_series) block_series->write(world);
       while (next_sample <= world.time() + eps) next_sample += scene.output.interval;
     }
     progress.update(world.stepCount(), world.time(), h,

@@ -29,6 +29,25 @@ void TimeSeriesWriter::write(const World& w, const Diagnostics& d, const TimeSte
   out_.flush();
 }
 
+BlockSeriesWriter::BlockSeriesWriter(const std::string& path) : out_(openCsv(path)) {
+  out_ << "time,block,name,x,y,angle,vx,vy,angular_velocity,imp_force_x,imp_force_y,imp_torque,"
+          "imp_contacts\n";
+  out_.flush();
+}
+
+void BlockSeriesWriter::write(const World& w) {
+  const Blocks& B = *w.blocks();
+  for (int b = 0; b < B.count(); ++b) {
+    const BlockState& s = B.state(b);
+    const Blocks::Coupling& c = B.coupling()[b];
+    out_ << w.time() << ',' << b << ',' << B.def(b).name << ',' << s.position.x() << ','
+         << s.position.y() << ',' << s.angle << ',' << s.velocity.x() << ',' << s.velocity.y()
+         << ',' << s.angular_velocity << ',' << c.force.x() << ',' << c.force.y() << ',' << c.torque
+         << ',' << c.contacts << '\n';
+  }
+  out_.flush();
+}
+
 void writeParticles(const World& world, const std::string& path) {
   std::ofstream out = openCsv(path);
   const Particles& P = world.particles();

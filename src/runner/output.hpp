@@ -19,6 +19,16 @@ class TimeSeriesWriter {
   std::ofstream out_;
 };
 
+// One row per block per sample: pose, velocity and what the material did to it.
+class BlockSeriesWriter {
+ public:
+  explicit BlockSeriesWriter(const std::string& path);
+  void write(const World& world);
+
+ private:
+  std::ofstream out_;
+};
+
 void writeParticles(const World& world, const std::string& path);
 void writeProfile(const World& world, const std::string& path);
 

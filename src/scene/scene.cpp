@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
 #include "mpm_sdem/core/shapes.hpp"
+#include "mpm_sdem/core/spheropolygon.hpp"
 #include "yaml_reader.hpp"
 
 namespace mpm_sdem {
@@ -169,7 +171,7 @@ void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
 }
 
 void parseTime(const Context& ctx, const MapReader& top, Scene& s) {
-  MapReader t(ctx, top.node("time"), "time", {"end", "dt", "cfl", "dt_max"});
+  MapReader t(ctx, top.node("time"), "time", {"end", "dt", "cfl", "dt_max", "contact_factor"});
   s.end_time = t.number("end", "s");
   t.require(s.end_time > 0, "end", "must be > 0 s, got " + num(s.end_time));
   TimeStepDef& ts = s.world.time_step;
@@ -183,6 +185,13 @@ void parseTime(const Context& ctx, const MapReader& top, Scene& s) {
     t.require(ts.automatic, "cfl", "applies only with dt: auto");
     ts.cfl = t.number("cfl", "(dimensionless)");
     t.require(ts.cfl > 0 && ts.cfl <= 1, "cfl", "must be in (0, 1], got " + num(ts.cfl));
+  }
+  if (t.has("contact_factor")) {
+    t.require(ts.automatic, "contact_factor", "applies only with dt: auto");
+    ts.contact_factor = t.number("contact_factor", "(dimensionless)");
+    t.require(ts.contact_factor > 0 && ts.contact_factor <= 0.3, "contact_factor",
+              "must be in (0, 0.3] (kappa_2 of seed 000 eq. 51; 0.1 is usual), got " +
+                  num(ts.contact_factor));
   }
   if (t.has("dt_max")) {
     t.require(ts.automatic, "dt_max", "applies only with dt: auto");
@@ -355,12 +364,177 @@ void parseBodies(const Context& ctx, const MapReader& top, Scene& s,
   }
 }
 
+BlockDef parseBlock(const Context& ctx, const YAML::Node& n, const std::string& path) {
+  MapReader r(ctx, n, path,
+              {"name", "type", "shape", "size", "vertices", "radius", "rounding", "position",
+               "angle", "velocity", "angular_velocity", "density", "friction", "restitution"});
+  BlockDef b;
+  b.name = r.text("name");
+  b.type = r.choiceOf<BodyType>(r.node("type"), r.path("type"),
+                                {{"static", BodyType::kStatic},
+                                 {"kinematic", BodyType::kKinematic},
+                                 {"dynamic", BodyType::kDynamic}});
+  enum class Kind { kBox, kPolygon, kDisk };
+  const Kind kind =
+      r.choiceOf<Kind>(r.node("shape"), r.path("shape"),
+                       {{"box", Kind::kBox}, {"polygon", Kind::kPolygon}, {"disk", Kind::kDisk}});
+  r.require(kind == Kind::kBox || !r.has("size"), "size", "applies only to shape: box");
+  r.require(kind == Kind::kPolygon || !r.has("vertices"), "vertices",
+            "applies only to shape: polygon");
+  r.require(kind == Kind::kDisk || !r.has("radius"), "radius", "applies only to shape: disk");
+  r.require(kind != Kind::kDisk || !r.has("rounding"), "rounding",
+            "a disk is a point swept by its radius: give radius only");
+  if (kind == Kind::kDisk) {
+    b.rounding = r.number("radius", "m");
+    r.require(b.rounding > 0, "radius", "must be > 0 m, got " + num(b.rounding));
+    b.core = {Vec2(0, 0)};
+  } else {
+    b.rounding = r.number("rounding", "m");
+    r.require(
+        b.rounding > 0, "rounding",
+        "must be > 0 m (the radius of the disk that rounds the block), got " + num(b.rounding));
+  }
+  if (kind == Kind::kBox) {
+    const Vec2 size = r.vec2("size", "m");
+    const Real a = b.rounding;
+    r.require(size.x() > 2 * a && size.y() > 2 * a, "size",
+              "the outer size must exceed twice the rounding (" + num(2 * a) + " m) in x and y");
+    const Vec2 c = size / 2 - Vec2(a, a);
+    b.core = {Vec2(-c.x(), -c.y()), Vec2(c.x(), -c.y()), Vec2(c.x(), c.y()), Vec2(-c.x(), c.y())};
+  } else if (kind == Kind::kPolygon) {
+    const YAML::Node v = r.node("vertices");
+    if (!v.IsSequence()) ctx.fail(v, r.path("vertices"), "expected a list of [x, y] points in m");
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      b.core.push_back(
+          MapReader::toVec2(ctx, v[i], r.path("vertices") + "[" + std::to_string(i) + "]", "m"));
+    }
+    const std::string problem = coreProblem(b.core);
+    r.require(problem.empty(), "vertices", problem);
+  }
+  b.position = r.vec2("position", "m");
+  b.angle = r.number("angle", "deg", 0) * kDeg;
+  b.velocity = r.vec2("velocity", "m/s", b.velocity);
+  b.angular_velocity = r.number("angular_velocity", "rad/s", 0);
+  b.density = r.number("density", "kg/m^3");
+  r.require(b.density > 0, "density", "must be > 0 kg/m^3, got " + num(b.density));
+  b.friction = r.number("friction", "(dimensionless)", b.friction);
+  r.require(b.friction >= 0, "friction", "must be >= 0, got " + num(b.friction));
+  b.restitution = r.number("restitution", "(dimensionless)", b.restitution);
+  r.require(b.restitution >= 0 && b.restitution <= 1, "restitution",
+            "must be in [0, 1], got " + num(b.restitution));
+  if (b.type == BodyType::kStatic) {
+    r.require(!r.has("velocity") && !r.has("angular_velocity"), "velocity",
+              "a static block does not move; make it kinematic to give it a velocity");
+  }
+  return b;
+}
+
+// Smallest gap between the rounded outlines of two blocks (negative: they overlap), from the
+// vertex-edge distances both ways.
+Real blockGap(const BlockDef& a, const BlockDef& b) {
+  auto world = [](const BlockDef& d) {
+    std::vector<Vec2> v;
+    const Real c = std::cos(d.angle), s = std::sin(d.angle);
+    for (const Vec2& p : d.core)
+      v.push_back(d.position + Vec2(c * p.x() - s * p.y(), s * p.x() + c * p.y()));
+    return v;
+  };
+  const std::vector<Vec2> va = world(a), vb = world(b);
+  Real gap = std::numeric_limits<Real>::infinity();
+  for (const Vec2& p : va)
+    gap = std::fmin(gap, closestOnCore(vb.data(), static_cast<int>(vb.size()), p).distance);
+  for (const Vec2& p : vb)
+    gap = std::fmin(gap, closestOnCore(va.data(), static_cast<int>(va.size()), p).distance);
+  return gap - a.rounding - b.rounding;
+}
+
+void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
+  if (!top.has("blocks")) {
+    for (const char* k : {"block_contact", "coupling"}) {
+      top.require(!top.has(k), k, "applies only to a scene with blocks");
+    }
+    return;
+  }
+  const YAML::Node list = top.node("blocks");
+  if (!list.IsSequence()) ctx.fail(list, "blocks", "expected a list of blocks");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string path = "blocks[" + std::to_string(i) + "]";
+    BlockDef b = parseBlock(ctx, list[i], path);
+    makeCounterClockwise(b.core);
+    for (const BlockDef& other : s.world.blocks) {
+      if (other.name == b.name)
+        ctx.fail(list[i], path, "a block named '" + b.name + "' exists already");
+      // Touching is fine (stacked blocks); overlapping beyond 1% of the rounding is refused:
+      // the penalty springs would start loaded and throw the blocks apart.
+      const Real gap = blockGap(b, other);
+      if (gap < -0.01 * std::min(b.rounding, other.rounding)) {
+        ctx.fail(list[i], path,
+                 "block '" + b.name + "' overlaps block '" + other.name + "' by " + num(-gap) +
+                     " m; move it so that the rounded outlines at most touch");
+      }
+    }
+    // Material points inside a block would be thrown out by the contact springs.
+    for (std::size_t k = 0; k < s.world.bodies.size(); ++k) {
+      const BodyDef& body = s.world.bodies[k];
+      for (const Vec2& p :
+           fillPoints(body.shape, s.world.domain.min, s.world.cell_size, body.points_per_cell)) {
+        BlockDef point;
+        point.core = {p};
+        point.rounding = 1e-12;
+        if (blockGap(b, point) < 0) {
+          ctx.fail(list[i], path,
+                   "block '" + b.name + "' overlaps the material of body '" + body.name +
+                       "'; move the block or shrink the body");
+        }
+      }
+    }
+    s.world.blocks.push_back(std::move(b));
+  }
+  if (top.has("block_contact")) {
+    MapReader r(ctx, top.node("block_contact"), "block_contact",
+                {"model", "normal_stiffness", "tangential_stiffness"});
+    BlockContactDef& c = s.world.block_contact;
+    c.model = r.choice<BlockContactModel>(
+        "model", {{"penalty", BlockContactModel::kPenalty}, {"box2d", BlockContactModel::kBox2D}},
+        c.model);
+    c.normal_stiffness = r.number("normal_stiffness", "N/m per m", c.normal_stiffness);
+    r.require(c.normal_stiffness > 0, "normal_stiffness",
+              "must be > 0 N/m, got " + num(c.normal_stiffness));
+    c.tangential_stiffness = r.number("tangential_stiffness", "N/m per m", c.tangential_stiffness);
+    r.require(c.tangential_stiffness > 0, "tangential_stiffness",
+              "must be > 0 N/m, got " + num(c.tangential_stiffness));
+  }
+  if (top.has("coupling")) {
+    MapReader r(ctx, top.node("coupling"), "coupling",
+                {"normal_stiffness", "tangential_stiffness", "contact_radius", "verlet_distance"});
+    CouplingDef& c = s.world.coupling;
+    c.normal_stiffness = r.number("normal_stiffness", "N/m per m", c.normal_stiffness);
+    r.require(c.normal_stiffness > 0, "normal_stiffness",
+              "must be > 0 N/m, got " + num(c.normal_stiffness));
+    c.tangential_stiffness = r.number("tangential_stiffness", "N/m per m", c.tangential_stiffness);
+    r.require(c.tangential_stiffness > 0, "tangential_stiffness",
+              "must be > 0 N/m, got " + num(c.tangential_stiffness));
+    const Real h = s.world.cell_size;
+    if (r.has("contact_radius")) {
+      c.contact_radius = r.number("contact_radius", "m");
+      r.require(c.contact_radius > 0 && c.contact_radius < h, "contact_radius",
+                "must be in (0, cell_size = " + num(h) + ") m (seed 000 eq. 45), got " +
+                    num(c.contact_radius));
+    }
+    if (r.has("verlet_distance")) {
+      c.verlet_distance = r.number("verlet_distance", "m");
+      r.require(c.verlet_distance > 0, "verlet_distance",
+                "must be > 0 m, got " + num(c.verlet_distance));
+    }
+  }
+}
+
 Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& source) {
   Scene s;
   s.source = source;
   MapReader top(ctx, root, "",
                 {"name", "description", "domain", "grid", "solver", "time", "materials", "bodies",
-                 "output", "limits"});
+                 "output", "limits", "blocks", "block_contact", "coupling"});
   s.name = top.text("name", "");
   s.description = top.text("description", "");
   parseDomain(ctx, top, s);
@@ -382,6 +556,7 @@ Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& s
     s.world.materials.push_back(std::move(m));
   }
   parseBodies(ctx, top, s, by_name);
+  parseBlocks(ctx, top, s);
 
   if (top.has("output")) {
     MapReader o(ctx, top.node("output"), "output", {"interval", "particles"});
