@@ -1,5 +1,7 @@
 #include "mpm_sdem/core/spheropolygon.hpp"
 
+#include "mpm_sdem/core/shapes.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -99,6 +101,9 @@ std::string coreProblem(const std::vector<Vec2>& core) {
     }
   }
   if (n < 3) return "";
+  if (selfIntersects(core)) {
+    return "the core polygon's edges cross each other; list the vertices in order around it";
+  }
   Real twice_area = 0;
   for (int i = 0; i < n; ++i) twice_area += cross(core[i], core[(i + 1) % n]);
   Real scale = 0;
@@ -113,15 +118,6 @@ std::string coreProblem(const std::vector<Vec2>& core) {
              "split a concave outline into several blocks";
     }
   }
-  // Convex turns everywhere but winding more than once means the edges cross.
-  Real turning = 0;
-  for (int i = 0; i < n; ++i) {
-    const Vec2 e1 = core[(i + 1) % n] - core[i];
-    const Vec2 e2 = core[(i + 2) % n] - core[(i + 1) % n];
-    turning += std::atan2(cross(e1, e2), e1.dot(e2));
-  }
-  if (std::abs(std::abs(turning) - 2 * M_PI) > 1e-6)
-    return "the core polygon's edges cross each other";
   return "";
 }
 
