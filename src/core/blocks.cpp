@@ -100,6 +100,9 @@ Blocks::Blocks(const std::vector<BlockDef>& defs, const BlockContactDef& contact
       b2FixtureDef fd;
       fd.friction = static_cast<float>(d.friction);
       fd.restitution = static_cast<float>(d.restitution);
+      // Box2D bounces only above this approach speed (default 1 unit/s): keep it a physical
+      // 1 cm/s at every length scale.
+      fd.restitutionThreshold = static_cast<float>(0.01 * scale_);
       fd.density = 0;  // mass set below, from the rounded shape
       b2CircleShape circle;
       b2PolygonShape polygon;
