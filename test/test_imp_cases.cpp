@@ -201,3 +201,46 @@ TEST(ImpCases, Box2DBlockCollisionIsScaleFree) {
     EXPECT_NEAR(scaledBlockCollision(s) / ref, 1.0, 0.02) << "scale " << s;
   }
 }
+
+TEST(ImpCases, BlockComesToRestOnGranularBed) {
+  // A 4 cm x 3 cm block (2000 kg/m^3) placed just touching a 6 cm Drucker-Prager bed. After
+  // 0.5 s it is at rest: speed below 1 mm/s, no drift (position and angle steady to 1e-6 m and
+  // 1e-5 rad over the last 0.3 s), its weight carried by the IMPs (1%), and no IMP overlaps
+  // more than twice the mean overlap W / (N k_n) the stiffness implies (a rigid punch loads its
+  // edges more than its middle; measured 1.6 times).
+  const Real h = 0.005, a = 0.002, H = 0.03;
+  WorldDef def = test::box(Vec2(0, 0), Vec2(0.2, 0.15), h);
+  def.domain.bottom.type = WallType::kSticky;
+  def.materials.push_back(test::druckerPrager(1500, 1e6, 0.3, 30, 0));
+  def.bodies.push_back(test::rectangle(Vec2(0, 0), Vec2(0.2, 0.06), 2));
+  const Real rp = h / std::sqrt(2.0), top_row = 0.06 - h / 4;
+  BlockDef block = test::boxBlock("block", Vec2(0.1, top_row + rp + H / 2), 0.04, H, a,
+                                  BodyType::kDynamic, 2000);
+  block.restitution = 0.2;
+  def.blocks.push_back(block);
+  def.coupling.normal_stiffness = 1e6;
+  def.coupling.tangential_stiffness = 5e5;
+  World w(def);
+  const Real weight = w.blocks()->massProperties(0).mass * 9.81;
+  test::runUntil(w, 0.5);
+  const BlockState at_half = w.blocks()->state(0);
+  Real fastest = 0;
+  while (w.time() < 0.8) {
+    w.step(w.chooseTimeStep().dt);
+    fastest = std::max(fastest, w.blocks()->state(0).velocity.norm());
+  }
+  const BlockState end = w.blocks()->state(0);
+  EXPECT_LT(fastest, 1e-3);
+  EXPECT_LT((end.position - at_half.position).norm(), 1e-6);
+  EXPECT_LT(std::abs(end.angle - at_half.angle), 1e-5);
+  EXPECT_NEAR(test::couplingForce(w, 0).y() / weight, 1.0, 0.01);  // the bed pushes up
+  const long n = w.coupling().activeContacts();
+  ASSERT_GT(n, 0);
+  Real deepest = 0;
+  for (const ImpCoupling::Contact& c : w.coupling().contacts()) {
+    if (c.force.isZero()) continue;
+    const Vec2 x(w.particles().x[c.particle], w.particles().y[c.particle]);
+    deepest = std::max(deepest, a + rp - closestOnCore(w.blocks()->vertices(0), 4, x).distance);
+  }
+  EXPECT_LE(deepest, 2 * weight / (n * def.coupling.normal_stiffness));
+}
