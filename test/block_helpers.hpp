@@ -1,6 +1,9 @@
 // Builders for test scenes with blocks (SI units).
 #pragma once
 
+#include <cstdlib>
+#include <string>
+
 #include "helpers.hpp"
 
 namespace mpm_sdem::test {
@@ -10,6 +13,13 @@ namespace mpm_sdem::test {
 // dyn/cm: 6e3 and 3e2 N/m (see test_imp_collision.cpp for the stability argument).
 constexpr Real kSeedNormalStiffness = 6e3;      // N/m per metre
 constexpr Real kSeedTangentialStiffness = 3e2;  // N/m per metre
+
+// MPM_SDEM_SEED_RESOLUTION=1 runs the seed-resolution versions of the verification tests (for
+// the validation report; minutes instead of seconds). CI runs the coarse ones.
+inline bool seedResolution() {
+  const char* e = std::getenv("MPM_SDEM_SEED_RESOLUTION");
+  return e != nullptr && std::string(e) == "1";
+}
 
 inline BlockDef boxBlock(const std::string& name, const Vec2& center, Real w, Real h, Real a,
                          BodyType type, Real density = 1000) {

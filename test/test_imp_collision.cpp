@@ -15,8 +15,8 @@
 // bounds still hold, and are asserted below; the near-rigid limit still exchanges 96.5%). The
 // seed's soft-disk 92.16% lies between our 6e4 N/m (98.6%) and 6e5 N/m (91.5%) results.
 //
-// CI resolution: 4 mm cells with 2x2 points (the seed: 3 mm, 5000 points); r_p = 1 mm and
-// V_d = 2 mm as in Table 1.
+// CI resolution: 4 mm cells with 2x2 points; with MPM_SDEM_SEED_RESOLUTION=1 the seed's 3 mm cells
+// with 6x6 points (5,024 points against its 5,000). r_p = 1 mm and V_d = 2 mm as in Table 1.
 #include <gtest/gtest.h>
 
 #include "block_helpers.hpp"
@@ -31,9 +31,15 @@ struct Outcome {
   Real block_share;     // KE of the block at the end / KE(0)
 };
 
+// A sum of N ~ 5000 kinetic energies carries a round-off of about N * 2.2e-16 relative (measured
+// 4e-16 to 1.3e-15 while the disk flies freely at the seed's resolution).
+constexpr Real kRoundOff = 1e-12;
+
 Outcome collide(Real bulk, Real shear, Real kn, Real kt, Real duration) {
   const Real R = 0.02, rho = 2000;
-  WorldDef def = test::box(Vec2(0, 0), Vec2(0.2, 0.08), 0.004);
+  const Real h = test::seedResolution() ? 0.003 : 0.004;
+  const int ppc = test::seedResolution() ? 6 : 2;
+  WorldDef def = test::box(Vec2(0, 0), Vec2(50 * h, 27 * h), h);
   def.solver.gravity = Vec2(0, 0);
   def.solver.kernel = KernelType::kGimp;  // seed 000 uses GIMP for the elastic disks
   def.solver.transfer = TransferScheme::kApic;
@@ -43,7 +49,7 @@ Outcome collide(Real bulk, Real shear, Real kn, Real kt, Real duration) {
   m.bulk_modulus = bulk;
   m.shear_modulus = shear;
   def.materials.push_back(m);
-  BodyDef disk = test::disk(Vec2(0.05, 0.04), R, 2);
+  BodyDef disk = test::disk(Vec2(0.05, 0.04), R, ppc);
   disk.velocity = Vec2(2, 0);
   def.bodies.push_back(disk);
   BlockDef block =
@@ -75,7 +81,7 @@ TEST(ImpCollision, HardDisk) {
   const Outcome o =
       collide(5e6, 3.7e6, test::kSeedNormalStiffness, test::kSeedTangentialStiffness, 0.15);
   EXPECT_LT(o.momentum_error, 0.005);
-  EXPECT_LE(o.energy_peak, 1.0);
+  EXPECT_LE(o.energy_peak, 1.0 + kRoundOff) << "excess " << o.energy_peak - 1;
   EXPECT_GE(o.block_share, 0.99);
 }
 
@@ -83,7 +89,7 @@ TEST(ImpCollision, SoftDisk) {
   const Outcome o =
       collide(5e5, 3.7e5, test::kSeedNormalStiffness, test::kSeedTangentialStiffness, 0.15);
   EXPECT_LT(o.momentum_error, 0.005);
-  EXPECT_LE(o.energy_peak, 1.0);
+  EXPECT_LE(o.energy_peak, 1.0 + kRoundOff) << "excess " << o.energy_peak - 1;
   EXPECT_GE(o.block_share, 0.90);
 }
 
@@ -91,13 +97,13 @@ TEST(ImpCollision, StiffContactConservesMomentumAndCreatesNoEnergy) {
   for (Real scale : {1.0, 0.1}) {  // hard, soft
     const Outcome o = collide(5e6 * scale, 3.7e6 * scale, 6e8, 3e7, 0.012);
     EXPECT_LT(o.momentum_error, 0.005);
-    EXPECT_LE(o.energy_peak, 1.0);
+    EXPECT_LE(o.energy_peak, 1.0 + kRoundOff) << "excess " << o.energy_peak - 1;
   }
 }
 
 TEST(ImpCollision, StiffContactRigidLimitExchangesVelocities) {
   const Outcome o = collide(5e8, 3.7e8, 6e8, 3e7, 0.012);
   EXPECT_LT(o.momentum_error, 0.005);
-  EXPECT_LE(o.energy_peak, 1.0);
+  EXPECT_LE(o.energy_peak, 1.0 + kRoundOff) << "excess " << o.energy_peak - 1;
   EXPECT_GE(o.block_share, 0.95);
 }
