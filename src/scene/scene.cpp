@@ -448,6 +448,14 @@ Real blockGap(const BlockDef& a, const BlockDef& b) {
   return gap - a.rounding - b.rounding;
 }
 
+// The normal and tangential spring constants of a contact model (N/m per metre of thickness).
+void readSprings(const MapReader& r, Real& normal, Real& tangential) {
+  normal = r.number("normal_stiffness", "N/m per m", normal);
+  r.require(normal > 0, "normal_stiffness", "must be > 0 N/m, got " + num(normal));
+  tangential = r.number("tangential_stiffness", "N/m per m", tangential);
+  r.require(tangential > 0, "tangential_stiffness", "must be > 0 N/m, got " + num(tangential));
+}
+
 void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
   if (!top.has("blocks")) {
     for (const char* k : {"block_contact", "coupling"}) {
@@ -497,23 +505,13 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
     c.model = r.choice<BlockContactModel>(
         "model", {{"penalty", BlockContactModel::kPenalty}, {"box2d", BlockContactModel::kBox2D}},
         c.model);
-    c.normal_stiffness = r.number("normal_stiffness", "N/m per m", c.normal_stiffness);
-    r.require(c.normal_stiffness > 0, "normal_stiffness",
-              "must be > 0 N/m, got " + num(c.normal_stiffness));
-    c.tangential_stiffness = r.number("tangential_stiffness", "N/m per m", c.tangential_stiffness);
-    r.require(c.tangential_stiffness > 0, "tangential_stiffness",
-              "must be > 0 N/m, got " + num(c.tangential_stiffness));
+    readSprings(r, c.normal_stiffness, c.tangential_stiffness);
   }
   if (top.has("coupling")) {
     MapReader r(ctx, top.node("coupling"), "coupling",
                 {"normal_stiffness", "tangential_stiffness", "contact_radius", "verlet_distance"});
     CouplingDef& c = s.world.coupling;
-    c.normal_stiffness = r.number("normal_stiffness", "N/m per m", c.normal_stiffness);
-    r.require(c.normal_stiffness > 0, "normal_stiffness",
-              "must be > 0 N/m, got " + num(c.normal_stiffness));
-    c.tangential_stiffness = r.number("tangential_stiffness", "N/m per m", c.tangential_stiffness);
-    r.require(c.tangential_stiffness > 0, "tangential_stiffness",
-              "must be > 0 N/m, got " + num(c.tangential_stiffness));
+    readSprings(r, c.normal_stiffness, c.tangential_stiffness);
     const Real h = s.world.cell_size;
     if (r.has("contact_radius")) {
       c.contact_radius = r.number("contact_radius", "m");
