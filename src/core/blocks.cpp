@@ -50,10 +50,6 @@ Real restitutionDampingRatio(Real e) {
   return -std::log(e) / std::sqrt(M_PI * M_PI + std::log(e) * std::log(e));
 }
 
-Real restitutionDamping(Real e, Real k, Real m) {
-  return 2 * restitutionDampingRatio(e) * std::sqrt(k * m);
-}
-
 Real contactTimeStep(Real m, Real k, Real zeta, int n, Real kappa2) {
   const Real w = std::sqrt(n * k / m), z = std::sqrt(static_cast<Real>(n)) * zeta;
   return M_PI * kappa2 * 2 / w * (std::sqrt(1 + z * z) - z);
@@ -77,6 +73,8 @@ Blocks::Blocks(const std::vector<BlockDef>& defs, const BlockContactDef& contact
       throw std::invalid_argument("block '" + d.name + "': rounding must be > 0");
     makeCounterClockwise(d.core);
     mass_.push_back(spheropolygonMass(d.core, d.rounding, d.density));
+    zeta_.push_back(restitutionDampingRatio(d.restitution));
+    max_zeta_ = std::max(max_zeta_, zeta_.back());
     sizes.push_back(std::sqrt(mass_.back().area));
   }
   if (!sizes.empty()) {
@@ -199,8 +197,9 @@ void Blocks::penaltyContacts(Real dt) {
         const Real mb = defs_[b].type == BodyType::kDynamic ? mass_[b].mass
                                                             : std::numeric_limits<Real>::infinity();
         const Real m_red = std::isinf(ma) ? mb : std::isinf(mb) ? ma : ma * mb / (ma + mb);
-        const Real e = std::min(defs_[a].restitution, defs_[b].restitution);
-        const Real gamma = restitutionDamping(e, contact_.normal_stiffness, m_red);
+        // The less elastic side sets the damping (the smaller restitution, the larger ratio).
+        const Real gamma =
+            2 * std::max(zeta_[a], zeta_[b]) * std::sqrt(contact_.normal_stiffness * m_red);
         const Real mu = std::min(defs_[a].friction, defs_[b].friction);
         for (int k = 0; k < vertexCount(a); ++k) {
           const Vec2 X = vertices(a)[k];

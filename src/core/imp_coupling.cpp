@@ -130,7 +130,8 @@ void ImpCoupling::computeForces(const Particles& P, Blocks& B, Real dt) {
     const Real m = bd.type == BodyType::kDynamic
                        ? mp * B.massProperties(b).mass / (mp + B.massProperties(b).mass)
                        : mp;
-    const Real fn = std::fmax(kn * xi - restitutionDamping(bd.restitution, kn, m) * vn, Real(0));
+    const Real gamma = 2 * B.dampingRatio(b) * std::sqrt(kn * m);
+    const Real fn = std::fmax(kn * xi - gamma * vn, Real(0));
     c.history += (v - vn * d.normal) * dt;
     c.history -= c.history.dot(d.normal) * d.normal;
     Vec2 ft = -kt * c.history;

@@ -126,9 +126,7 @@ TimeStepChoice World::chooseTimeStep() {
     // Eq. 51, second term, for the IMP springs (lightest point or block) and for the block-block
     // springs (reduced mass of two of the lightest blocks).
     const Real kappa2 = def_.time_step.contact_factor;
-    Real zeta = 0;  // the most damped contact bounds the step
-    for (const BlockDef& b : def_.blocks)
-      zeta = std::fmax(zeta, restitutionDampingRatio(b.restitution));
+    const Real zeta = blocks_->maxDampingRatio();  // the most damped contact bounds the step
     const Real block = blocks_->lightestDynamicMass();
     Real dt = contactTimeStep(std::fmin(lightest_point_, block), coupling_.def().normal_stiffness,
                               zeta, 1, kappa2);

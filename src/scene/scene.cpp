@@ -429,17 +429,19 @@ BlockDef parseBlock(const Context& ctx, const YAML::Node& n, const std::string& 
   return b;
 }
 
+// The core vertices of a block at its initial pose (m).
+std::vector<Vec2> placedCore(const BlockDef& d) {
+  std::vector<Vec2> v;
+  const Real c = std::cos(d.angle), s = std::sin(d.angle);
+  for (const Vec2& p : d.core)
+    v.push_back(d.position + Vec2(c * p.x() - s * p.y(), s * p.x() + c * p.y()));
+  return v;
+}
+
 // Smallest gap between the rounded outlines of two blocks (negative: they overlap), from the
 // vertex-edge distances both ways.
 Real blockGap(const BlockDef& a, const BlockDef& b) {
-  auto world = [](const BlockDef& d) {
-    std::vector<Vec2> v;
-    const Real c = std::cos(d.angle), s = std::sin(d.angle);
-    for (const Vec2& p : d.core)
-      v.push_back(d.position + Vec2(c * p.x() - s * p.y(), s * p.x() + c * p.y()));
-    return v;
-  };
-  const std::vector<Vec2> va = world(a), vb = world(b);
+  const std::vector<Vec2> va = placedCore(a), vb = placedCore(b);
   Real gap = std::numeric_limits<Real>::infinity();
   for (const Vec2& p : va)
     gap = std::fmin(gap, closestOnCore(vb.data(), static_cast<int>(vb.size()), p).distance);
@@ -482,14 +484,11 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
       }
     }
     // Material points inside a block would be thrown out by the contact springs.
-    for (std::size_t k = 0; k < s.world.bodies.size(); ++k) {
-      const BodyDef& body = s.world.bodies[k];
+    const std::vector<Vec2> core = placedCore(b);
+    for (const BodyDef& body : s.world.bodies) {
       for (const Vec2& p :
            fillPoints(body.shape, s.world.domain.min, s.world.cell_size, body.points_per_cell)) {
-        BlockDef point;
-        point.core = {p};
-        point.rounding = 1e-12;
-        if (blockGap(b, point) < 0) {
+        if (closestOnCore(core.data(), static_cast<int>(core.size()), p).distance < b.rounding) {
           ctx.fail(list[i], path,
                    "block '" + b.name + "' overlaps the material of body '" + body.name +
                        "'; move the block or shrink the body");

@@ -65,6 +65,9 @@ class Blocks {
   Real lengthScale() const { return scale_; }
   // Lightest dynamic block (kg/m), infinite when there is none.
   Real lightestDynamicMass() const;
+  // Damping ratio of block i's spring contacts, from its restitution (fixed at construction).
+  Real dampingRatio(int i) const { return zeta_[i]; }
+  Real maxDampingRatio() const { return max_zeta_; }
 
   // Forces for the next step, world frame (N/m), applied at a point (m); cleared by step().
   void addForce(int i, const Vec2& force, const Vec2& point);
@@ -88,6 +91,8 @@ class Blocks {
   std::unique_ptr<Box2D> b2_;
   std::vector<BlockDef> defs_;
   std::vector<MassProperties> mass_;
+  std::vector<Real> zeta_;
+  Real max_zeta_ = 0;
   std::vector<BlockState> state_;
   std::vector<Vec2> world_vertices_;
   std::vector<Vec2> force_;
@@ -99,9 +104,8 @@ class Blocks {
   std::vector<std::pair<unsigned long long, Vec2>> history_, next_history_;
 };
 
-// Damping coefficient of a linear spring of stiffness k between masses of reduced mass m that
-// gives the normal restitution coefficient e (e = 1: none).
-Real restitutionDamping(Real e, Real k, Real m);
+// Damping ratio of a linear spring contact that gives the normal restitution coefficient e
+// (e = 1: none); the damping coefficient is 2 ratio sqrt(k m) for reduced mass m.
 Real restitutionDampingRatio(Real e);
 
 // Stable explicit step for n equal damped springs k acting in parallel on a reduced mass m:
