@@ -9,15 +9,19 @@
 // "6e6 N/cm" stiffness is 6e6 dyn/cm = 6e3 N/m: Table 1's dt = 1e-4 s is stable only for an IMP
 // spring up to about 2e3 N/m on a 5 mg point (7e4 N/m on its nodal mass), while the literal
 // 6e8 N/m would need dt of about 6e-8 s. With the cgs reading (k_t = 3e5 dyn/cm = 3e2 N/m) the
-// shares are 99.99% (hard) and 99.9% (soft) at 3 mm cells. With the literal 6e8 N/m the contact
-// lasts about 1 ms, less than the disk's lowest vibration period (about 3 ms): the disk keeps
-// vibration energy the transfers dissipate, and the shares drop to 77% and 71% (momentum and energy
-// bounds still hold, and are asserted below; the near-rigid limit still exchanges 96.5%). The
-// seed's soft-disk 92.16% lies between our 6e4 N/m (98.6%) and 6e5 N/m (91.5%) results.
+// block's share is 99.989% (hard) and 99.904% (soft) here, 99.940% and 99.071% at the seed's
+// resolution. With the literal 6e8 N/m the contact lasts about 1 ms, less than the disk's lowest
+// vibration period (about 3 ms): the disk keeps vibration energy the transfers dissipate, and the
+// shares drop to 77.2% and 71.2% (80.9% and 73.4% at seed resolution); momentum and energy
+// bounds still hold and are asserted below, and the near-rigid limit exchanges 95.4%. The
+// seed's soft-disk 92.16% lies between our 6e4 N/m (98.6%) and 6e5 N/m (91.5%) results (3 mm,
+// 2x2 points).
 //
 // CI resolution: 4 mm cells with 2x2 points; with MPM_SDEM_SEED_RESOLUTION=1 the seed's 3 mm cells
 // with 6x6 points (5,024 points against its 5,000). r_p = 1 mm and V_d = 2 mm as in Table 1.
 #include <gtest/gtest.h>
+
+#include <cstdio>
 
 #include "block_helpers.hpp"
 
@@ -77,33 +81,33 @@ Outcome collide(Real bulk, Real shear, Real kn, Real kt, Real duration) {
 
 }  // namespace
 
-TEST(ImpCollision, HardDisk) {
-  const Outcome o =
-      collide(5e6, 3.7e6, test::kSeedNormalStiffness, test::kSeedTangentialStiffness, 0.15);
+// Asserts the bounds that hold for every case and the block's share; prints what it measured.
+void expectExchange(const char* label, const Outcome& o, Real min_share) {
+  std::printf("%s: block share %.5f, momentum error %.2e, KE peak - 1 = %.2e\n", label,
+              o.block_share, o.momentum_error, o.energy_peak - 1);
   EXPECT_LT(o.momentum_error, 0.005);
   EXPECT_LE(o.energy_peak, 1.0 + kRoundOff) << "excess " << o.energy_peak - 1;
-  EXPECT_GE(o.block_share, 0.99);
+  EXPECT_GE(o.block_share, min_share);
+}
+
+TEST(ImpCollision, HardDisk) {
+  expectExchange(
+      "hard", collide(5e6, 3.7e6, test::kSeedNormalStiffness, test::kSeedTangentialStiffness, 0.15),
+      0.99);
 }
 
 TEST(ImpCollision, SoftDisk) {
-  const Outcome o =
-      collide(5e5, 3.7e5, test::kSeedNormalStiffness, test::kSeedTangentialStiffness, 0.15);
-  EXPECT_LT(o.momentum_error, 0.005);
-  EXPECT_LE(o.energy_peak, 1.0 + kRoundOff) << "excess " << o.energy_peak - 1;
-  EXPECT_GE(o.block_share, 0.90);
+  expectExchange(
+      "soft", collide(5e5, 3.7e5, test::kSeedNormalStiffness, test::kSeedTangentialStiffness, 0.15),
+      0.90);
 }
 
 TEST(ImpCollision, StiffContactConservesMomentumAndCreatesNoEnergy) {
-  for (Real scale : {1.0, 0.1}) {  // hard, soft
-    const Outcome o = collide(5e6 * scale, 3.7e6 * scale, 6e8, 3e7, 0.012);
-    EXPECT_LT(o.momentum_error, 0.005);
-    EXPECT_LE(o.energy_peak, 1.0 + kRoundOff) << "excess " << o.energy_peak - 1;
-  }
+  // No share asserted: with the literal 6e8 N/m the disk keeps vibration energy (see above).
+  expectExchange("stiff contact, hard", collide(5e6, 3.7e6, 6e8, 3e7, 0.012), 0.0);
+  expectExchange("stiff contact, soft", collide(5e5, 3.7e5, 6e8, 3e7, 0.012), 0.0);
 }
 
 TEST(ImpCollision, StiffContactRigidLimitExchangesVelocities) {
-  const Outcome o = collide(5e8, 3.7e8, 6e8, 3e7, 0.012);
-  EXPECT_LT(o.momentum_error, 0.005);
-  EXPECT_LE(o.energy_peak, 1.0 + kRoundOff) << "excess " << o.energy_peak - 1;
-  EXPECT_GE(o.block_share, 0.95);
+  expectExchange("stiff contact, rigid limit", collide(5e8, 3.7e8, 6e8, 3e7, 0.012), 0.95);
 }

@@ -11,6 +11,8 @@
 // square is exactly at rest, and biases the contact force (measured +2%).
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "block_helpers.hpp"
 
 using namespace mpm_sdem;
@@ -79,7 +81,10 @@ Forces restingSquare(Real h, Real slide_speed, Real mu) {
       ++samples;
     }
   }
-  return {sum / samples, weight};
+  const Forces out{sum / samples, weight};
+  std::printf("h = %g m, slide %g m/s: force on the block (%.5f, %.5f) W\n", h, slide_speed,
+              out.mean_force.x() / weight, out.mean_force.y() / weight);
+  return out;
 }
 
 }  // namespace
