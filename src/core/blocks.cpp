@@ -44,6 +44,21 @@ std::vector<Vec2> grownCore(const std::vector<Vec2>& core, Real a) {
 
 }  // namespace
 
+std::vector<Vec2> placedCore(const BlockDef& d) {
+  std::vector<Vec2> v;
+  const Real c = std::cos(d.angle), s = std::sin(d.angle);
+  for (const Vec2& p : d.core)
+    v.push_back(d.position + Vec2(c * p.x() - s * p.y(), s * p.x() + c * p.y()));
+  return v;
+}
+
+Real roundedGap(const Vec2* a, int na, Real ra, const Vec2* b, int nb, Real rb) {
+  Real gap = std::numeric_limits<Real>::infinity();
+  for (int k = 0; k < na; ++k) gap = std::fmin(gap, closestOnCore(b, nb, a[k]).distance);
+  for (int k = 0; k < nb; ++k) gap = std::fmin(gap, closestOnCore(a, na, b[k]).distance);
+  return gap - ra - rb;
+}
+
 Real restitutionDampingRatio(Real e) {
   if (e >= 1) return 0;
   if (e <= 0) return 1;
@@ -62,80 +77,134 @@ struct Blocks::Box2D {
 };
 
 Blocks::Blocks(const std::vector<BlockDef>& defs, const BlockContactDef& contact,
-               const Vec2& gravity)
-    : defs_(defs), contact_(contact) {
-  // Length scale: the median block size (square root of its area) becomes one Box2D unit.
+               const Vec2& gravity, Real length_hint)
+    : contact_(contact), gravity_(gravity) {
+  // Length scale: the median block size (square root of its area) becomes one Box2D unit; with
+  // no block yet, the caller's typical length does.
   std::vector<Real> sizes;
-  for (BlockDef& d : defs_) {
-    const std::string problem = coreProblem(d.core);
-    if (!problem.empty()) throw std::invalid_argument("block '" + d.name + "': " + problem);
-    if (!(d.rounding > 0))
-      throw std::invalid_argument("block '" + d.name + "': rounding must be > 0");
-    makeCounterClockwise(d.core);
-    mass_.push_back(spheropolygonMass(d.core, d.rounding, d.density));
-    zeta_.push_back(restitutionDampingRatio(d.restitution));
-    max_zeta_ = std::max(max_zeta_, zeta_.back());
-    sizes.push_back(std::sqrt(mass_.back().area));
+  for (const BlockDef& d : defs) {
+    checkDef(d);
+    std::vector<Vec2> core = d.core;
+    makeCounterClockwise(core);
+    sizes.push_back(std::sqrt(spheropolygonMass(core, d.rounding, 1).area));
   }
   if (!sizes.empty()) {
     std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
     scale_ = 1 / sizes[sizes.size() / 2];
+  } else if (length_hint > 0) {
+    scale_ = 1 / length_hint;
   }
-  b2_ = std::make_unique<Box2D>(toB2(gravity, scale_));
-  for (std::size_t i = 0; i < defs_.size(); ++i) {
-    const BlockDef& d = defs_[i];
-    const MassProperties& m = mass_[i];
-    b2BodyDef bd;
-    bd.type = d.type == BodyType::kStatic      ? b2_staticBody
-              : d.type == BodyType::kKinematic ? b2_kinematicBody
-                                               : b2_dynamicBody;
-    bd.position = toB2(d.position, scale_);
-    bd.angle = static_cast<float>(d.angle);
-    bd.allowSleep = false;  // a sleeping body ignores the coupling forces
-    bd.bullet = d.type == BodyType::kDynamic && contact.model == BlockContactModel::kBox2D;
-    b2Body* body = b2_->world.CreateBody(&bd);
-    if (contact.model == BlockContactModel::kBox2D) {
-      b2FixtureDef fd;
-      fd.friction = static_cast<float>(d.friction);
-      fd.restitution = static_cast<float>(d.restitution);
-      // Box2D bounces only above this approach speed (default 1 unit/s): keep it a physical
-      // 1 cm/s at every length scale.
-      fd.restitutionThreshold = static_cast<float>(0.01 * scale_);
-      fd.density = 0;  // mass set below, from the rounded shape
-      b2CircleShape circle;
-      b2PolygonShape polygon;
-      if (d.core.size() == 1) {
-        circle.m_p = toB2(d.core[0], scale_);
-        circle.m_radius = static_cast<float>(d.rounding * scale_);
-        fd.shape = &circle;
-      } else {
-        std::vector<b2Vec2> pts;
-        for (const Vec2& v : grownCore(d.core, d.rounding)) pts.push_back(toB2(v, scale_));
-        polygon.Set(pts.data(), static_cast<int32>(pts.size()));
-        fd.shape = &polygon;
-      }
-      body->CreateFixture(&fd);
+  b2_ = std::make_unique<Box2D>(toB2(gravity_, scale_));
+  for (const BlockDef& d : defs) add(d);
+}
+
+void Blocks::checkDef(const BlockDef& d) {
+  const std::string problem = coreProblem(d.core);
+  if (!problem.empty()) throw std::invalid_argument("block '" + d.name + "': " + problem);
+  if (!(d.rounding > 0)) throw std::invalid_argument("block '" + d.name + "': rounding must be > 0");
+}
+
+int Blocks::add(const BlockDef& def) {
+  checkDef(def);
+  BlockDef d = def;
+  makeCounterClockwise(d.core);
+  const MassProperties m = spheropolygonMass(d.core, d.rounding, d.density);
+  b2BodyDef bd;
+  bd.type = d.type == BodyType::kStatic      ? b2_staticBody
+            : d.type == BodyType::kKinematic ? b2_kinematicBody
+                                             : b2_dynamicBody;
+  bd.position = toB2(d.position, scale_);
+  bd.angle = static_cast<float>(d.angle);
+  bd.allowSleep = false;  // a sleeping body ignores the coupling forces
+  bd.bullet = d.type == BodyType::kDynamic && contact_.model == BlockContactModel::kBox2D;
+  b2Body* body = b2_->world.CreateBody(&bd);
+  if (contact_.model == BlockContactModel::kBox2D) {
+    b2FixtureDef fd;
+    fd.friction = static_cast<float>(d.friction);
+    fd.restitution = static_cast<float>(d.restitution);
+    // Box2D bounces only above this approach speed (default 1 unit/s): keep it a physical
+    // 1 cm/s at every length scale.
+    fd.restitutionThreshold = static_cast<float>(0.01 * scale_);
+    fd.density = 0;  // mass set below, from the rounded shape
+    b2CircleShape circle;
+    b2PolygonShape polygon;
+    if (d.core.size() == 1) {
+      circle.m_p = toB2(d.core[0], scale_);
+      circle.m_radius = static_cast<float>(d.rounding * scale_);
+      fd.shape = &circle;
+    } else {
+      std::vector<b2Vec2> pts;
+      for (const Vec2& v : grownCore(d.core, d.rounding)) pts.push_back(toB2(v, scale_));
+      polygon.Set(pts.data(), static_cast<int32>(pts.size()));
+      fd.shape = &polygon;
     }
-    if (d.type == BodyType::kDynamic) {
-      // Box2D's polygon mass ignores the rounding: set the spheropolygon's own (inertia about
-      // the body origin, in Box2D units).
-      b2MassData md;
-      md.mass = static_cast<float>(m.mass);
-      md.center = toB2(m.centroid, scale_);
-      md.I = static_cast<float>((m.inertia + m.mass * m.centroid.squaredNorm()) * scale_ * scale_);
-      body->SetMassData(&md);
-    }
-    if (d.type != BodyType::kStatic) {
-      body->SetLinearVelocity(toB2(d.velocity, scale_));
-      body->SetAngularVelocity(static_cast<float>(d.angular_velocity));
-    }
-    b2_->bodies.push_back(body);
+    body->CreateFixture(&fd);
   }
-  state_.resize(defs_.size());
+  if (d.type == BodyType::kDynamic) {
+    // Box2D's polygon mass ignores the rounding: set the spheropolygon's own (inertia about
+    // the body origin, in Box2D units).
+    b2MassData md;
+    md.mass = static_cast<float>(m.mass);
+    md.center = toB2(m.centroid, scale_);
+    md.I = static_cast<float>((m.inertia + m.mass * m.centroid.squaredNorm()) * scale_ * scale_);
+    body->SetMassData(&md);
+  }
+  if (d.type != BodyType::kStatic) {
+    body->SetLinearVelocity(toB2(d.velocity, scale_));
+    body->SetAngularVelocity(static_cast<float>(d.angular_velocity));
+  }
+  b2_->bodies.push_back(body);
+  defs_.push_back(std::move(d));
+  mass_.push_back(m);
+  zeta_.push_back(restitutionDampingRatio(def.restitution));
+  max_zeta_ = std::max(max_zeta_, zeta_.back());
+  state_.emplace_back();
   world_vertices_.resize(defs_.size() * kMaxBlockVertices);
-  force_.assign(defs_.size(), Vec2(0, 0));
-  torque_.assign(defs_.size(), 0);
-  coupling_.resize(defs_.size());
+  force_.emplace_back(0, 0);
+  torque_.push_back(0);
+  coupling_.emplace_back();
+  refresh();
+  return count() - 1;
+}
+
+void Blocks::remove(int i) {
+  b2_->world.DestroyBody(b2_->bodies[i]);
+  b2_->bodies.erase(b2_->bodies.begin() + i);
+  defs_.erase(defs_.begin() + i);
+  mass_.erase(mass_.begin() + i);
+  zeta_.erase(zeta_.begin() + i);
+  max_zeta_ = zeta_.empty() ? 0 : *std::max_element(zeta_.begin(), zeta_.end());
+  state_.erase(state_.begin() + i);
+  world_vertices_.resize(defs_.size() * kMaxBlockVertices);
+  force_.erase(force_.begin() + i);
+  torque_.erase(torque_.begin() + i);
+  coupling_.erase(coupling_.begin() + i);
+  // The block-block spring histories are keyed by index: the indices after i have shifted.
+  history_.clear();
+  refresh();
+}
+
+int Blocks::find(const std::string& name) const {
+  for (int i = 0; i < count(); ++i)
+    if (defs_[i].name == name) return i;
+  return -1;
+}
+
+Vec2 Blocks::origin(int i) const {
+  return fromB2(b2_->bodies[i]->GetPosition(), scale_);
+}
+
+void Blocks::setPose(int i, const Vec2& origin, Real angle) {
+  b2_->bodies[i]->SetTransform(toB2(origin, scale_), static_cast<float>(angle));
+  refresh();
+}
+
+void Blocks::setVelocity(int i, const Vec2& origin_velocity, Real angular_velocity) {
+  // Box2D's linear velocity is that of the centre of mass.
+  const Vec2 r = state_[i].position - origin(i);
+  const Vec2 v = origin_velocity + angular_velocity * Vec2(-r.y(), r.x());
+  b2_->bodies[i]->SetLinearVelocity(toB2(v, scale_));
+  b2_->bodies[i]->SetAngularVelocity(static_cast<float>(angular_velocity));
   refresh();
 }
 

@@ -94,14 +94,91 @@ World::World(const WorldDef& def) : def_(def) {
 
   if (!def.blocks.empty()) {
     blocks_ = std::make_unique<Blocks>(def.blocks, def.block_contact, def.solver.gravity);
-    CouplingDef c = def.coupling;
-    int ppc = 1;
-    for (const BodyDef& b : def.bodies) ppc = std::max(ppc, b.points_per_cell);
-    // Eq. 45 asks h / sqrt(n) < r_p < h with n points per cell: the geometric mean of the bounds.
-    if (c.contact_radius <= 0) c.contact_radius = def.cell_size / std::sqrt(static_cast<Real>(ppc));
-    if (c.verlet_distance <= 0) c.verlet_distance = 0.5 * def.cell_size;
-    coupling_.init(c, def.domain.min, def.domain.max, def.cell_size);
+    initCoupling();
   }
+}
+
+void World::initCoupling() {
+  CouplingDef c = def_.coupling;
+  int ppc = 1;
+  for (const BodyDef& b : def_.bodies) ppc = std::max(ppc, b.points_per_cell);
+  // Eq. 45 asks h / sqrt(n) < r_p < h with n points per cell: the geometric mean of the bounds.
+  if (c.contact_radius <= 0) c.contact_radius = def_.cell_size / std::sqrt(static_cast<Real>(ppc));
+  if (c.verlet_distance <= 0) c.verlet_distance = 0.5 * def_.cell_size;
+  coupling_.init(c, def_.domain.min, def_.domain.max, def_.cell_size);
+}
+
+std::string World::placementProblem(const BlockDef& d, bool allow_overlap, int moving) const {
+  std::string problem = coreProblem(d.core);
+  if (!problem.empty()) return problem;
+  auto finite = [](Real v) { return std::isfinite(v); };
+  if (!(d.rounding > 0) || !finite(d.rounding)) return "rounding must be a finite length > 0 m";
+  if (!finite(d.position.x()) || !finite(d.position.y()) || !finite(d.angle) ||
+      !finite(d.velocity.x()) || !finite(d.velocity.y()) || !finite(d.angular_velocity))
+    return "pose and twist must be finite numbers";
+  if (d.type == BodyType::kDynamic && !(d.density > 0 && finite(d.density)))
+    return "a dynamic block needs a finite density > 0 kg/m^3";
+  if (!(d.friction >= 0 && finite(d.friction))) return "friction must be a finite number >= 0";
+  if (!(d.restitution > 0 && d.restitution <= 1))
+    return "restitution must be in (0, 1] (1: elastic)";
+  if (d.core.size() > static_cast<std::size_t>(kMaxBlockVertices))
+    return "at most " + std::to_string(kMaxBlockVertices) + " core vertices";
+  if (moving < 0 && blocks_ && blocks_->find(d.name) >= 0)
+    return "a block named '" + d.name + "' exists";
+  if (d.name.empty()) return "the block needs a name";
+  const std::vector<Vec2> core = placedCore(d);
+  const int n = static_cast<int>(core.size());
+  for (const Vec2& v : core) {
+    const Vec2 lo = v.array() - d.rounding, hi = v.array() + d.rounding;
+    if ((lo.array() < def_.domain.min.array()).any() ||
+        (hi.array() > def_.domain.max.array()).any())
+      return "the block reaches outside the domain [" + std::to_string(def_.domain.min.x()) +
+             ", " + std::to_string(def_.domain.max.x()) + "] x [" +
+             std::to_string(def_.domain.min.y()) + ", " + std::to_string(def_.domain.max.y()) +
+             "] m";
+  }
+  if (allow_overlap) return "";
+  if (blocks_) {
+    for (int i = 0; i < blocks_->count(); ++i) {
+      if (i == moving) continue;
+      const Real r = blocks_->def(i).rounding;
+      const Real gap = roundedGap(core.data(), n, d.rounding, blocks_->vertices(i),
+                                  blocks_->vertexCount(i), r);
+      // Touching is fine; the same 1% tolerance as the scene files.
+      if (gap < -0.01 * std::min(r, d.rounding))
+        return "it overlaps block '" + blocks_->def(i).name + "' by " + std::to_string(-gap) +
+               " m";
+    }
+  }
+  const Particles& P = particles_;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    if (closestOnCore(core.data(), n, Vec2(P.x[p], P.y[p])).distance < d.rounding)
+      return "it overlaps the material (point " + std::to_string(p) + " is inside)";
+  }
+  return "";
+}
+
+int World::addBlock(const BlockDef& d) {
+  if (!blocks_) {
+    blocks_ = std::make_unique<Blocks>(std::vector<BlockDef>{}, def_.block_contact,
+                                       def_.solver.gravity, std::sqrt(spheropolygonMass(
+                                                                d.core, d.rounding, 1)
+                                                                .area));
+    initCoupling();
+  }
+  const int i = blocks_->add(d);
+  coupling_.invalidate();
+  return i;
+}
+
+void World::removeBlock(int index) {
+  blocks_->remove(index);
+  coupling_.removeBlock(index);
+}
+
+Real stepTowards(Real dt, Real end_time, Real time) {
+  const Real remaining = end_time - time;
+  return remaining < 1.5 * dt && remaining > dt ? 0.5 * remaining : std::min(dt, remaining);
 }
 
 TimeStepChoice World::chooseTimeStep() {
@@ -122,7 +199,7 @@ TimeStepChoice World::chooseTimeStep() {
       fastest > 0 ? def_.time_step.cfl * grid_.h / fastest : std::numeric_limits<Real>::infinity();
   TimeStepChoice choice{def_.time_step.max, StepLimit::kMax};
   if (cfl_dt < choice.dt) choice = {cfl_dt, StepLimit::kCfl};
-  if (blocks_) {
+  if (hasBlocks()) {
     // Eq. 51, second term, for the IMP springs (lightest point or block) and for the block-block
     // springs (reduced mass of two of the lightest blocks).
     const Real kappa2 = def_.time_step.contact_factor;
@@ -147,7 +224,7 @@ StepInfo World::step(Real dt) {
   const Real kick = Real(0.5) * dt + velocity_lag_;
   // Seed 000 sec. 4.2: contact forces from the state at the start of the step, the MPM step with
   // them on the grid (eq. 48), then the blocks with the reactions.
-  if (blocks_) contactForces(dt);
+  if (hasBlocks()) contactForces(dt);
   clearGrid();
   if (def_.solver.stress_update == StressUpdate::kUsf) {
     particleToGrid(true, false);
@@ -155,20 +232,20 @@ StepInfo World::step(Real dt) {
     gridToParticleGradient();
     constitutiveUpdate(stress_lag_);
     particleToGrid(false, true);
-    if (blocks_) contactForcesToGrid();
+    if (hasBlocks()) contactForcesToGrid();
     gridVelocity(kick, true);
     gridToParticle(dt, info);
     stress_lag_ = dt;
   } else {
     particleToGrid(true, true);
-    if (blocks_) contactForcesToGrid();
+    if (hasBlocks()) contactForcesToGrid();
     gridVelocity(0, false);
     gridVelocity(kick, true);
     gridToParticle(dt, info);
     constitutiveUpdate(dt);
     stress_lag_ = 0;
   }
-  if (blocks_) stepBlocks(dt);
+  if (hasBlocks()) stepBlocks(dt);
   velocity_lag_ = Real(0.5) * dt;
   time_ += dt;
   ++steps_;

@@ -103,10 +103,7 @@ int main(int argc, char** argv) {
   const Real eps = 1e-9 * scene.end_time;
   while (world.time() < scene.end_time - eps && !g_interrupted) {
     dt = world.chooseTimeStep();
-    // Land exactly on the end time; merge a sliver of a last step into the one before it.
-    const Real remaining = scene.end_time - world.time();
-    const Real h =
-        remaining < 1.5 * dt.dt && remaining > dt.dt ? 0.5 * remaining : std::min(dt.dt, remaining);
+    const Real h = stepTowards(dt.dt, scene.end_time, world.time());
     const StepInfo info = world.step(h);
     if (!info.finite) {
       std::cerr << "\nerror: the state became non-finite at step " << world.stepCount()

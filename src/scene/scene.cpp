@@ -429,27 +429,6 @@ BlockDef parseBlock(const Context& ctx, const YAML::Node& n, const std::string& 
   return b;
 }
 
-// The core vertices of a block at its initial pose (m).
-std::vector<Vec2> placedCore(const BlockDef& d) {
-  std::vector<Vec2> v;
-  const Real c = std::cos(d.angle), s = std::sin(d.angle);
-  for (const Vec2& p : d.core)
-    v.push_back(d.position + Vec2(c * p.x() - s * p.y(), s * p.x() + c * p.y()));
-  return v;
-}
-
-// Smallest gap between the rounded outlines of two blocks (negative: they overlap), from the
-// vertex-edge distances both ways.
-Real blockGap(const BlockDef& a, const BlockDef& b) {
-  const std::vector<Vec2> va = placedCore(a), vb = placedCore(b);
-  Real gap = std::numeric_limits<Real>::infinity();
-  for (const Vec2& p : va)
-    gap = std::fmin(gap, closestOnCore(vb.data(), static_cast<int>(vb.size()), p).distance);
-  for (const Vec2& p : vb)
-    gap = std::fmin(gap, closestOnCore(va.data(), static_cast<int>(va.size()), p).distance);
-  return gap - a.rounding - b.rounding;
-}
-
 // The normal and tangential spring constants of a contact model (N/m per metre of thickness).
 void readSprings(const MapReader& r, Real& normal, Real& tangential) {
   normal = r.number("normal_stiffness", "N/m per m", normal);
@@ -476,7 +455,9 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
         ctx.fail(list[i], path, "a block named '" + b.name + "' exists already");
       // Touching is fine (stacked blocks); overlapping beyond 1% of the rounding is refused:
       // the penalty springs would start loaded and throw the blocks apart.
-      const Real gap = blockGap(b, other);
+      const std::vector<Vec2> cb = placedCore(b), co = placedCore(other);
+      const Real gap = roundedGap(cb.data(), static_cast<int>(cb.size()), b.rounding, co.data(),
+                                  static_cast<int>(co.size()), other.rounding);
       if (gap < -0.01 * std::min(b.rounding, other.rounding)) {
         ctx.fail(list[i], path,
                  "block '" + b.name + "' overlaps block '" + other.name + "' by " + num(-gap) +

@@ -49,12 +49,21 @@ struct BlockState {
 
 class Blocks {
  public:
-  Blocks(const std::vector<BlockDef>& defs, const BlockContactDef& contact, const Vec2& gravity);
+  // length_hint (m): the typical block size, used for Box2D's length scale when defs is empty.
+  // Throws std::invalid_argument on a block whose core or rounding is unacceptable.
+  Blocks(const std::vector<BlockDef>& defs, const BlockContactDef& contact, const Vec2& gravity,
+         Real length_hint = 0);
   ~Blocks();
   Blocks(const Blocks&) = delete;
   Blocks& operator=(const Blocks&) = delete;
 
   int count() const { return static_cast<int>(defs_.size()); }
+  // Adds a block at the end (its index is the returned count - 1). Throws like the constructor.
+  int add(const BlockDef& def);
+  // Removes block i; the blocks after it move down one index.
+  void remove(int i);
+  // Index of the block with this name, or -1.
+  int find(const std::string& name) const;
   const BlockDef& def(int i) const { return defs_[i]; }
   const MassProperties& massProperties(int i) const { return mass_[i]; }
   const BlockState& state(int i) const { return state_[i]; }
@@ -62,6 +71,13 @@ class Blocks {
   const Vec2* vertices(int i) const { return &world_vertices_[i * kMaxBlockVertices]; }
   int vertexCount(int i) const { return static_cast<int>(defs_[i].core.size()); }
   Vec2 velocityAt(int i, const Vec2& point) const;
+  // Origin of block i's own frame (the frame its core is given in), world frame (m).
+  Vec2 origin(int i) const;
+  // Moves block i's frame to origin and angle (a teleport: no force, velocities kept).
+  void setPose(int i, const Vec2& origin, Real angle);
+  // Sets the velocity of block i's frame origin (m/s) and its angular velocity (rad/s). A
+  // kinematic block keeps them until told otherwise; a dynamic one starts from them.
+  void setVelocity(int i, const Vec2& origin_velocity, Real angular_velocity);
   Real lengthScale() const { return scale_; }
   // Lightest dynamic block (kg/m), infinite when there is none.
   Real lightestDynamicMass() const;
@@ -84,6 +100,7 @@ class Blocks {
   const std::vector<Coupling>& coupling() const { return coupling_; }
 
  private:
+  static void checkDef(const BlockDef& def);
   void penaltyContacts(Real dt);
   void refresh();
 
@@ -99,10 +116,17 @@ class Blocks {
   std::vector<Real> torque_;
   std::vector<Coupling> coupling_;
   BlockContactDef contact_;
+  Vec2 gravity_{0, 0};
   Real scale_ = 1;
   // Tangential spring history of the penalty contacts, by (block i, block j, vertex, side).
   std::vector<std::pair<unsigned long long, Vec2>> history_, next_history_;
 };
+
+// The core vertices of a block definition at its pose (m, world frame).
+std::vector<Vec2> placedCore(const BlockDef& def);
+// Smallest gap between two rounded outlines given by their world-frame cores and roundings
+// (negative: they overlap), from the vertex-edge distances both ways.
+Real roundedGap(const Vec2* a, int na, Real rounding_a, const Vec2* b, int nb, Real rounding_b);
 
 // Damping ratio of a linear spring contact that gives the normal restitution coefficient e
 // (e = 1: none); the damping coefficient is 2 ratio sqrt(k m) for reduced mass m.

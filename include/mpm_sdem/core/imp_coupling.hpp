@@ -34,6 +34,12 @@ class ImpCoupling {
   // Verlet distance, then compute the force of every IMP and add its reaction to the blocks.
   void computeForces(const Particles& particles, Blocks& blocks, Real dt);
 
+  // A block was added: rebuild the candidate list before the next forces.
+  void invalidate() { built_ = false; }
+  // Block b was removed: drop its pairs and shift the later block indices down, keeping the
+  // other pairs' tangential histories.
+  void removeBlock(int b);
+
   const std::vector<Contact>& contacts() const { return candidates_; }
   const CouplingDef& def() const { return def_; }
   long activeContacts() const { return active_; }

@@ -63,6 +63,10 @@ struct WorldDef {
   CouplingDef coupling;  // IMP contact between material and blocks
 };
 
+// The step to take towards end_time given the stable step dt: lands exactly on end_time and
+// merges a sliver of a last step into the one before it (half of the remainder each).
+Real stepTowards(Real dt, Real end_time, Real time);
+
 // Which term set the time step.
 enum class StepLimit { kFixed, kCfl, kContact, kMax };
 const char* stepLimitName(StepLimit limit);
@@ -91,6 +95,15 @@ class World {
   // staggering, so that stepping again retraces the motion (seed 001 sec. 5.1 test).
   void reverseVelocities();
 
+  // Blocks added and removed while running (obstacles commanded from outside). placementProblem
+  // says why a block cannot be added where it is (empty when it can): bad core or rounding,
+  // non-finite values, outside the domain, overlapping a block or, unless allow_overlap, the
+  // material. addBlock returns the new block's index; removeBlock shifts the later ones down.
+  // moving: index of a block being moved to def's pose (not compared with itself), or -1.
+  std::string placementProblem(const BlockDef& def, bool allow_overlap, int moving = -1) const;
+  int addBlock(const BlockDef& def);
+  void removeBlock(int index);
+
   const WorldDef& def() const { return def_; }
   const std::vector<MaterialParams>& materialParams() const { return params_; }
   // The rigid blocks, or nullptr in a scene without any (no block or coupling work is done).
@@ -118,6 +131,8 @@ class World {
   void contactForces(Real dt);
   void contactForcesToGrid();
   void stepBlocks(Real dt);
+  void initCoupling();
+  bool hasBlocks() const { return blocks_ && blocks_->count() > 0; }
 
   WorldDef def_;
   std::vector<MaterialParams> params_;

@@ -1,0 +1,59 @@
+// Records a run into a rosbag with the rosbag C++ API, stamped with simulation time; needs no
+// master, so the node and the headless runner write the same bags. Like `rosbag record`, the bag
+// is written as <path>.active and renamed to <path> when closed: a file without the suffix is
+// complete, and one left with it (a killed process) can be recovered with `rosbag reindex`.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "mpm_sdem/core/world.hpp"
+#include "mpm_sdem/ros/conversions.hpp"
+
+namespace rosbag {
+class Bag;
+}
+
+namespace mpm_sdem {
+
+struct RecordDef {
+  Real cloud_rate = 30;       // Hz of simulation time: ~particles
+  Real state_rate = 100;      // Hz: ~blocks, ~block_poses, /tf, ~stats
+  int cloud_decimation = 1;   // every n-th material point
+  std::string ns = "/mpm_sdem";  // topic namespace (the node's name when the node records)
+  std::string fixed_frame = "world";
+  std::string tf_prefix;      // block frames are <tf_prefix>/<name>
+};
+
+class BagRecorder {
+ public:
+  // Throws std::runtime_error with the reason when the file cannot be opened. scene_text is the
+  // scene file's text, written once on <ns>/scene (std_msgs/String).
+  BagRecorder(const std::string& path, const RecordDef& def, const std::string& scene_text);
+  ~BagRecorder();
+  BagRecorder(const BagRecorder&) = delete;
+  BagRecorder& operator=(const BagRecorder&) = delete;
+
+  // Writes what is due at the world's current time: a cloud every 1/cloud_rate s and the states
+  // every 1/state_rate s of simulation time (both at the first call). stats supplies what the
+  // world does not know (time step, real-time factor, stage times).
+  void record(const World& world, const conversions::StatsInput& stats);
+  // Closes the bag and renames it to its final name; idempotent.
+  void close();
+
+  const std::string& path() const { return path_; }
+  long messageCount() const { return messages_; }
+
+ private:
+  template <class M>
+  void write(const std::string& topic, Real t, const M& msg);
+
+  std::unique_ptr<rosbag::Bag> bag_;
+  RecordDef def_;
+  std::string path_;
+  Real next_cloud_ = 0, next_state_ = 0;
+  long messages_ = 0;
+  sensor_msgs::PointCloud2 cloud_;  // reused: no allocation per cloud
+};
+
+}  // namespace mpm_sdem

@@ -1,0 +1,116 @@
+#include "node_params.hpp"
+
+#include <ctime>
+#include <filesystem>
+
+namespace mpm_sdem::node {
+
+namespace {
+
+// Reads ~key into value when set; false (and error) when it is set with the wrong type.
+template <class T>
+bool read(const ros::NodeHandle& pnh, const std::string& key, T& value, const char* expected,
+          std::string& error) {
+  if (!pnh.hasParam(key)) return true;
+  if (pnh.getParam(key, value)) return true;
+  error = "parameter ~" + key + " must be " + expected;
+  return false;
+}
+
+bool readRate(const ros::NodeHandle& pnh, const std::string& key, double& value,
+              std::string& error) {
+  if (!read(pnh, key, value, "a number (Hz)", error)) return false;
+  if (!(value >= 0) || !std::isfinite(value)) {
+    error = "parameter ~" + key + " must be >= 0 Hz (0: off), got " + std::to_string(value);
+    return false;
+  }
+  return true;
+}
+
+std::string defaultBagPath(const std::string& scene) {
+  const char* home = std::getenv("ROS_HOME");
+  std::filesystem::path dir = home ? home : std::string(std::getenv("HOME") ? std::getenv("HOME") : ".") + "/.ros";
+  char stamp[32];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(stamp, sizeof(stamp), "%Y-%m-%d-%H-%M-%S", std::localtime(&now));
+  return (dir / ("mpm_sdem_" + std::filesystem::path(scene).stem().string() + "_" + stamp + ".bag"))
+      .string();
+}
+
+}  // namespace
+
+bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
+  if (!pnh.getParam("scene", p.scene) || p.scene.empty()) {
+    error = "parameter ~scene (the scene file path) is required, e.g. _scene:=$(rospack find "
+            "mpm_sdem)/config/scenes/debris_impact.yaml";
+    return false;
+  }
+  std::string end = "pause", color = "speed";
+  int decimation = p.cloud_decimation, bag_decimation = p.record_def.cloud_decimation;
+  const bool ok =
+      read(pnh, "set", p.overrides, "a list of \"key=value\" strings", error) &&
+      read(pnh, "fixed_frame", p.fixed_frame, "a frame name", error) &&
+      read(pnh, "tf_prefix", p.tf_prefix, "a string", error) &&
+      readRate(pnh, "rates/particles", p.particles_rate, error) &&
+      readRate(pnh, "rates/blocks", p.blocks_rate, error) &&
+      readRate(pnh, "rates/stats", p.stats_rate, error) &&
+      readRate(pnh, "rates/image", p.image_rate, error) &&
+      readRate(pnh, "rates/clock", p.clock_rate, error) &&
+      read(pnh, "cloud_decimation", decimation, "a whole number >= 1", error) &&
+      read(pnh, "image/width", p.image.width, "a whole number of pixels", error) &&
+      read(pnh, "image/color_by", color, "speed or pressure", error) &&
+      read(pnh, "image/max_value", p.image.max_value, "a number (m/s or Pa; 0: auto)", error) &&
+      read(pnh, "real_time_factor", p.real_time_factor, "a number (0: as fast as possible)",
+           error) &&
+      read(pnh, "start_paused", p.start_paused, "true or false", error) &&
+      read(pnh, "end_action", end, "pause, shutdown or continue", error) &&
+      read(pnh, "threads", p.threads, "a whole number >= 0", error) &&
+      read(pnh, "allow_overlap", p.allow_overlap, "true or false", error) &&
+      read(pnh, "record", p.record, "true or false", error) &&
+      read(pnh, "bag", p.bag, "a file path", error) &&
+      readRate(pnh, "bag_cloud_rate", p.record_def.cloud_rate, error) &&
+      readRate(pnh, "bag_state_rate", p.record_def.state_rate, error) &&
+      read(pnh, "bag_cloud_decimation", bag_decimation, "a whole number >= 1", error) &&
+      read(pnh, "video", p.video, "a .avi, .mp4 or .mkv path", error) &&
+      read(pnh, "video_fps", p.video_fps, "a number of frames per simulated second", error);
+  if (!ok) return false;
+  auto fail = [&](const std::string& m) {
+    error = m;
+    return false;
+  };
+  if (decimation < 1) return fail("parameter ~cloud_decimation must be >= 1");
+  if (bag_decimation < 1) return fail("parameter ~bag_cloud_decimation must be >= 1");
+  p.cloud_decimation = decimation;
+  p.record_def.cloud_decimation = bag_decimation;
+  if (p.image.width < 16 || p.image.width > 8192)
+    return fail("parameter ~image/width must be 16 to 8192 px");
+  if (color == "speed") {
+    p.image.color_by = render::ColorBy::kSpeed;
+  } else if (color == "pressure") {
+    p.image.color_by = render::ColorBy::kPressure;
+  } else {
+    return fail("parameter ~image/color_by must be speed or pressure, got '" + color + "'");
+  }
+  if (!(p.image.max_value >= 0)) return fail("parameter ~image/max_value must be >= 0 (0: auto)");
+  if (!(p.real_time_factor >= 0) || !std::isfinite(p.real_time_factor))
+    return fail("parameter ~real_time_factor must be >= 0 (0: as fast as possible)");
+  if (end == "pause") {
+    p.end_action = EndAction::kPause;
+  } else if (end == "shutdown") {
+    p.end_action = EndAction::kShutdown;
+  } else if (end == "continue") {
+    p.end_action = EndAction::kContinue;
+  } else {
+    return fail("parameter ~end_action must be pause, shutdown or continue, got '" + end + "'");
+  }
+  if (p.threads < 0) return fail("parameter ~threads must be >= 0 (0: all cores)");
+  if (!(p.video_fps > 0) || p.video_fps > 1000)
+    return fail("parameter ~video_fps must be in (0, 1000] frames per simulated second");
+  if (p.record && p.bag.empty()) p.bag = defaultBagPath(p.scene);
+  p.record_def.fixed_frame = p.fixed_frame;
+  p.record_def.tf_prefix = p.tf_prefix;
+  p.record_def.ns = pnh.getNamespace();
+  return true;
+}
+
+}  // namespace mpm_sdem::node

@@ -1,0 +1,47 @@
+// The node's private parameters (~name), read once at start-up and checked: a missing or wrong
+// one is an error naming it, not a silent default. Defaults and units are in the README.
+#pragma once
+
+#include <ros/node_handle.h>
+
+#include <string>
+#include <vector>
+
+#include "mpm_sdem/render/render.hpp"
+#include "mpm_sdem/ros/bag_recorder.hpp"
+
+namespace mpm_sdem::node {
+
+enum class EndAction { kPause, kShutdown, kContinue };
+
+struct NodeParams {
+  std::string scene;                   // scene file path (required)
+  std::vector<std::string> overrides;  // "key=value" scene overrides (~set)
+  std::string fixed_frame = "world";
+  std::string tf_prefix = "mpm_sdem";  // block frames: <tf_prefix>/<block name>
+  // Publishing, Hz of simulation time (0: off).
+  double particles_rate = 30;
+  int cloud_decimation = 1;  // publish every n-th material point
+  double blocks_rate = 100;  // ~blocks, ~block_poses and tf
+  double stats_rate = 10;
+  double image_rate = 5;     // only while ~image has subscribers
+  double clock_rate = 1000;  // /clock, only with /use_sim_time true
+  render::RenderDef image;
+  // Pacing: 0 runs as fast as possible; r > 0 keeps simulation time <= r * wall time.
+  double real_time_factor = 0;
+  bool start_paused = false;
+  EndAction end_action = EndAction::kPause;  // at the scene's time.end
+  int threads = 0;                           // OpenMP threads; 0: OMP_NUM_THREADS or all cores
+  bool allow_overlap = false;  // spawn/teleport obstacles into material or other blocks
+  // Recording.
+  bool record = false;
+  std::string bag;  // path; default <ROS_HOME or ~/.ros>/mpm_sdem_<scene>_<date>.bag
+  RecordDef record_def;
+  std::string video;  // .avi/.mp4/.mkv path; empty: no video
+  double video_fps = 30;
+};
+
+// Fills params from the private node handle; false with a message on a bad value.
+bool loadParams(const ros::NodeHandle& pnh, NodeParams& params, std::string& error);
+
+}  // namespace mpm_sdem::node

@@ -1,0 +1,109 @@
+#include "publishers.hpp"
+
+#include <rosgraph_msgs/Clock.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/fill_image.h>
+#include <std_msgs/String.h>
+
+#include "mpm_sdem/core/diagnostics.hpp"
+
+namespace mpm_sdem::node {
+
+namespace {
+
+Profile since(const Profile& now, const Profile& then) {
+  Profile d;
+  for (int k = 0; k < static_cast<int>(Stage::kCount); ++k) d.seconds[k] = now.seconds[k] - then.seconds[k];
+  d.steps = now.steps - then.steps;
+  return d;
+}
+
+}  // namespace
+
+bool Publishers::Channel::due(Real t, bool force, bool always) {
+  if (!(rate > 0) || (!always && pub.getNumSubscribers() == 0)) return false;
+  if (!force && t < next - 1e-6 / rate) return false;
+  next = (std::floor(t * rate + 1e-6) + 1) / rate;
+  return true;
+}
+
+Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParams& params,
+                       const std::string& scene_text)
+    : params_(params) {
+  particles_ = {pnh.advertise<sensor_msgs::PointCloud2>("particles", 2), params.particles_rate};
+  blocks_ = {pnh.advertise<mpm_sdem::BlockStates>("blocks", 10), params.blocks_rate};
+  poses_ = {pnh.advertise<geometry_msgs::PoseArray>("block_poses", 10), params.blocks_rate};
+  stats_ = {pnh.advertise<mpm_sdem::SimStats>("stats", 10), params.stats_rate};
+  image_ = {pnh.advertise<sensor_msgs::Image>("image", 1), params.image_rate};
+  markers_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
+  scene_ = pnh.advertise<std_msgs::String>("scene", 1, true);
+  nh.param("/use_sim_time", use_sim_time_, false);
+  if (use_sim_time_)
+    clock_ = {nh.advertise<rosgraph_msgs::Clock>("/clock", 10), params.clock_rate};
+  std_msgs::String text;
+  text.data = scene_text;
+  scene_.publish(text);
+  stats_wall_ = std::chrono::steady_clock::now();
+}
+
+void Publishers::restart(const World& world) {
+  for (Channel* c : {&particles_, &blocks_, &poses_, &stats_, &image_, &clock_}) c->next = 0;
+  stats_sim_time_ = world.time();
+  stats_wall_ = std::chrono::steady_clock::now();
+  stats_profile_ = world.profile();
+}
+
+void Publishers::blocksChanged(const World& world) {
+  markers_.publish(conversions::toMarkers(world, params_.tf_prefix, ros::Time(0)));
+}
+
+void Publishers::publish(const World& world, const TimeStepChoice& dt, bool paused, bool force) {
+  const Real t = world.time();
+  std_msgs::Header header;
+  header.stamp = conversions::toRosTime(t);
+  header.frame_id = params_.fixed_frame;
+  // Clock first, so that a listener's time has reached the stamps that follow it.
+  if (clock_.due(t, force, true)) {
+    rosgraph_msgs::Clock clock;
+    clock.clock = header.stamp;
+    clock_.pub.publish(clock);
+  }
+  if (particles_.due(t, force)) {
+    conversions::toPointCloud(world, params_.cloud_decimation, header, cloud_);
+    particles_.pub.publish(cloud_);
+  }
+  // Block states feed tf, which is always sent (other nodes look frames up without
+  // subscribing to us).
+  const bool blocks_due = blocks_.due(t, force, true);
+  const bool poses_due = poses_.due(t, force);
+  if ((blocks_due || poses_due) && world.blocks()) {
+    const mpm_sdem::BlockStates states = conversions::toBlockStates(world, header);
+    if (blocks_due) {
+      blocks_.pub.publish(states);
+      tf_.sendTransform(conversions::toTransforms(states, params_.tf_prefix));
+    }
+    if (poses_due) poses_.pub.publish(conversions::toPoseArray(states));
+  }
+  if (stats_.due(t, force)) {
+    const auto now = std::chrono::steady_clock::now();
+    const double wall = std::chrono::duration<double>(now - stats_wall_).count();
+    conversions::StatsInput in;
+    in.dt = dt;
+    in.paused = paused;
+    in.real_time_factor = wall > 0 ? (t - stats_sim_time_) / wall : 0;
+    in.profile = since(world.profile(), stats_profile_);
+    stats_.pub.publish(conversions::toStats(world, measure(world), in, header));
+    stats_sim_time_ = t;
+    stats_wall_ = now;
+    stats_profile_ = world.profile();
+  }
+  if (image_.due(t, force)) {
+    render::renderWorld(world, params_.image, frame_);
+    sensor_msgs::Image img;
+    img.header = header;
+    sensor_msgs::fillImage(img, "bgr8", frame_.rows, frame_.cols, frame_.step, frame_.data);
+    image_.pub.publish(img);
+  }
+}
+
+}  // namespace mpm_sdem::node

@@ -1,0 +1,51 @@
+// Everything the node publishes, each at its own rate in simulation time and only when someone
+// listens (tf always): ~particles, ~blocks, ~block_poses, tf, ~markers, ~stats, ~image, /clock.
+#pragma once
+
+#include <ros/ros.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <chrono>
+
+#include "mpm_sdem/core/world.hpp"
+#include "mpm_sdem/ros/conversions.hpp"
+#include "node_params.hpp"
+
+namespace mpm_sdem::node {
+
+class Publishers {
+ public:
+  Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParams& params,
+             const std::string& scene_text);
+
+  // After a step: publishes what is due at the world's time. force: everything now (after a
+  // command while paused, so that listeners see its effect).
+  void publish(const World& world, const TimeStepChoice& dt, bool paused, bool force = false);
+  // The set of blocks changed (spawn, remove, reset): markers are re-sent.
+  void blocksChanged(const World& world);
+  // Restart the rate schedules at the world's time (after a reset).
+  void restart(const World& world);
+
+ private:
+  struct Channel {
+    ros::Publisher pub;
+    double rate = 0;  // Hz of simulation time, 0: off
+    Real next = 0;    // s, next due time
+    // Due at t (and advances the schedule); listeners required unless always.
+    bool due(Real t, bool force, bool always = false);
+  };
+
+  const NodeParams& params_;
+  Channel particles_, blocks_, poses_, stats_, image_, clock_;
+  ros::Publisher markers_, scene_;
+  tf2_ros::TransformBroadcaster tf_;
+  bool use_sim_time_ = false;
+  sensor_msgs::PointCloud2 cloud_;
+  cv::Mat frame_;
+  // For the real-time factor and per-stage times in ~stats: the state at the last message.
+  Real stats_sim_time_ = 0;
+  std::chrono::steady_clock::time_point stats_wall_;
+  Profile stats_profile_;
+};
+
+}  // namespace mpm_sdem::node

@@ -1,0 +1,85 @@
+#include "mpm_sdem/ros/bag_recorder.hpp"
+
+#include <rosbag/bag.h>
+#include <std_msgs/String.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include <cstdio>
+#include <stdexcept>
+
+#include "mpm_sdem/core/diagnostics.hpp"
+
+namespace mpm_sdem {
+
+namespace {
+
+// rosbag refuses times before ros::TIME_MIN (1 ns); simulation time starts at 0.
+ros::Time bagTime(Real t) {
+  return std::max(conversions::toRosTime(t), ros::TIME_MIN);
+}
+
+// The next sample time after t on a grid of period 1 / rate (rate 0: never).
+Real nextSample(Real t, Real rate) {
+  if (!(rate > 0)) return std::numeric_limits<Real>::infinity();
+  return (std::floor(t * rate + 1e-6) + 1) / rate;
+}
+
+}  // namespace
+
+BagRecorder::BagRecorder(const std::string& path, const RecordDef& def,
+                         const std::string& scene_text)
+    : bag_(std::make_unique<rosbag::Bag>()), def_(def), path_(path) {
+  try {
+    bag_->open(path_ + ".active", rosbag::bagmode::Write);
+  } catch (const rosbag::BagException& e) {
+    throw std::runtime_error("cannot write the bag " + path_ + ".active: " + e.what());
+  }
+  std_msgs::String scene;
+  scene.data = scene_text;
+  write(def_.ns + "/scene", 0, scene);
+}
+
+BagRecorder::~BagRecorder() {
+  close();
+}
+
+template <class M>
+void BagRecorder::write(const std::string& topic, Real t, const M& msg) {
+  bag_->write(topic, bagTime(t), msg);
+  ++messages_;
+}
+
+void BagRecorder::record(const World& world, const conversions::StatsInput& stats) {
+  if (!bag_->isOpen()) return;
+  const Real t = world.time();
+  std_msgs::Header header;
+  header.stamp = conversions::toRosTime(t);
+  header.frame_id = def_.fixed_frame;
+  // The same 1e-6-of-a-period tolerance as nextSample: a step landing a hair before a sample
+  // time counts as on it.
+  if (t * def_.cloud_rate >= next_cloud_ * def_.cloud_rate - 1e-6) {
+    conversions::toPointCloud(world, def_.cloud_decimation, header, cloud_);
+    write(def_.ns + "/particles", t, cloud_);
+    next_cloud_ = nextSample(t, def_.cloud_rate);
+  }
+  if (t * def_.state_rate >= next_state_ * def_.state_rate - 1e-6) {
+    const mpm_sdem::BlockStates blocks = conversions::toBlockStates(world, header);
+    write(def_.ns + "/blocks", t, blocks);
+    write(def_.ns + "/block_poses", t, conversions::toPoseArray(blocks));
+    tf2_msgs::TFMessage tf;
+    tf.transforms = conversions::toTransforms(blocks, def_.tf_prefix);
+    if (!tf.transforms.empty()) write("/tf", t, tf);
+    write(def_.ns + "/stats", t, conversions::toStats(world, measure(world), stats, header));
+    next_state_ = nextSample(t, def_.state_rate);
+  }
+}
+
+void BagRecorder::close() {
+  if (!bag_ || !bag_->isOpen()) return;
+  bag_->close();
+  if (std::rename((path_ + ".active").c_str(), path_.c_str()) != 0) {
+    std::perror(("mpm_sdem: cannot rename " + path_ + ".active").c_str());
+  }
+}
+
+}  // namespace mpm_sdem

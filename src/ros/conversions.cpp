@@ -1,0 +1,269 @@
+#include "mpm_sdem/ros/conversions.hpp"
+
+#include <sensor_msgs/point_cloud2_iterator.h>
+
+#include <cmath>
+
+#include "mpm_sdem/core/constitutive.hpp"
+
+namespace mpm_sdem::conversions {
+
+namespace {
+
+geometry_msgs::Pose planarPose(const Vec2& p, Real angle) {
+  geometry_msgs::Pose pose;
+  pose.position.x = p.x();
+  pose.position.y = p.y();
+  pose.orientation.z = std::sin(0.5 * angle);
+  pose.orientation.w = std::cos(0.5 * angle);
+  return pose;
+}
+
+}  // namespace
+
+ros::Time toRosTime(Real t) {
+  return ros::Time(t);
+}
+
+void toPointCloud(const World& world, int decimation, const std_msgs::Header& header,
+                  sensor_msgs::PointCloud2& cloud) {
+  const Particles& P = world.particles();
+  const std::size_t step = static_cast<std::size_t>(std::max(1, decimation));
+  const std::size_t n = (P.size() + step - 1) / step;
+  cloud.header = header;
+  sensor_msgs::PointCloud2Modifier mod(cloud);
+  mod.setPointCloud2Fields(8, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1,
+                           sensor_msgs::PointField::FLOAT32, "z", 1,
+                           sensor_msgs::PointField::FLOAT32, "vx", 1,
+                           sensor_msgs::PointField::FLOAT32, "vy", 1,
+                           sensor_msgs::PointField::FLOAT32, "pressure", 1,
+                           sensor_msgs::PointField::FLOAT32, "von_mises", 1,
+                           sensor_msgs::PointField::FLOAT32, "material", 1,
+                           sensor_msgs::PointField::UINT16);
+  mod.resize(n);  // height 1, width n, dense
+  sensor_msgs::PointCloud2Iterator<float> x(cloud, "x"), vx(cloud, "vx"), p(cloud, "pressure");
+  sensor_msgs::PointCloud2Iterator<std::uint16_t> mat(cloud, "material");
+  for (std::size_t i = 0; i < P.size(); i += step, ++x, ++vx, ++p, ++mat) {
+    x[0] = static_cast<float>(P.x[i]);
+    x[1] = static_cast<float>(P.y[i]);
+    x[2] = 0.f;
+    vx[0] = static_cast<float>(P.vx[i]);
+    vx[1] = static_cast<float>(P.vy[i]);
+    const Stress s{P.sxx[i], P.syy[i], P.sxy[i], P.szz[i]};
+    p[0] = static_cast<float>(-meanStress(s));
+    p[1] = static_cast<float>(std::sqrt(3.0) * equivalentShear(s));  // sqrt(3 J2)
+    *mat = P.material[i];
+  }
+}
+
+std::uint8_t fromBodyType(BodyType type) {
+  switch (type) {
+    case BodyType::kStatic:
+      return mpm_sdem::RigidBlockState::STATIC;
+    case BodyType::kKinematic:
+      return mpm_sdem::RigidBlockState::KINEMATIC;
+    case BodyType::kDynamic:
+      return mpm_sdem::RigidBlockState::DYNAMIC;
+  }
+  return mpm_sdem::RigidBlockState::STATIC;
+}
+
+BodyType toBodyType(std::uint8_t type, bool& ok) {
+  ok = true;
+  switch (type) {
+    case mpm_sdem::RigidBlockState::STATIC:
+      return BodyType::kStatic;
+    case mpm_sdem::RigidBlockState::KINEMATIC:
+      return BodyType::kKinematic;
+    case mpm_sdem::RigidBlockState::DYNAMIC:
+      return BodyType::kDynamic;
+  }
+  ok = false;
+  return BodyType::kStatic;
+}
+
+mpm_sdem::BlockStates toBlockStates(const World& world, const std_msgs::Header& header) {
+  mpm_sdem::BlockStates out;
+  out.header = header;
+  const Blocks* B = world.blocks();
+  if (!B) return out;
+  out.blocks.resize(B->count());
+  for (int i = 0; i < B->count(); ++i) {
+    mpm_sdem::RigidBlockState& m = out.blocks[i];
+    const BlockState& s = B->state(i);
+    const Vec2 origin = B->origin(i);
+    m.id = static_cast<std::uint32_t>(i);
+    m.name = B->def(i).name;
+    m.body_type = fromBodyType(B->def(i).type);
+    m.pose = planarPose(origin, s.angle);
+    const Vec2 v = B->velocityAt(i, origin);
+    m.twist.linear.x = v.x();
+    m.twist.linear.y = v.y();
+    m.twist.angular.z = s.angular_velocity;
+    m.center_of_mass.x = s.position.x();
+    m.center_of_mass.y = s.position.y();
+    const Blocks::Coupling& c = B->coupling()[i];
+    m.imp_force.x = c.force.x();
+    m.imp_force.y = c.force.y();
+    m.imp_torque = c.torque;
+    m.contact_count = static_cast<std::uint32_t>(c.contacts);
+  }
+  return out;
+}
+
+geometry_msgs::PoseArray toPoseArray(const mpm_sdem::BlockStates& states) {
+  geometry_msgs::PoseArray out;
+  out.header = states.header;
+  for (const auto& b : states.blocks) out.poses.push_back(b.pose);
+  return out;
+}
+
+std::string blockFrame(const std::string& prefix, const std::string& name) {
+  return prefix.empty() ? name : prefix + "/" + name;
+}
+
+std::vector<geometry_msgs::TransformStamped> toTransforms(const mpm_sdem::BlockStates& states,
+                                                          const std::string& prefix) {
+  std::vector<geometry_msgs::TransformStamped> out;
+  for (const auto& b : states.blocks) {
+    geometry_msgs::TransformStamped t;
+    t.header = states.header;
+    t.child_frame_id = blockFrame(prefix, b.name);
+    t.transform.translation.x = b.pose.position.x;
+    t.transform.translation.y = b.pose.position.y;
+    t.transform.rotation = b.pose.orientation;
+    out.push_back(t);
+  }
+  return out;
+}
+
+std::vector<Vec2> roundedOutline(const std::vector<Vec2>& core, Real a, int arc_points) {
+  std::vector<Vec2> out;
+  const int n = static_cast<int>(core.size());
+  if (n == 1) {
+    for (int k = 0; k <= 4 * arc_points; ++k) {
+      const Real t = 2 * M_PI * k / (4 * arc_points);
+      out.push_back(core[0] + a * Vec2(std::cos(t), std::sin(t)));
+    }
+    return out;
+  }
+  // Counter-clockwise core: at vertex i the arc runs from the normal of the edge before to
+  // the normal of the edge after (for a capsule, n = 2, each arc is a half circle).
+  for (int i = 0; i < n; ++i) {
+    const Vec2 e_in = core[i] - core[(i + n - 1) % n], e_out = core[(i + 1) % n] - core[i];
+    const Real t0 = std::atan2(-e_in.x(), e_in.y()), t1 = std::atan2(-e_out.x(), e_out.y());
+    Real sweep = t1 - t0;
+    while (sweep < 0) sweep += 2 * M_PI;
+    if (n == 2) sweep = M_PI;
+    for (int k = 0; k <= arc_points; ++k) {
+      const Real t = t0 + sweep * k / arc_points;
+      out.push_back(core[i] + a * Vec2(std::cos(t), std::sin(t)));
+    }
+  }
+  out.push_back(out.front());
+  return out;
+}
+
+visualization_msgs::MarkerArray toMarkers(const World& world, const std::string& tf_prefix,
+                                          const ros::Time& stamp) {
+  visualization_msgs::MarkerArray out;
+  visualization_msgs::Marker clear;
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  out.markers.push_back(clear);
+  const Blocks* B = world.blocks();
+  if (!B) return out;
+  for (int i = 0; i < B->count(); ++i) {
+    const BlockDef& d = B->def(i);
+    visualization_msgs::Marker m;
+    m.header.frame_id = blockFrame(tf_prefix, d.name);
+    m.header.stamp = stamp;
+    m.frame_locked = true;
+    m.ns = "outline";
+    m.id = i;
+    m.type = visualization_msgs::Marker::LINE_STRIP;
+    m.pose.orientation.w = 1;
+    m.scale.x = 0.25 * d.rounding;
+    m.color.a = 1;
+    m.color.r = d.type == BodyType::kDynamic ? 0.9f : 0.5f;
+    m.color.g = d.type == BodyType::kKinematic ? 0.8f : 0.5f;
+    m.color.b = 0.5f;
+    for (const Vec2& p : roundedOutline(d.core, d.rounding, 6)) {
+      geometry_msgs::Point q;
+      q.x = p.x();
+      q.y = p.y();
+      m.points.push_back(q);
+    }
+    out.markers.push_back(m);
+    visualization_msgs::Marker label = m;
+    label.ns = "name";
+    label.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
+    label.points.clear();
+    label.text = d.name;
+    label.scale.z = std::max(0.01, 4 * d.rounding);
+    label.pose.position.x = B->massProperties(i).centroid.x();
+    label.pose.position.y = B->massProperties(i).centroid.y();
+    label.color.r = label.color.g = label.color.b = 1;
+    out.markers.push_back(label);
+  }
+  return out;
+}
+
+mpm_sdem::SimStats toStats(const World& world, const Diagnostics& d, const StatsInput& in,
+                           const std_msgs::Header& header) {
+  mpm_sdem::SimStats s;
+  s.header = header;
+  s.step = static_cast<std::uint64_t>(world.stepCount());
+  s.sim_time = world.time();
+  s.dt = in.dt.dt;
+  s.dt_limit = stepLimitName(in.dt.limit);
+  s.real_time_factor = in.real_time_factor;
+  s.particles = static_cast<std::uint32_t>(world.particles().size());
+  s.blocks = world.blocks() ? static_cast<std::uint32_t>(world.blocks()->count()) : 0;
+  s.imp_contacts = world.blocks() ? static_cast<std::uint32_t>(world.coupling().activeContacts()) : 0;
+  s.paused = in.paused;
+  s.kinetic_energy = d.kinetic;
+  s.elastic_energy = d.elastic;
+  s.gravity_energy = d.gravity;
+  s.total_energy = d.total();
+  s.block_kinetic_energy = d.block_kinetic;
+  for (int k = 0; k < static_cast<int>(Stage::kCount); ++k) {
+    s.stage_names.push_back(stageName(static_cast<Stage>(k)));
+    s.stage_ms.push_back(in.profile.steps ? 1e3 * in.profile.seconds[k] / in.profile.steps : 0.0);
+  }
+  return s;
+}
+
+BlockDef toBlockDef(const mpm_sdem::SpawnObstacle::Request& req) {
+  BlockDef d;
+  d.name = req.name;
+  if (req.vertices.empty()) {
+    d.core = {Vec2(0, 0)};
+    d.rounding = req.disk_radius + req.rounding;
+  } else {
+    for (const auto& v : req.vertices) d.core.emplace_back(v.x, v.y);
+    d.rounding = req.rounding;
+  }
+  d.position = Vec2(req.pose.x, req.pose.y);
+  d.angle = req.pose.theta;
+  bool known = false;
+  d.type = toBodyType(req.body_type, known);
+  // The request gives the velocity of the frame origin; a block definition that of its
+  // centre of mass: v_c = v_o + w x (c - o).
+  d.angular_velocity = req.twist.angular.z;
+  Vec2 centroid(0, 0);
+  if (coreProblem(d.core).empty()) {
+    std::vector<Vec2> core = d.core;
+    makeCounterClockwise(core);
+    centroid = spheropolygonMass(core, std::max(d.rounding, 0.0), 1).centroid;
+  }
+  const Real c = std::cos(d.angle), s = std::sin(d.angle);
+  const Vec2 r(c * centroid.x() - s * centroid.y(), s * centroid.x() + c * centroid.y());
+  d.velocity = Vec2(req.twist.linear.x, req.twist.linear.y) +
+               d.angular_velocity * Vec2(-r.y(), r.x());
+  d.density = req.density;
+  d.friction = req.friction;
+  d.restitution = req.restitution;
+  return d;
+}
+
+}  // namespace mpm_sdem::conversions
