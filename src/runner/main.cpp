@@ -5,10 +5,13 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
 #include "mpm_sdem/core/diagnostics.hpp"
+#include "mpm_sdem/ros/bag_recorder.hpp"
 #include "mpm_sdem/scene/scene.hpp"
 #include "options.hpp"
 #include "output.hpp"
@@ -97,6 +100,23 @@ int main(int argc, char** argv) {
   const Real energy_limit = initial.total() * (1 + scene.limits.energy_growth);
   TimeStepChoice dt = world.chooseTimeStep();
   series.write(world, initial, dt);
+  std::unique_ptr<BagRecorder> bag;
+  conversions::StatsInput bag_stats;
+  if (!opt.bag.empty()) {
+    RecordDef rec;
+    rec.cloud_rate = opt.bag_cloud_rate;
+    rec.state_rate = opt.bag_state_rate;
+    std::ostringstream text;
+    text << std::ifstream(opt.scene).rdbuf();
+    try {
+      bag = std::make_unique<BagRecorder>(opt.bag, rec, text.str());
+    } catch (const std::exception& e) {
+      std::cerr << "error: " << e.what() << "\n";
+      return 1;
+    }
+    bag_stats.dt = dt;
+    bag->record(world, bag_stats);
+  }
   Real next_sample = scene.output.interval;
   runner::Progress progress(scene.end_time, !opt.quiet);
   int status = 0;
@@ -111,6 +131,11 @@ int main(int argc, char** argv) {
                 << " s). Lower time.cfl or time.dt, or refine the grid.\n";
       status = 3;
       break;
+    }
+    if (bag) {
+      bag_stats.dt = dt;
+      bag_stats.profile = world.profile();
+      bag->record(world, bag_stats);
     }
     if (world.time() >= next_sample - eps || world.time() >= scene.end_time - eps) {
       const Diagnostics d = measure(world);
@@ -151,5 +176,9 @@ int main(int argc, char** argv) {
                  prof.steps ? 1e3 * prof.seconds[s] / prof.steps : 0.0);
   }
   std::fprintf(stderr, "\noutputs in %s\n", out.string().c_str());
+  if (bag) {
+    bag->close();
+    std::fprintf(stderr, "bag: %s (%ld messages)\n", bag->path().c_str(), bag->messageCount());
+  }
   return status;
 }

@@ -13,6 +13,9 @@ const char* usage() {
          "                   --set materials.sand.density=1500 (repeatable)\n"
          "  --threads N      OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
          "  --quiet          no progress line\n"
+         "  --bag FILE       also record a rosbag as the node does (no ROS master needed)\n"
+         "  --bag-cloud-rate HZ, --bag-state-rate HZ\n"
+         "                   particle clouds / block states per simulated second (30, 100)\n"
          "exit status: 0 done, 1 bad scene, 2 bad command line, 3 unstable state, 130 "
          "interrupted\n";
 }
@@ -49,6 +52,20 @@ bool parseOptions(int argc, char** argv, Options& out, std::string& error, bool&
         return false;
       }
       out.threads = static_cast<int>(n);
+    } else if (a == "--bag") {
+      const char* v = value("--bag");
+      if (!v) return false;
+      out.bag = v;
+    } else if (a == "--bag-cloud-rate" || a == "--bag-state-rate") {
+      const char* v = value(a.c_str());
+      if (!v) return false;
+      char* end = nullptr;
+      const double r = std::strtod(v, &end);
+      if (*end != '\0' || !(r >= 0) || r > 1e6) {
+        error = a + " takes a rate >= 0 Hz (0: off), got '" + v + "'";
+        return false;
+      }
+      (a == "--bag-cloud-rate" ? out.bag_cloud_rate : out.bag_state_rate) = r;
     } else if (a == "--quiet") {
       out.quiet = true;
     } else if (!a.empty() && a[0] == '-') {

@@ -12,6 +12,9 @@ struct Options {
   std::vector<std::string> overrides;
   int threads = 0;  // 0: OpenMP default (OMP_NUM_THREADS or all cores)
   bool quiet = false;
+  std::string bag;         // write a rosbag like the node's (empty: none)
+  double bag_cloud_rate = 30;   // Hz of simulation time
+  double bag_state_rate = 100;  // Hz
 };
 
 // Returns false and fills error on a bad command line; help is set for --help.
