@@ -1,0 +1,308 @@
+// rostest: the node's topics, tf and services against a running node (node_services.test).
+#include <gtest/gtest.h>
+#include <mpm_sdem/ListObstacles.h>
+#include <mpm_sdem/ObstacleCommand.h>
+#include <mpm_sdem/RemoveObstacle.h>
+#include <mpm_sdem/SetObstacleState.h>
+#include <mpm_sdem/SpawnObstacle.h>
+#include <mpm_sdem/StepSimulation.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <cmath>
+#include <limits>
+
+#include "ros_helpers.hpp"
+
+using namespace mpm_sdem;
+using test::findBlock;
+using test::waitFor;
+
+namespace {
+
+const std::string kNs = "/mpm_sdem/";
+
+struct Node {
+  ros::NodeHandle nh;
+  test::Latest<BlockStates> blocks{nh, kNs + "blocks"};
+  test::Latest<SimStats> stats{nh, kNs + "stats"};
+  test::Latest<sensor_msgs::PointCloud2> cloud{nh, kNs + "particles"};
+  ros::Publisher cmd = nh.advertise<ObstacleCommand>(kNs + "obstacle_cmd", 10);
+  tf2_ros::Buffer tf;
+  tf2_ros::TransformListener listener{tf};
+
+  template <class S>
+  S call(const std::string& name, S srv) {
+    EXPECT_TRUE(ros::service::waitForService(kNs + name, ros::Duration(10)));
+    EXPECT_TRUE(ros::service::call(kNs + name, srv)) << name;
+    return srv;
+  }
+  bool trigger(const std::string& name) {
+    std_srvs::Trigger t;
+    return call(name, t).response.success;
+  }
+  // The block's latest state, or nullopt-like false.
+  bool block(const std::string& name, RigidBlockState& out) {
+    const BlockStates s = blocks.get();
+    const RigidBlockState* b = findBlock(s, name);
+    if (b) out = *b;
+    return b != nullptr;
+  }
+};
+
+Node* g_node = nullptr;
+
+SpawnObstacle square(const std::string& name, double x, double y, double half, uint8_t type) {
+  SpawnObstacle s;
+  s.request.name = name;
+  for (auto [vx, vy] : {std::pair{-half, -half}, {half, -half}, {half, half}, {-half, half}}) {
+    geometry_msgs::Point p;
+    p.x = vx;
+    p.y = vy;
+    s.request.vertices.push_back(p);
+  }
+  s.request.rounding = 0.002;
+  s.request.pose.x = x;
+  s.request.pose.y = y;
+  s.request.body_type = type;
+  s.request.density = 500;
+  s.request.friction = 0.5;
+  s.request.restitution = 0.5;
+  return s;
+}
+
+}  // namespace
+
+TEST(Node, PublishesCloudBlocksAndTf) {
+  Node& n = *g_node;
+  ASSERT_TRUE(waitFor([&] { return n.cloud.has() && n.blocks.has() && n.stats.has(); }, 20));
+  const sensor_msgs::PointCloud2 c = n.cloud.get();
+  EXPECT_EQ(c.height, 1u);
+  EXPECT_EQ(c.width, 640u);  // node_bed.yaml: 40 x 4 cells x 4 points, no decimation
+  EXPECT_EQ(c.header.frame_id, "world");
+  std::vector<std::string> fields;
+  for (const auto& f : c.fields) fields.push_back(f.name);
+  EXPECT_EQ(fields, (std::vector<std::string>{"x", "y", "z", "vx", "vy", "pressure", "von_mises",
+                                              "material"}));
+  RigidBlockState box;
+  ASSERT_TRUE(n.block("box", box));
+  EXPECT_EQ(box.body_type, RigidBlockState::DYNAMIC);
+  ASSERT_TRUE(waitFor([&] { return n.tf.canTransform("world", "mpm_sdem/box", ros::Time(0)); },
+                      10));
+  // The box rests on the bed: the material carries its weight (0.04 m square at 500 kg/m^3,
+  // rounding included: 0.8 kg/m, 7.85 N/m), which only IMP contacts can supply.
+  ASSERT_TRUE(n.block("box", box));
+  EXPECT_GT(box.contact_count, 0u);
+  EXPECT_NEAR(box.imp_force.y, 0.8 * 9.81, 0.1 * 0.8 * 9.81);
+}
+
+TEST(Node, SpawnedBlockAppearsFallsOntoTheMaterialAndIsRemoved) {
+  Node& n = *g_node;
+  SpawnObstacle s = square("dropper", 0.25, 0.12, 0.015, SpawnObstacle::Request::DYNAMIC);
+  s = n.call("spawn_obstacle", s);
+  ASSERT_TRUE(s.response.success) << s.response.message;
+  RigidBlockState b;
+  ASSERT_TRUE(waitFor([&] { return n.block("dropper", b); }, 5));
+  ASSERT_TRUE(waitFor(
+      [&] { return n.tf.canTransform("world", "mpm_sdem/dropper", ros::Time(0)); }, 5));
+  // It falls about 6 cm onto the bed and the material pushes back.
+  ASSERT_TRUE(waitFor([&] { return n.block("dropper", b) && b.contact_count > 0; }, 20))
+      << "the spawned block never touched the material";
+  ASSERT_TRUE(waitFor([&] { return n.block("dropper", b) && b.imp_force.y > 0; }, 5));
+  EXPECT_LT(b.pose.position.y, 0.12);
+  RemoveObstacle r;
+  r.request.name = "dropper";
+  r = n.call("remove_obstacle", r);
+  ASSERT_TRUE(r.response.success) << r.response.message;
+  ASSERT_TRUE(waitFor([&] { return !n.block("dropper", b); }, 5));
+}
+
+TEST(Node, KinematicBlockMovesWithTheCommandedTwist) {
+  Node& n = *g_node;
+  SpawnObstacle s = square("blade", 0.2, 0.15, 0.01, SpawnObstacle::Request::KINEMATIC);
+  s = n.call("spawn_obstacle", s);
+  ASSERT_TRUE(s.response.success) << s.response.message;
+  SetObstacleState set;
+  set.request.name = "blade";
+  set.request.set_twist = true;
+  set.request.twist.linear.x = 0.05;
+  set = n.call("set_obstacle_state", set);
+  ASSERT_TRUE(set.response.success) << set.response.message;
+  // x(t2) - x(t1) = v (t2 - t1) between two published states (Box2D integrates a kinematic
+  // body exactly up to its single precision: 1e-6 m here).
+  RigidBlockState b1, b2;
+  ASSERT_TRUE(waitFor([&] { return n.block("blade", b1) && b1.twist.linear.x > 0.04; }, 5));
+  double t1 = n.blocks.get().header.stamp.toSec(), t2 = t1;
+  ASSERT_TRUE(waitFor([&] {
+    const BlockStates s = n.blocks.get();
+    t2 = s.header.stamp.toSec();
+    const RigidBlockState* b = findBlock(s, "blade");
+    if (b) b2 = *b;
+    return t2 > t1 + 0.3;
+  }, 10));
+  EXPECT_NEAR(b2.twist.linear.x, 0.05, 1e-6);
+  EXPECT_NEAR(b2.pose.position.y, 0.15, 1e-6);
+  EXPECT_GT(b2.pose.position.x, 0.2 + 0.05 * 0.3 - 1e-3);
+  // The streamed command reverses it.
+  ObstacleCommand cmd;
+  cmd.name = "blade";
+  cmd.twist.linear.x = -0.05;
+  n.cmd.publish(cmd);
+  ASSERT_TRUE(waitFor([&] { return n.block("blade", b1) && b1.twist.linear.x < -0.04; }, 5));
+  const double x1 = b1.pose.position.x;
+  const double s1 = n.blocks.get().header.stamp.toSec();
+  ASSERT_TRUE(waitFor([&] { return n.blocks.get().header.stamp.toSec() > s1 + 0.2; }, 10));
+  const BlockStates later = n.blocks.get();
+  const RigidBlockState* b = findBlock(later, "blade");
+  ASSERT_NE(b, nullptr);
+  const double dt = later.header.stamp.toSec() - s1;
+  // b1 was read a little after s1's message, so allow one message period (0.01 s) of motion.
+  EXPECT_NEAR(b->pose.position.x - x1, -0.05 * dt, 0.05 * 0.011);
+  RemoveObstacle r;
+  r.request.name = "blade";
+  EXPECT_TRUE(n.call("remove_obstacle", r).response.success);
+}
+
+TEST(Node, InvalidRequestsAreRefusedAndTheSimulationKeepsStepping) {
+  Node& n = *g_node;
+  ASSERT_TRUE(n.stats.has());
+  const uint64_t before = n.stats.get().step;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::pair<std::string, SpawnObstacle>> spawns;
+  auto add = [&](const std::string& why, SpawnObstacle s) { spawns.emplace_back(why, s); };
+  SpawnObstacle ok = square("fine", 0.2, 0.15, 0.01, SpawnObstacle::Request::DYNAMIC);
+  SpawnObstacle s = ok;
+  s.request.pose.x = nan;
+  add("NaN pose", s);
+  s = ok;
+  s.request.twist.angular.z = std::numeric_limits<double>::infinity();
+  add("infinite twist", s);
+  s = ok;
+  s.request.vertices.resize(9);
+  for (int k = 0; k < 9; ++k) {
+    s.request.vertices[k].x = 0.01 * std::cos(2 * M_PI * k / 9);
+    s.request.vertices[k].y = 0.01 * std::sin(2 * M_PI * k / 9);
+  }
+  add("9 vertices", s);
+  s = ok;
+  s.request.vertices[2].x = 0;
+  s.request.vertices[2].y = 0;  // a dent: non-convex
+  add("non-convex", s);
+  s = ok;
+  s.request.name = "post";
+  add("name clash", s);
+  s = ok;
+  s.request.name = "";
+  add("empty name", s);
+  s = ok;
+  s.request.pose.x = 0.395;
+  add("outside the domain", s);
+  s = ok;
+  s.request.pose.y = 0.03;
+  add("inside the material", s);
+  s = ok;
+  s.request.pose.x = 0.35;
+  s.request.pose.y = 0.1;
+  add("overlapping block 'post'", s);
+  s = ok;
+  s.request.body_type = 7;
+  add("unknown body type", s);
+  s = ok;
+  s.request.rounding = 0;
+  add("zero rounding", s);
+  s = ok;
+  s.request.density = 0;
+  add("dynamic without density", s);
+  s = ok;
+  s.request.restitution = 1.5;
+  add("restitution above 1", s);
+  for (auto& [why, req] : spawns) {
+    const SpawnObstacle r = n.call("spawn_obstacle", req);
+    EXPECT_FALSE(r.response.success) << why;
+    EXPECT_FALSE(r.response.message.empty()) << why;
+  }
+  RemoveObstacle rm;
+  rm.request.name = "nonexistent";
+  EXPECT_FALSE(n.call("remove_obstacle", rm).response.success);
+  SetObstacleState set;
+  set.request.name = "nonexistent";
+  set.request.set_twist = true;
+  EXPECT_FALSE(n.call("set_obstacle_state", set).response.success);
+  set.request.name = "post";  // static
+  EXPECT_FALSE(n.call("set_obstacle_state", set).response.success);
+  set.request.name = "box";
+  set.request.set_twist = false;
+  EXPECT_FALSE(n.call("set_obstacle_state", set).response.success) << "nothing to set";
+  set.request.set_pose = true;
+  set.request.pose.x = 0.35;
+  set.request.pose.y = 0.1;
+  EXPECT_FALSE(n.call("set_obstacle_state", set).response.success) << "onto block 'post'";
+  set.request.pose.x = nan;
+  EXPECT_FALSE(n.call("set_obstacle_state", set).response.success) << "NaN pose";
+  StepSimulation step;
+  step.request.steps = 5;
+  EXPECT_FALSE(n.call("step", step).response.success) << "step while running";
+  step.request.steps = 0;
+  EXPECT_FALSE(n.call("step", step).response.success) << "zero steps";
+  // A NaN streamed command is dropped.
+  ObstacleCommand cmd;
+  cmd.name = "box";
+  cmd.twist.linear.x = nan;
+  n.cmd.publish(cmd);
+  // Nothing was added, and the simulation went on.
+  ListObstacles list;
+  list = n.call("list_obstacles", list);
+  ASSERT_TRUE(list.response.success) << list.response.message;
+  EXPECT_EQ(list.response.states.blocks.size(), 2u);
+  ASSERT_TRUE(waitFor([&] { return n.stats.get().step > before + 100; }, 10));
+  RigidBlockState box;
+  ASSERT_TRUE(n.block("box", box));
+  EXPECT_TRUE(std::isfinite(box.pose.position.x));
+}
+
+TEST(Node, PauseStepResumeReset) {
+  Node& n = *g_node;
+  ASSERT_TRUE(n.trigger("pause"));
+  // Paused: the step count stays where the pause left it.
+  ros::WallDuration(0.3).sleep();
+  const SimStats paused = n.stats.get();
+  EXPECT_TRUE(paused.paused);
+  ros::WallDuration(0.5).sleep();
+  EXPECT_EQ(n.stats.get().step, paused.step);
+  StepSimulation step;
+  step.request.steps = 25;
+  step = n.call("step", step);
+  ASSERT_TRUE(step.response.success) << step.response.message;
+  EXPECT_EQ(step.response.step, paused.step + 25);
+  EXPECT_GT(step.response.sim_time, paused.sim_time);
+  ASSERT_TRUE(waitFor([&] { return n.stats.get().step == paused.step + 25; }, 5));
+  ASSERT_TRUE(n.trigger("resume"));
+  ASSERT_TRUE(waitFor([&] { return n.stats.get().step > paused.step + 200; }, 10));
+  // Reset: back to the scene's start, spawned blocks gone.
+  SpawnObstacle s = square("temporary", 0.2, 0.15, 0.01, SpawnObstacle::Request::STATIC);
+  s = n.call("spawn_obstacle", s);
+  ASSERT_TRUE(s.response.success) << s.response.message;
+  const double before = n.stats.get().sim_time;
+  ASSERT_TRUE(n.trigger("reset"));
+  ASSERT_TRUE(waitFor([&] { return n.stats.get().sim_time < 0.5 * before; }, 5));
+  ListObstacles list;
+  list = n.call("list_obstacles", list);
+  ASSERT_TRUE(list.response.success) << list.response.message;
+  ASSERT_EQ(list.response.states.blocks.size(), 2u);
+  EXPECT_EQ(list.response.states.blocks[0].name, "post");
+  EXPECT_EQ(list.response.states.blocks[1].name, "box");
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_node_services");
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  Node node;
+  g_node = &node;
+  const int status = RUN_ALL_TESTS();
+  spinner.stop();
+  return status;
+}
