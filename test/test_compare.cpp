@@ -71,14 +71,15 @@ TEST(CompareRuns, SelfIsZeroPerturbedIsNot) {
   EXPECT_GT(diff.blocks[1].rms_position, 1e-6) << "the box on the bed does";
   EXPECT_GT(diff.clouds.distance.back(), 1e-7);
   EXPECT_GT(diff.energy.rms_relative, 1e-6);
-  std::printf("perturbed run: box RMS position error %.3g m, final cloud distance %.3g m, energy "
-              "RMS %.3g\n", diff.blocks[1].rms_position, diff.clouds.distance.back(),
-              diff.energy.rms_relative);
+  std::printf(
+      "perturbed run: box RMS position error %.3g m, final cloud distance %.3g m, energy "
+      "RMS %.3g\n",
+      diff.blocks[1].rms_position, diff.clouds.distance.back(), diff.energy.rms_relative);
 
   // The command-line tool writes its table, CSV and plot.
   const fs::path out = fs::temp_directory_path() / "mpm_sdem_test_compare" / "cmp";
-  const std::string cmd = std::string(MPM_SDEM_COMPARE) + " " + a.path + " " + b.path +
-                          " --out " + out.string() + " >/dev/null";
+  const std::string cmd = std::string(MPM_SDEM_COMPARE) + " " + a.path + " " + b.path + " --out " +
+                          out.string() + " >/dev/null";
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   EXPECT_GT(fs::file_size(out.string() + ".csv"), 100u);
   EXPECT_GT(fs::file_size(out.string() + ".png"), 1000u);

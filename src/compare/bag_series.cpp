@@ -39,7 +39,8 @@ RunSeries readRun(const std::string& path) {
     }
   }
   if (run.blocks.empty() && run.clouds.empty())
-    throw std::runtime_error(path + ": no mpm_sdem/BlockStates or sensor_msgs/PointCloud2 "
+    throw std::runtime_error(path +
+                             ": no mpm_sdem/BlockStates or sensor_msgs/PointCloud2 "
                              "messages; is it a bag recorded by mpm_sdem?");
   return run;
 }

@@ -10,14 +10,14 @@
 namespace mpm_sdem::compare {
 
 struct Cloud {
-  double time = 0;  // s
+  double time = 0;        // s
   std::vector<float> xy;  // x0, y0, x1, y1, ... (m)
 };
 
 struct EnergySample {
-  double time = 0;         // s
-  double total = 0;        // J/m
-  double kinetic = 0;      // J/m
+  double time = 0;     // s
+  double total = 0;    // J/m
+  double kinetic = 0;  // J/m
 };
 
 struct RunSeries {

@@ -100,9 +100,8 @@ Comparison compareRuns(const RunSeries& a, const RunSeries& b, double raster) {
         e.time.push_back(t(a.blocks[i]));
         e.position.push_back(std::hypot(pa->pose.position.x - pb->pose.position.x,
                                         pa->pose.position.y - pb->pose.position.y));
-        e.angle.push_back(std::abs(std::remainder(yaw(pa->pose.orientation) -
-                                                      yaw(pb->pose.orientation),
-                                                  2 * M_PI)));
+        e.angle.push_back(std::abs(
+            std::remainder(yaw(pa->pose.orientation) - yaw(pb->pose.orientation), 2 * M_PI)));
       });
       e.rms_position = rms(e.position);
       e.rms_angle = rms(e.angle);

@@ -45,9 +45,8 @@ void printTable(const Comparison& c) {
   std::printf("%-12s %12s %12s %12s %12s %10s %10s\n", "block", "rms pos (m)", "final pos (m)",
               "rms ang (rad)", "final ang", "contact a", "contact b");
   for (const BlockError& b : c.blocks) {
-    std::printf("%-12s %12.4g %12.4g %12.4g %12.4g %10.4g %10.4g\n", b.name.c_str(),
-                b.rms_position, b.final_position, b.rms_angle, b.final_angle, b.first_contact_a,
-                b.first_contact_b);
+    std::printf("%-12s %12.4g %12.4g %12.4g %12.4g %10.4g %10.4g\n", b.name.c_str(), b.rms_position,
+                b.final_position, b.rms_angle, b.final_angle, b.first_contact_a, b.first_contact_b);
   }
   double dmax = 0, dmean = 0, iou_min = 1;
   for (std::size_t k = 0; k < c.clouds.time.size(); ++k) {
@@ -55,9 +54,10 @@ void printTable(const Comparison& c) {
     dmean += c.clouds.distance[k] / c.clouds.time.size();
     iou_min = std::min(iou_min, c.clouds.iou[k]);
   }
-  std::printf("particle clouds: %zu matched, mean nearest-neighbour distance %.4g m (largest "
-              "%.4g m), smallest occupancy IoU %.4f (%g m cells)\n",
-              c.clouds.time.size(), dmean, dmax, iou_min, c.raster);
+  std::printf(
+      "particle clouds: %zu matched, mean nearest-neighbour distance %.4g m (largest "
+      "%.4g m), smallest occupancy IoU %.4f (%g m cells)\n",
+      c.clouds.time.size(), dmean, dmax, iou_min, c.raster);
   std::printf("total energy: %zu matched, RMS difference %.4g and final %.4g of max |E_a|\n",
               c.energy.time.size(), c.energy.rms_relative, c.energy.final_relative);
   std::printf("(first contact: first time a material point touches the block, s; -1: never)\n");

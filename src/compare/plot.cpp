@@ -15,8 +15,8 @@ struct Series {
   std::string label;
 };
 
-const cv::Scalar kPalette[] = {{200, 80, 30}, {30, 120, 230}, {40, 160, 40},
-                               {160, 40, 160}, {30, 30, 200}, {120, 120, 0}};
+const cv::Scalar kPalette[] = {{200, 80, 30},  {30, 120, 230}, {40, 160, 40},
+                               {160, 40, 160}, {30, 30, 200},  {120, 120, 0}};
 
 std::string fmt(double v) {
   char s[32];
@@ -76,8 +76,7 @@ void plotComparison(const Comparison& c, const std::string& label_a, const std::
   cv::Mat img(3 * h, w, CV_8UC3, cv::Scalar(255, 255, 255));
   std::vector<Series> blocks;
   for (std::size_t i = 0; i < c.blocks.size(); ++i) {
-    blocks.push_back({&c.blocks[i].time, &c.blocks[i].position, kPalette[i % 6],
-                      c.blocks[i].name});
+    blocks.push_back({&c.blocks[i].time, &c.blocks[i].position, kPalette[i % 6], c.blocks[i].name});
   }
   panel(img, cv::Rect(0, 0, w, h), "block position error |p_a - p_b| (m)", blocks);
   panel(img, cv::Rect(0, h, w, h), "particle cloud: symmetric mean nearest-neighbour distance (m)",

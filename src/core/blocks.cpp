@@ -101,7 +101,8 @@ Blocks::Blocks(const std::vector<BlockDef>& defs, const BlockContactDef& contact
 void Blocks::checkDef(const BlockDef& d) {
   const std::string problem = coreProblem(d.core);
   if (!problem.empty()) throw std::invalid_argument("block '" + d.name + "': " + problem);
-  if (!(d.rounding > 0)) throw std::invalid_argument("block '" + d.name + "': rounding must be > 0");
+  if (!(d.rounding > 0))
+    throw std::invalid_argument("block '" + d.name + "': rounding must be > 0");
 }
 
 int Blocks::add(const BlockDef& def) {

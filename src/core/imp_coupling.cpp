@@ -108,9 +108,9 @@ void ImpCoupling::rebuild(const Particles& P, const Blocks& B) {
 
 void ImpCoupling::removeBlock(int b) {
   for (std::vector<Contact>* list : {&candidates_, &previous_}) {
-    list->erase(std::remove_if(list->begin(), list->end(),
-                               [b](const Contact& c) { return c.block == b; }),
-                list->end());
+    list->erase(
+        std::remove_if(list->begin(), list->end(), [b](const Contact& c) { return c.block == b; }),
+        list->end());
     for (Contact& c : *list)
       if (c.block > b) --c.block;
   }

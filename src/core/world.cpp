@@ -132,22 +132,20 @@ std::string World::placementProblem(const BlockDef& d, bool allow_overlap, int m
     const Vec2 lo = v.array() - d.rounding, hi = v.array() + d.rounding;
     if ((lo.array() < def_.domain.min.array()).any() ||
         (hi.array() > def_.domain.max.array()).any())
-      return "the block reaches outside the domain [" + std::to_string(def_.domain.min.x()) +
-             ", " + std::to_string(def_.domain.max.x()) + "] x [" +
-             std::to_string(def_.domain.min.y()) + ", " + std::to_string(def_.domain.max.y()) +
-             "] m";
+      return "the block reaches outside the domain [" + std::to_string(def_.domain.min.x()) + ", " +
+             std::to_string(def_.domain.max.x()) + "] x [" + std::to_string(def_.domain.min.y()) +
+             ", " + std::to_string(def_.domain.max.y()) + "] m";
   }
   if (allow_overlap) return "";
   if (blocks_) {
     for (int i = 0; i < blocks_->count(); ++i) {
       if (i == moving) continue;
       const Real r = blocks_->def(i).rounding;
-      const Real gap = roundedGap(core.data(), n, d.rounding, blocks_->vertices(i),
-                                  blocks_->vertexCount(i), r);
+      const Real gap =
+          roundedGap(core.data(), n, d.rounding, blocks_->vertices(i), blocks_->vertexCount(i), r);
       // Touching is fine; the same 1% tolerance as the scene files.
       if (gap < -0.01 * std::min(r, d.rounding))
-        return "it overlaps block '" + blocks_->def(i).name + "' by " + std::to_string(-gap) +
-               " m";
+        return "it overlaps block '" + blocks_->def(i).name + "' by " + std::to_string(-gap) + " m";
     }
   }
   const Particles& P = particles_;
@@ -160,10 +158,9 @@ std::string World::placementProblem(const BlockDef& d, bool allow_overlap, int m
 
 int World::addBlock(const BlockDef& d) {
   if (!blocks_) {
-    blocks_ = std::make_unique<Blocks>(std::vector<BlockDef>{}, def_.block_contact,
-                                       def_.solver.gravity, std::sqrt(spheropolygonMass(
-                                                                d.core, d.rounding, 1)
-                                                                .area));
+    blocks_ =
+        std::make_unique<Blocks>(std::vector<BlockDef>{}, def_.block_contact, def_.solver.gravity,
+                                 std::sqrt(spheropolygonMass(d.core, d.rounding, 1).area));
     initCoupling();
   }
   const int i = blocks_->add(d);

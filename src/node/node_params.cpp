@@ -29,7 +29,8 @@ bool readRate(const ros::NodeHandle& pnh, const std::string& key, double& value,
 
 std::string defaultBagPath(const std::string& scene) {
   const char* home = std::getenv("ROS_HOME");
-  std::filesystem::path dir = home ? home : std::string(std::getenv("HOME") ? std::getenv("HOME") : ".") + "/.ros";
+  std::filesystem::path dir =
+      home ? home : std::string(std::getenv("HOME") ? std::getenv("HOME") : ".") + "/.ros";
   char stamp[32];
   const std::time_t now = std::time(nullptr);
   std::strftime(stamp, sizeof(stamp), "%Y-%m-%d-%H-%M-%S", std::localtime(&now));
@@ -41,8 +42,9 @@ std::string defaultBagPath(const std::string& scene) {
 
 bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
   if (!pnh.getParam("scene", p.scene) || p.scene.empty()) {
-    error = "parameter ~scene (the scene file path) is required, e.g. _scene:=$(rospack find "
-            "mpm_sdem)/config/scenes/debris_impact.yaml";
+    error =
+        "parameter ~scene (the scene file path) is required, e.g. _scene:=$(rospack find "
+        "mpm_sdem)/config/scenes/debris_impact.yaml";
     return false;
   }
   std::string end = "pause", color = "speed";

@@ -13,7 +13,8 @@ namespace {
 
 Profile since(const Profile& now, const Profile& then) {
   Profile d;
-  for (int k = 0; k < static_cast<int>(Stage::kCount); ++k) d.seconds[k] = now.seconds[k] - then.seconds[k];
+  for (int k = 0; k < static_cast<int>(Stage::kCount); ++k)
+    d.seconds[k] = now.seconds[k] - then.seconds[k];
   d.steps = now.steps - then.steps;
   return d;
 }
@@ -38,8 +39,7 @@ Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
   markers_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   scene_ = pnh.advertise<std_msgs::String>("scene", 1, true);
   nh.param("/use_sim_time", use_sim_time_, false);
-  if (use_sim_time_)
-    clock_ = {nh.advertise<rosgraph_msgs::Clock>("/clock", 10), params.clock_rate};
+  if (use_sim_time_) clock_ = {nh.advertise<rosgraph_msgs::Clock>("/clock", 10), params.clock_rate};
   std_msgs::String text;
   text.data = scene_text;
   scene_.publish(text);

@@ -69,8 +69,10 @@ bool Services::spawn(mpm_sdem::SpawnObstacle::Request& req,
     return answer(res, {false, "body_type must be 0 (STATIC), 1 (KINEMATIC) or 2 (DYNAMIC), got " +
                                    std::to_string(req.body_type)});
   if (req.name.empty() || req.name.find_first_of(" /") != std::string::npos)
-    return answer(res, {false, "name must be non-empty, without spaces or '/' (it names a tf "
-                               "frame), got '" + req.name + "'"});
+    return answer(res, {false,
+                        "name must be non-empty, without spaces or '/' (it names a tf "
+                        "frame), got '" +
+                            req.name + "'"});
   if (!finitePose(req.pose) || !finiteTwist(req.twist) || !finite(req.rounding) ||
       !finite(req.disk_radius) || !finite(req.density) || !finite(req.friction) ||
       !finite(req.restitution))
@@ -175,8 +177,8 @@ void Services::obstacleCommand(const mpm_sdem::ObstacleCommand::ConstPtr& msg) {
   const geometry_msgs::Twist twist = msg->twist;
   queue_.post([name, twist](Simulation& s) -> Reply {
     const int i = findBlock(s.world(), name);
-    const Reply r = i < 0 ? Reply{false, "no block named '" + name + "'"}
-                          : applyTwist(s.world(), i, twist);
+    const Reply r =
+        i < 0 ? Reply{false, "no block named '" + name + "'"} : applyTwist(s.world(), i, twist);
     if (!r.success) ROS_WARN_THROTTLE(1, "~obstacle_cmd ignored: %s", r.message.c_str());
     return r;
   });

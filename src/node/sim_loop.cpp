@@ -102,9 +102,10 @@ bool Simulation::advance() {
   if (!info.finite) {
     unstable_ = true;
     paused_ = true;
-    ROS_ERROR("the state became non-finite at step %ld, t = %.6g s (dt = %.3g s, %s); paused. "
-              "Call ~reset, and lower time.cfl or time.dt in the scene.",
-              world_->stepCount(), world_->time(), h, stepLimitName(dt_.limit));
+    ROS_ERROR(
+        "the state became non-finite at step %ld, t = %.6g s (dt = %.3g s, %s); paused. "
+        "Call ~reset, and lower time.cfl or time.dt in the scene.",
+        world_->stepCount(), world_->time(), h, stepLimitName(dt_.limit));
     return false;
   }
   conversions::StatsInput in;
@@ -192,7 +193,8 @@ Reply Simulation::step(long n) {
   if (!paused_) return {false, "~step works while paused; call ~pause first"};
   if (unstable_) return {false, "the state is non-finite; call ~reset first"};
   for (long k = 0; k < n; ++k) {
-    if (!advance()) return {false, "the state became non-finite after " + std::to_string(k + 1) + " steps"};
+    if (!advance())
+      return {false, "the state became non-finite after " + std::to_string(k + 1) + " steps"};
   }
   publishers_.publish(*world_, dt_, paused_, true);
   return {true, "took " + std::to_string(n) + " steps"};

@@ -59,7 +59,8 @@ void renderWorld(const World& world, const RenderDef& def, cv::Mat& image) {
   // A point covers its share of a cell: h / sqrt(points per cell), at least one pixel.
   int ppc = 1;
   for (const BodyDef& b : world.def().bodies) ppc = std::max(ppc, b.points_per_cell);
-  const int radius = std::max(1, static_cast<int>(0.5 * world.def().cell_size / ppc * px));
+  const int radius =
+      std::max(1, static_cast<int>(std::lround(0.5 * world.def().cell_size / ppc * px)));
   for (std::size_t p = 0; p < n; ++p) {
     const cv::Vec3b c = colours.at<cv::Vec3b>(0, static_cast<int>(p));
     cv::circle(image, toPixel(Vec2(P.x[p], P.y[p])), radius, cv::Scalar(c[0], c[1], c[2]),
@@ -70,7 +71,7 @@ void renderWorld(const World& world, const RenderDef& def, cv::Mat& image) {
       // The rounded block is its core swept by the disk: core polygon, thick edges, round ends.
       const int r = std::max(1, static_cast<int>(B->def(i).rounding * px));
       const cv::Scalar colour = B->def(i).type == BodyType::kDynamic ? cv::Scalar(90, 170, 230)
-                                                                      : cv::Scalar(170, 170, 170);
+                                                                     : cv::Scalar(170, 170, 170);
       std::vector<cv::Point> pts;
       for (int k = 0; k < B->vertexCount(i); ++k) pts.push_back(toPixel(B->vertices(i)[k]));
       if (pts.size() >= 3) cv::fillConvexPoly(image, pts, colour, cv::LINE_AA);
@@ -92,7 +93,8 @@ void renderWorld(const World& world, const RenderDef& def, cv::Mat& image) {
 VideoRecorder::VideoRecorder(const std::string& path, double fps, const RenderDef& def,
                              const World& world)
     : def_(def), path_(path), fps_(fps) {
-  if (!(fps > 0)) throw std::runtime_error("video frame rate must be > 0, got " + std::to_string(fps));
+  if (!(fps > 0))
+    throw std::runtime_error("video frame rate must be > 0, got " + std::to_string(fps));
   if (!writer_.open(path, fourccFor(path), fps, imageSize(world, def.width))) {
     throw std::runtime_error("OpenCV cannot write the video " + path +
                              " (use a .avi, .mp4 or .mkv name in a writable directory)");

@@ -32,14 +32,12 @@ void toPointCloud(const World& world, int decimation, const std_msgs::Header& he
   const std::size_t n = (P.size() + step - 1) / step;
   cloud.header = header;
   sensor_msgs::PointCloud2Modifier mod(cloud);
-  mod.setPointCloud2Fields(8, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1,
-                           sensor_msgs::PointField::FLOAT32, "z", 1,
-                           sensor_msgs::PointField::FLOAT32, "vx", 1,
-                           sensor_msgs::PointField::FLOAT32, "vy", 1,
-                           sensor_msgs::PointField::FLOAT32, "pressure", 1,
-                           sensor_msgs::PointField::FLOAT32, "von_mises", 1,
-                           sensor_msgs::PointField::FLOAT32, "material", 1,
-                           sensor_msgs::PointField::UINT16);
+  mod.setPointCloud2Fields(
+      8, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32, "z", 1,
+      sensor_msgs::PointField::FLOAT32, "vx", 1, sensor_msgs::PointField::FLOAT32, "vy", 1,
+      sensor_msgs::PointField::FLOAT32, "pressure", 1, sensor_msgs::PointField::FLOAT32,
+      "von_mises", 1, sensor_msgs::PointField::FLOAT32, "material", 1,
+      sensor_msgs::PointField::UINT16);
   mod.resize(n);  // height 1, width n, dense
   sensor_msgs::PointCloud2Iterator<float> x(cloud, "x"), vx(cloud, "vx"), p(cloud, "pressure");
   sensor_msgs::PointCloud2Iterator<std::uint16_t> mat(cloud, "material");
@@ -219,7 +217,8 @@ mpm_sdem::SimStats toStats(const World& world, const Diagnostics& d, const Stats
   s.real_time_factor = in.real_time_factor;
   s.particles = static_cast<std::uint32_t>(world.particles().size());
   s.blocks = world.blocks() ? static_cast<std::uint32_t>(world.blocks()->count()) : 0;
-  s.imp_contacts = world.blocks() ? static_cast<std::uint32_t>(world.coupling().activeContacts()) : 0;
+  s.imp_contacts =
+      world.blocks() ? static_cast<std::uint32_t>(world.coupling().activeContacts()) : 0;
   s.paused = in.paused;
   s.kinetic_energy = d.kinetic;
   s.elastic_energy = d.elastic;
@@ -258,8 +257,8 @@ BlockDef toBlockDef(const mpm_sdem::SpawnObstacle::Request& req) {
   }
   const Real c = std::cos(d.angle), s = std::sin(d.angle);
   const Vec2 r(c * centroid.x() - s * centroid.y(), s * centroid.x() + c * centroid.y());
-  d.velocity = Vec2(req.twist.linear.x, req.twist.linear.y) +
-               d.angular_velocity * Vec2(-r.y(), r.x());
+  d.velocity =
+      Vec2(req.twist.linear.x, req.twist.linear.y) + d.angular_velocity * Vec2(-r.y(), r.x());
   d.density = req.density;
   d.friction = req.friction;
   d.restitution = req.restitution;

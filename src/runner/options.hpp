@@ -12,7 +12,7 @@ struct Options {
   std::vector<std::string> overrides;
   int threads = 0;  // 0: OpenMP default (OMP_NUM_THREADS or all cores)
   bool quiet = false;
-  std::string bag;         // write a rosbag like the node's (empty: none)
+  std::string bag;              // write a rosbag like the node's (empty: none)
   double bag_cloud_rate = 30;   // Hz of simulation time
   double bag_state_rate = 100;  // Hz
 };

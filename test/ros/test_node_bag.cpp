@@ -2,9 +2,9 @@
 // bags left by SIGINT and SIGKILL.
 #include <gtest/gtest.h>
 #include <mpm_sdem/BlockStates.h>
+#include <ros/ros.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
-#include <ros/ros.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -70,7 +70,7 @@ TEST(Bag, NodeBagHasTheTopicsAndMatchesTheHeadlessRunner) {
   // 0.3 s at the default rates: clouds at 30 Hz (0 to 0.3 s: 10), states at 100 Hz (31).
   const auto counts = topicCounts(node_bag);
   const std::map<std::string, long> expected = {
-      {"/mpm_sdem/scene", 1},  {"/mpm_sdem/particles", 10}, {"/mpm_sdem/blocks", 31},
+      {"/mpm_sdem/scene", 1},        {"/mpm_sdem/particles", 10}, {"/mpm_sdem/blocks", 31},
       {"/mpm_sdem/block_poses", 31}, {"/mpm_sdem/stats", 31},     {"/tf", 31}};
   EXPECT_EQ(counts, expected);
   EXPECT_EQ(topicCounts(runner_bag), expected);

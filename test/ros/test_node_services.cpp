@@ -89,8 +89,8 @@ TEST(Node, PublishesCloudBlocksAndTf) {
   RigidBlockState box;
   ASSERT_TRUE(n.block("box", box));
   EXPECT_EQ(box.body_type, RigidBlockState::DYNAMIC);
-  ASSERT_TRUE(waitFor([&] { return n.tf.canTransform("world", "mpm_sdem/box", ros::Time(0)); },
-                      10));
+  ASSERT_TRUE(
+      waitFor([&] { return n.tf.canTransform("world", "mpm_sdem/box", ros::Time(0)); }, 10));
   // The box rests on the bed: the material carries its weight (0.04 m square at 500 kg/m^3,
   // rounding included: 0.8 kg/m, 7.85 N/m), which only IMP contacts can supply.
   ASSERT_TRUE(n.block("box", box));
@@ -105,8 +105,8 @@ TEST(Node, SpawnedBlockAppearsFallsOntoTheMaterialAndIsRemoved) {
   ASSERT_TRUE(s.response.success) << s.response.message;
   RigidBlockState b;
   ASSERT_TRUE(waitFor([&] { return n.block("dropper", b); }, 5));
-  ASSERT_TRUE(waitFor(
-      [&] { return n.tf.canTransform("world", "mpm_sdem/dropper", ros::Time(0)); }, 5));
+  ASSERT_TRUE(
+      waitFor([&] { return n.tf.canTransform("world", "mpm_sdem/dropper", ros::Time(0)); }, 5));
   // It falls about 6 cm onto the bed and the material pushes back.
   ASSERT_TRUE(waitFor([&] { return n.block("dropper", b) && b.contact_count > 0; }, 20))
       << "the spawned block never touched the material";
@@ -135,13 +135,15 @@ TEST(Node, KinematicBlockMovesWithTheCommandedTwist) {
   RigidBlockState b1, b2;
   ASSERT_TRUE(waitFor([&] { return n.block("blade", b1) && b1.twist.linear.x > 0.04; }, 5));
   double t1 = n.blocks.get().header.stamp.toSec(), t2 = t1;
-  ASSERT_TRUE(waitFor([&] {
-    const BlockStates s = n.blocks.get();
-    t2 = s.header.stamp.toSec();
-    const RigidBlockState* b = findBlock(s, "blade");
-    if (b) b2 = *b;
-    return t2 > t1 + 0.3;
-  }, 10));
+  ASSERT_TRUE(waitFor(
+      [&] {
+        const BlockStates s = n.blocks.get();
+        t2 = s.header.stamp.toSec();
+        const RigidBlockState* b = findBlock(s, "blade");
+        if (b) b2 = *b;
+        return t2 > t1 + 0.3;
+      },
+      10));
   EXPECT_NEAR(b2.twist.linear.x, 0.05, 1e-6);
   EXPECT_NEAR(b2.pose.position.y, 0.15, 1e-6);
   EXPECT_GT(b2.pose.position.x, 0.2 + 0.05 * 0.3 - 1e-3);

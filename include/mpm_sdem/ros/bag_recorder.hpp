@@ -17,12 +17,12 @@ class Bag;
 namespace mpm_sdem {
 
 struct RecordDef {
-  Real cloud_rate = 30;       // Hz of simulation time: ~particles
-  Real state_rate = 100;      // Hz: ~blocks, ~block_poses, /tf, ~stats
-  int cloud_decimation = 1;   // every n-th material point
+  Real cloud_rate = 30;          // Hz of simulation time: ~particles
+  Real state_rate = 100;         // Hz: ~blocks, ~block_poses, /tf, ~stats
+  int cloud_decimation = 1;      // every n-th material point
   std::string ns = "/mpm_sdem";  // topic namespace (the node's name when the node records)
   std::string fixed_frame = "world";
-  std::string tf_prefix;      // block frames are <tf_prefix>/<name>
+  std::string tf_prefix;  // block frames are <tf_prefix>/<name>
 };
 
 class BagRecorder {
