@@ -203,6 +203,7 @@ Reply Simulation::step(long n) {
 void Simulation::blocksChanged() {
   dt_ = world_->chooseTimeStep();
   publishers_.blocksChanged(*world_);
+  if (bag_) bag_->blocksChanged(*world_);
   publishers_.publish(*world_, dt_, paused_, true);
 }
 

@@ -36,7 +36,7 @@ BagRecorder::BagRecorder(const std::string& path, const RecordDef& def,
   }
   std_msgs::String scene;
   scene.data = scene_text;
-  write(def_.ns + "/scene", 0, scene);
+  write(def_.ns + "/scene", 0, scene, true);
 }
 
 BagRecorder::~BagRecorder() {
@@ -44,13 +44,36 @@ BagRecorder::~BagRecorder() {
 }
 
 template <class M>
-void BagRecorder::write(const std::string& topic, Real t, const M& msg) {
-  bag_->write(topic, bagTime(t), msg);
+void BagRecorder::write(const std::string& topic, Real t, const M& msg, bool latched) {
+  if (latched) {
+    // A connection header given to rosbag replaces the one it would build: it needs the type,
+    // checksum and definition as well, or `rosbag info` calls the bag unindexed.
+    namespace mt = ros::message_traits;
+    auto header = boost::make_shared<ros::M_string>();
+    (*header)["type"] = mt::DataType<M>::value();
+    (*header)["md5sum"] = mt::MD5Sum<M>::value();
+    (*header)["message_definition"] = mt::Definition<M>::value();
+    (*header)["latching"] = "1";
+    (*header)["callerid"] = def_.ns;
+    bag_->write(topic, bagTime(t), msg, header);
+  } else {
+    bag_->write(topic, bagTime(t), msg);
+  }
   ++messages_;
+}
+
+void BagRecorder::blocksChanged(const World& world) {
+  if (!bag_->isOpen()) return;
+  write(def_.ns + "/markers", world.time(),
+        conversions::toMarkers(world, def_.tf_prefix, ros::Time(0)), true);
 }
 
 void BagRecorder::record(const World& world, const conversions::StatsInput& stats) {
   if (!bag_->isOpen()) return;
+  if (!started_) {
+    started_ = true;
+    blocksChanged(world);
+  }
   const Real t = world.time();
   std_msgs::Header header;
   header.stamp = conversions::toRosTime(t);

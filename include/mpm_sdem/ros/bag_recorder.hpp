@@ -28,16 +28,19 @@ struct RecordDef {
 class BagRecorder {
  public:
   // Throws std::runtime_error with the reason when the file cannot be opened. scene_text is the
-  // scene file's text, written once on <ns>/scene (std_msgs/String).
+  // scene file's text, written once on <ns>/scene (std_msgs/String, latched).
   BagRecorder(const std::string& path, const RecordDef& def, const std::string& scene_text);
   ~BagRecorder();
   BagRecorder(const BagRecorder&) = delete;
   BagRecorder& operator=(const BagRecorder&) = delete;
 
   // Writes what is due at the world's current time: a cloud every 1/cloud_rate s and the states
-  // every 1/state_rate s of simulation time (both at the first call). stats supplies what the
-  // world does not know (time step, real-time factor, stage times).
+  // every 1/state_rate s of simulation time (both at the first call, with the markers). stats
+  // supplies what the world does not know (time step, real-time factor, stage times).
   void record(const World& world, const conversions::StatsInput& stats);
+  // The block outlines for rviz (<ns>/markers, latched on playback): written at the first
+  // record() and again after blocks are added or removed.
+  void blocksChanged(const World& world);
   // Closes the bag and renames it to its final name; idempotent.
   void close();
 
@@ -45,14 +48,16 @@ class BagRecorder {
   long messageCount() const { return messages_; }
 
  private:
+  // latched: marks the connection so that `rosbag play` latches it, as the node does live.
   template <class M>
-  void write(const std::string& topic, Real t, const M& msg);
+  void write(const std::string& topic, Real t, const M& msg, bool latched = false);
 
   std::unique_ptr<rosbag::Bag> bag_;
   RecordDef def_;
   std::string path_;
   Real next_cloud_ = 0, next_state_ = 0;
   long messages_ = 0;
+  bool started_ = false;
   sensor_msgs::PointCloud2 cloud_;  // reused: no allocation per cloud
 };
 
