@@ -22,7 +22,7 @@ struct RecordDef {
   int cloud_decimation = 1;      // every n-th material point
   std::string ns = "/mpm_sdem";  // topic namespace (the node's name when the node records)
   std::string fixed_frame = "world";
-  std::string tf_prefix;  // block frames are <tf_prefix>/<name>
+  std::string tf_prefix = "mpm_sdem";  // block frames: <tf_prefix>/<name>, as the node's
 };
 
 class BagRecorder {
