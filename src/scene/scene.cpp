@@ -438,13 +438,10 @@ void readSprings(const MapReader& r, Real& normal, Real& tangential) {
 }
 
 void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
-  if (!top.has("blocks")) {
-    for (const char* k : {"block_contact", "coupling"}) {
-      top.require(!top.has(k), k, "applies only to a scene with blocks");
-    }
-    return;
-  }
-  const YAML::Node list = top.node("blocks");
+  // block_contact and coupling apply to obstacles spawned at run time too, so a scene without
+  // blocks may set them.
+  const YAML::Node list =
+      top.has("blocks") ? top.node("blocks") : YAML::Node(YAML::NodeType::Sequence);
   if (!list.IsSequence()) ctx.fail(list, "blocks", "expected a list of blocks");
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string path = "blocks[" + std::to_string(i) + "]";
