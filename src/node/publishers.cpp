@@ -22,24 +22,25 @@ Profile since(const Profile& now, const Profile& then) {
 }  // namespace
 
 bool Publishers::Channel::due(Real t, bool force, bool always) {
-  if (!(rate > 0) || (!always && pub.getNumSubscribers() == 0)) return false;
-  if (!force && t < next - 1e-6 / rate) return false;
-  next = (std::floor(t * rate + 1e-6) + 1) / rate;
-  return true;
+  if (!always && pub.getNumSubscribers() == 0) return false;
+  return clock.due(t, force);
 }
 
 Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParams& params,
                        const std::string& scene_text)
     : params_(params) {
-  particles_ = {pnh.advertise<sensor_msgs::PointCloud2>("particles", 2), params.particles_rate};
-  blocks_ = {pnh.advertise<mpm_sdem::BlockStates>("blocks", 10), params.blocks_rate};
-  poses_ = {pnh.advertise<geometry_msgs::PoseArray>("block_poses", 10), params.blocks_rate};
-  stats_ = {pnh.advertise<mpm_sdem::SimStats>("stats", 10), params.stats_rate};
-  image_ = {pnh.advertise<sensor_msgs::Image>("image", 1), params.image_rate};
+  particles_ = {pnh.advertise<sensor_msgs::PointCloud2>("particles", 2),
+                SampleClock(params.particles_rate)};
+  blocks_ = {pnh.advertise<mpm_sdem::BlockStates>("blocks", 10), SampleClock(params.blocks_rate)};
+  poses_ = {pnh.advertise<geometry_msgs::PoseArray>("block_poses", 10),
+            SampleClock(params.blocks_rate)};
+  stats_ = {pnh.advertise<mpm_sdem::SimStats>("stats", 10), SampleClock(params.stats_rate)};
+  image_ = {pnh.advertise<sensor_msgs::Image>("image", 1), SampleClock(params.image_rate)};
   markers_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   scene_ = pnh.advertise<std_msgs::String>("scene", 1, true);
   nh.param("/use_sim_time", use_sim_time_, false);
-  if (use_sim_time_) clock_ = {nh.advertise<rosgraph_msgs::Clock>("/clock", 10), params.clock_rate};
+  if (use_sim_time_)
+    clock_ = {nh.advertise<rosgraph_msgs::Clock>("/clock", 10), SampleClock(params.clock_rate)};
   std_msgs::String text;
   text.data = scene_text;
   scene_.publish(text);
@@ -47,7 +48,7 @@ Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
 }
 
 void Publishers::restart(const World& world) {
-  for (Channel* c : {&particles_, &blocks_, &poses_, &stats_, &image_, &clock_}) c->next = 0;
+  for (Channel* c : {&particles_, &blocks_, &poses_, &stats_, &image_, &clock_}) c->clock.restart();
   stats_sim_time_ = world.time();
   stats_wall_ = std::chrono::steady_clock::now();
   stats_profile_ = world.profile();

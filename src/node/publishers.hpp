@@ -29,8 +29,7 @@ class Publishers {
  private:
   struct Channel {
     ros::Publisher pub;
-    double rate = 0;  // Hz of simulation time, 0: off
-    Real next = 0;    // s, next due time
+    SampleClock clock;
     // Due at t (and advances the schedule); listeners required unless always.
     bool due(Real t, bool force, bool always = false);
   };

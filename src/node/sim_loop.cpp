@@ -21,8 +21,7 @@ std::string withSuffix(const std::string& path, int n) {
 
 Simulation::Simulation(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParams& params,
                        Scene scene, std::string scene_text)
-    : nh_(nh),
-      params_(params),
+    : params_(params),
       scene_(std::move(scene)),
       scene_text_(std::move(scene_text)),
       world_(std::make_unique<World>(scene_.world)),

@@ -50,7 +50,6 @@ class Simulation {
   void pace();
   void logProgress(bool force);
 
-  ros::NodeHandle& nh_;
   NodeParams params_;
   Scene scene_;
   std::string scene_text_;

@@ -92,7 +92,7 @@ void renderWorld(const World& world, const RenderDef& def, cv::Mat& image) {
 
 VideoRecorder::VideoRecorder(const std::string& path, double fps, const RenderDef& def,
                              const World& world)
-    : def_(def), path_(path), fps_(fps) {
+    : def_(def), path_(path), frames_due_(fps) {
   if (!(fps > 0))
     throw std::runtime_error("video frame rate must be > 0, got " + std::to_string(fps));
   if (!writer_.open(path, fourccFor(path), fps, imageSize(world, def.width))) {
@@ -102,11 +102,10 @@ VideoRecorder::VideoRecorder(const std::string& path, double fps, const RenderDe
 }
 
 void VideoRecorder::record(const World& world) {
-  if (!writer_.isOpened() || world.time() < next_ - 1e-6 / fps_) return;
+  if (!writer_.isOpened() || !frames_due_.due(world.time())) return;
   renderWorld(world, def_, frame_);
   writer_.write(frame_);
   ++frames_;
-  next_ = (std::floor(world.time() * fps_ + 1e-6) + 1) / fps_;
 }
 
 void VideoRecorder::close() {

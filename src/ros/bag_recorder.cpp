@@ -18,17 +18,15 @@ ros::Time bagTime(Real t) {
   return std::max(conversions::toRosTime(t), ros::TIME_MIN);
 }
 
-// The next sample time after t on a grid of period 1 / rate (rate 0: never).
-Real nextSample(Real t, Real rate) {
-  if (!(rate > 0)) return std::numeric_limits<Real>::infinity();
-  return (std::floor(t * rate + 1e-6) + 1) / rate;
-}
-
 }  // namespace
 
 BagRecorder::BagRecorder(const std::string& path, const RecordDef& def,
                          const std::string& scene_text)
-    : bag_(std::make_unique<rosbag::Bag>()), def_(def), path_(path) {
+    : bag_(std::make_unique<rosbag::Bag>()),
+      def_(def),
+      path_(path),
+      clouds_(def.cloud_rate),
+      states_(def.state_rate) {
   try {
     bag_->open(path_ + ".active", rosbag::bagmode::Write);
   } catch (const rosbag::BagException& e) {
@@ -78,14 +76,11 @@ void BagRecorder::record(const World& world, const conversions::StatsInput& stat
   std_msgs::Header header;
   header.stamp = conversions::toRosTime(t);
   header.frame_id = def_.fixed_frame;
-  // The same 1e-6-of-a-period tolerance as nextSample: a step landing a hair before a sample
-  // time counts as on it.
-  if (t * def_.cloud_rate >= next_cloud_ * def_.cloud_rate - 1e-6) {
+  if (clouds_.due(t)) {
     conversions::toPointCloud(world, def_.cloud_decimation, header, cloud_);
     write(def_.ns + "/particles", t, cloud_);
-    next_cloud_ = nextSample(t, def_.cloud_rate);
   }
-  if (t * def_.state_rate >= next_state_ * def_.state_rate - 1e-6) {
+  if (states_.due(t)) {
     const mpm_sdem::BlockStates blocks = conversions::toBlockStates(world, header);
     write(def_.ns + "/blocks", t, blocks);
     write(def_.ns + "/block_poses", t, conversions::toPoseArray(blocks));
@@ -93,7 +88,6 @@ void BagRecorder::record(const World& world, const conversions::StatsInput& stat
     tf.transforms = conversions::toTransforms(blocks, def_.tf_prefix);
     if (!tf.transforms.empty()) write("/tf", t, tf);
     write(def_.ns + "/stats", t, conversions::toStats(world, measure(world), stats, header));
-    next_state_ = nextSample(t, def_.state_rate);
   }
 }
 

@@ -6,6 +6,7 @@
 #include <opencv2/videoio.hpp>
 #include <string>
 
+#include "mpm_sdem/core/sample_clock.hpp"
 #include "mpm_sdem/core/world.hpp"
 
 namespace mpm_sdem::render {
@@ -37,8 +38,7 @@ class VideoRecorder {
   cv::VideoWriter writer_;
   RenderDef def_;
   std::string path_;
-  double fps_;
-  Real next_ = 0;
+  SampleClock frames_due_;
   int frames_ = 0;
   cv::Mat frame_;
 };

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "mpm_sdem/core/sample_clock.hpp"
 #include "mpm_sdem/core/world.hpp"
 #include "mpm_sdem/ros/conversions.hpp"
 
@@ -55,7 +56,7 @@ class BagRecorder {
   std::unique_ptr<rosbag::Bag> bag_;
   RecordDef def_;
   std::string path_;
-  Real next_cloud_ = 0, next_state_ = 0;
+  SampleClock clouds_, states_;
   long messages_ = 0;
   bool started_ = false;
   sensor_msgs::PointCloud2 cloud_;  // reused: no allocation per cloud

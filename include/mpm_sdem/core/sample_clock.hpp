@@ -1,0 +1,31 @@
+// A schedule of samples every 1/rate s of simulation time, for outputs taken after steps of
+// varying length: due at the first step that reaches a multiple of the period (within 1e-6 of
+// a period), so every writer of the same run samples at the same steps.
+#pragma once
+
+#include <cmath>
+
+#include "mpm_sdem/core/types.hpp"
+
+namespace mpm_sdem {
+
+class SampleClock {
+ public:
+  explicit SampleClock(Real rate = 0) : rate_(rate) {}
+  // True when a sample is due at time t (always at the first call); advances the schedule.
+  // force: take a sample now whatever the schedule says. A rate of 0 is never due.
+  bool due(Real t, bool force = false) {
+    if (!(rate_ > 0)) return false;
+    if (!force && t * rate_ < next_ * rate_ - 1e-6) return false;
+    next_ = (std::floor(t * rate_ + 1e-6) + 1) / rate_;
+    return true;
+  }
+  void restart() { next_ = 0; }
+  Real rate() const { return rate_; }
+
+ private:
+  Real rate_ = 0;  // Hz of simulation time
+  Real next_ = 0;  // s
+};
+
+}  // namespace mpm_sdem
