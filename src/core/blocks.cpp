@@ -78,7 +78,7 @@ struct Blocks::Box2D {
 
 Blocks::Blocks(const std::vector<BlockDef>& defs, const BlockContactDef& contact,
                const Vec2& gravity, Real length_hint)
-    : contact_(contact), gravity_(gravity) {
+    : contact_(contact) {
   // Length scale: the median block size (square root of its area) becomes one Box2D unit; with
   // no block yet, the caller's typical length does.
   std::vector<Real> sizes;
@@ -94,7 +94,7 @@ Blocks::Blocks(const std::vector<BlockDef>& defs, const BlockContactDef& contact
   } else if (length_hint > 0) {
     scale_ = 1 / length_hint;
   }
-  b2_ = std::make_unique<Box2D>(toB2(gravity_, scale_));
+  b2_ = std::make_unique<Box2D>(toB2(gravity, scale_));
   for (const BlockDef& d : defs) add(d);
 }
 

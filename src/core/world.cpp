@@ -121,8 +121,6 @@ std::string World::placementProblem(const BlockDef& d, bool allow_overlap, int m
   if (!(d.friction >= 0 && finite(d.friction))) return "friction must be a finite number >= 0";
   if (!(d.restitution > 0 && d.restitution <= 1))
     return "restitution must be in (0, 1] (1: elastic)";
-  if (d.core.size() > static_cast<std::size_t>(kMaxBlockVertices))
-    return "at most " + std::to_string(kMaxBlockVertices) + " core vertices";
   if (moving < 0 && blocks_ && blocks_->find(d.name) >= 0)
     return "a block named '" + d.name + "' exists";
   if (d.name.empty()) return "the block needs a name";

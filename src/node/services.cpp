@@ -79,10 +79,6 @@ bool Services::spawn(mpm_sdem::SpawnObstacle::Request& req,
     return answer(res, {false, "every number must be finite (no NaN or infinity)"});
   if (req.vertices.empty() && !(req.disk_radius >= 0))
     return answer(res, {false, "disk_radius must be >= 0 m"});
-  if (req.vertices.size() > static_cast<std::size_t>(kMaxBlockVertices))
-    return answer(res, {false, "at most " + std::to_string(kMaxBlockVertices) +
-                                   " core vertices (Box2D's limit), got " +
-                                   std::to_string(req.vertices.size())});
   const BlockDef def = conversions::toBlockDef(req);
   const std::string shape = coreProblem(def.core);
   if (!shape.empty()) return answer(res, {false, "vertices: " + shape});

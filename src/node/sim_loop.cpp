@@ -107,12 +107,14 @@ bool Simulation::advance() {
         world_->stepCount(), world_->time(), h, stepLimitName(dt_.limit));
     return false;
   }
-  conversions::StatsInput in;
-  in.dt = dt_;
-  const double wall = std::chrono::duration<double>(Clock::now() - start_wall_).count();
-  in.real_time_factor = wall > 0 ? world_->time() / wall : 0;
-  in.profile = world_->profile();
-  if (bag_) bag_->record(*world_, in);
+  if (bag_) {
+    conversions::StatsInput in;
+    in.dt = dt_;
+    const double wall = std::chrono::duration<double>(Clock::now() - start_wall_).count();
+    in.real_time_factor = wall > 0 ? world_->time() / wall : 0;
+    in.profile = world_->profile();
+    bag_->record(*world_, in);
+  }
   if (video_) video_->record(*world_);
   publishers_.publish(*world_, dt_, paused_);
   if (to_end && world_->time() >= scene_.end_time * (1 - 1e-9)) {

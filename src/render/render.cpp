@@ -68,18 +68,13 @@ void renderWorld(const World& world, const RenderDef& def, cv::Mat& image) {
   }
   if (const Blocks* B = world.blocks()) {
     for (int i = 0; i < B->count(); ++i) {
-      // The rounded block is its core swept by the disk: core polygon, thick edges, round ends.
-      const int r = std::max(1, static_cast<int>(B->def(i).rounding * px));
       const cv::Scalar colour = B->def(i).type == BodyType::kDynamic ? cv::Scalar(90, 170, 230)
                                                                      : cv::Scalar(170, 170, 170);
-      std::vector<cv::Point> pts;
-      for (int k = 0; k < B->vertexCount(i); ++k) pts.push_back(toPixel(B->vertices(i)[k]));
-      if (pts.size() >= 3) cv::fillConvexPoly(image, pts, colour, cv::LINE_AA);
-      for (std::size_t k = 0; k < pts.size(); ++k) {
-        cv::circle(image, pts[k], r, colour, cv::FILLED, cv::LINE_AA);
-        if (pts.size() > 1)
-          cv::line(image, pts[k], pts[(k + 1) % pts.size()], colour, 2 * r, cv::LINE_AA);
-      }
+      const std::vector<Vec2> core(B->vertices(i), B->vertices(i) + B->vertexCount(i));
+      std::vector<cv::Point> outline;
+      for (const Vec2& p : roundedOutline(core, B->def(i).rounding, 6))
+        outline.push_back(toPixel(p));
+      cv::fillConvexPoly(image, outline, colour, cv::LINE_AA);
     }
   }
   char label[96];

@@ -135,33 +135,6 @@ std::vector<geometry_msgs::TransformStamped> toTransforms(const mpm_sdem::BlockS
   return out;
 }
 
-std::vector<Vec2> roundedOutline(const std::vector<Vec2>& core, Real a, int arc_points) {
-  std::vector<Vec2> out;
-  const int n = static_cast<int>(core.size());
-  if (n == 1) {
-    for (int k = 0; k <= 4 * arc_points; ++k) {
-      const Real t = 2 * M_PI * k / (4 * arc_points);
-      out.push_back(core[0] + a * Vec2(std::cos(t), std::sin(t)));
-    }
-    return out;
-  }
-  // Counter-clockwise core: at vertex i the arc runs from the normal of the edge before to
-  // the normal of the edge after (for a capsule, n = 2, each arc is a half circle).
-  for (int i = 0; i < n; ++i) {
-    const Vec2 e_in = core[i] - core[(i + n - 1) % n], e_out = core[(i + 1) % n] - core[i];
-    const Real t0 = std::atan2(-e_in.x(), e_in.y()), t1 = std::atan2(-e_out.x(), e_out.y());
-    Real sweep = t1 - t0;
-    while (sweep < 0) sweep += 2 * M_PI;
-    if (n == 2) sweep = M_PI;
-    for (int k = 0; k <= arc_points; ++k) {
-      const Real t = t0 + sweep * k / arc_points;
-      out.push_back(core[i] + a * Vec2(std::cos(t), std::sin(t)));
-    }
-  }
-  out.push_back(out.front());
-  return out;
-}
-
 visualization_msgs::MarkerArray toMarkers(const World& world, const std::string& tf_prefix,
                                           const ros::Time& stamp) {
   visualization_msgs::MarkerArray out;

@@ -116,7 +116,6 @@ class Blocks {
   std::vector<Real> torque_;
   std::vector<Coupling> coupling_;
   BlockContactDef contact_;
-  Vec2 gravity_{0, 0};
   Real scale_ = 1;
   // Tangential spring history of the penalty contacts, by (block i, block j, vertex, side).
   std::vector<std::pair<unsigned long long, Vec2>> history_, next_history_;

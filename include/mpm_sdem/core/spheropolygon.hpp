@@ -40,4 +40,8 @@ struct CoreDistance {
 };
 CoreDistance closestOnCore(const Vec2* core, int count, const Vec2& q);
 
+// The rounded outline of a counter-clockwise core (in the core's frame) as a closed polyline,
+// with arcs of arc_points segments at the vertices; for drawing (rviz markers, images).
+std::vector<Vec2> roundedOutline(const std::vector<Vec2>& core, Real rounding, int arc_points);
+
 }  // namespace mpm_sdem

@@ -55,8 +55,4 @@ BlockDef toBlockDef(const mpm_sdem::SpawnObstacle::Request& req);
 BodyType toBodyType(std::uint8_t type, bool& ok);
 std::uint8_t fromBodyType(BodyType type);
 
-// The rounded outline of a core (block frame), as a closed polyline with arcs of `arc_points`
-// points at the vertices. Shared by the markers and the renderer's callers.
-std::vector<Vec2> roundedOutline(const std::vector<Vec2>& core, Real rounding, int arc_points);
-
 }  // namespace mpm_sdem::conversions
