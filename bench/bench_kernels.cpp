@@ -19,8 +19,11 @@ World settledWorld(long n, MaterialModel model) {
 void BM_P2G(benchmark::State& state) {
   World w = settledWorld(state.range(0), MaterialModel::kLinearElastic);
   Grid g = w.grid();
+  Tiles tiles;
+  tiles.init(g);
+  tiles.bin(w.particles(), g);
   for (auto _ : state) {
-    detail::particleToGrid<QuadraticBSpline>(w.particles(), g, true, true, true);
+    detail::particleToGrid<QuadraticBSpline, true, true, true>(w.particles(), g, tiles);
     benchmark::DoNotOptimize(g.mass.data());
   }
   state.counters["particles/s"] = benchmark::Counter(static_cast<double>(w.particles().size()),
@@ -30,12 +33,12 @@ void BM_P2G(benchmark::State& state) {
 void BM_G2P(benchmark::State& state) {
   World w = settledWorld(state.range(0), MaterialModel::kLinearElastic);
   Particles backup = w.particles();
-  detail::G2PSettings s{TransferScheme::kApic, 0, 0.0, true, w.def().domain.min,
-                        w.def().domain.max};
+  detail::G2PSettings s{0, 0.0, w.def().domain.min, w.def().domain.max};
   for (auto _ : state) {
     long clamped = 0;
     bool finite = true;
-    detail::gridToParticle<QuadraticBSpline>(w.particles(), w.grid(), s, clamped, finite);
+    detail::gridToParticle<QuadraticBSpline, TransferScheme::kApic, false>(w.particles(), w.grid(),
+                                                                           s, clamped, finite);
     benchmark::DoNotOptimize(w.particles().vx.data());
   }
   state.counters["particles/s"] = benchmark::Counter(static_cast<double>(backup.size()),

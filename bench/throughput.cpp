@@ -66,20 +66,29 @@ int main(int argc, char** argv) {
         omp_set_num_threads(static_cast<int>(t));
         std::vector<double> rates;
         long count = 0;
+        Profile profile;
         for (int r = 0; r < repeats; ++r) {
           World world(bench::columnWorld(n, model));
           count = static_cast<long>(world.particles().size());
           for (int s = 0; s < 10; ++s) world.step(world.chooseTimeStep().dt);  // warm-up
+          world.resetProfile();
           const auto t0 = std::chrono::steady_clock::now();
           for (int s = 0; s < steps; ++s) world.step(world.chooseTimeStep().dt);
           const double sec =
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
           rates.push_back(static_cast<double>(count) * steps / sec);
+          if (r == 0) profile = world.profile();
         }
         const double med = median(rates);
         const auto [lo, hi] = std::minmax_element(rates.begin(), rates.end());
         std::printf("%-15s %10ld %8ld %22.3f %10.3f %10.3f\n", bench::modelName(model), count, t,
                     med * 1e-6, *lo * 1e-6, *hi * 1e-6);
+        std::printf("  us per step:");
+        for (int k = 0; k < static_cast<int>(Stage::kCount); ++k) {
+          std::printf(" %s %.1f", stageName(static_cast<Stage>(k)),
+                      1e6 * profile.seconds[k] / std::max(1L, profile.steps));
+        }
+        std::printf("\n");
         std::fflush(stdout);
         if (out) {
           std::fprintf(out, "%s,%ld,%ld,%d,%.6g,%.6g,%.6g\n", bench::modelName(model), count, t,

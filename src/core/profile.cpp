@@ -8,6 +8,8 @@ const char* stageName(Stage stage) {
       return "time_step";
     case Stage::kContact:
       return "contact";
+    case Stage::kSort:
+      return "sort";
     case Stage::kClearGrid:
       return "clear_grid";
     case Stage::kP2G:
@@ -18,6 +20,8 @@ const char* stageName(Stage stage) {
       return "g2p";
     case Stage::kConstitutive:
       return "constitutive";
+    case Stage::kStress:
+      return "stress_force";
     case Stage::kBlocks:
       return "blocks";
     case Stage::kCount:

@@ -113,7 +113,9 @@ std::string coreProblem(const std::vector<Vec2>& core) {
   for (int i = 0; i < n; ++i) {
     const Vec2 e1 = core[(i + 1) % n] - core[i];
     const Vec2 e2 = core[(i + 2) % n] - core[(i + 1) % n];
-    if (sign * cross(e1, e2) <= 0) {
+    // A vertex on the line through its neighbours is refused too: relative to the edge lengths,
+    // so that the answer does not hang on the rounding of the cross product.
+    if (sign * cross(e1, e2) <= 1e-12 * e1.norm() * e2.norm()) {
       return "the core polygon is not convex (or its vertices are not in order around it); "
              "split a concave outline into several blocks";
     }

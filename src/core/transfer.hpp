@@ -4,10 +4,12 @@
 
 #include <cmath>
 
+#include "mpm_sdem/core/constitutive.hpp"
 #include "mpm_sdem/core/grid.hpp"
 #include "mpm_sdem/core/imp_coupling.hpp"
 #include "mpm_sdem/core/kernels.hpp"
 #include "mpm_sdem/core/particles.hpp"
+#include "mpm_sdem/core/tiles.hpp"
 #include "mpm_sdem/core/world.hpp"
 
 namespace mpm_sdem::detail {
@@ -21,11 +23,25 @@ inline void stencils(const Grid& g, Real x, Real y, Real lp, Real& xg, Real& yg,
   K::stencil(yg, lp, sy);
 }
 
+// Run body(p) for every particle, tile colour by tile colour; the tiles of one colour are shared
+// among the threads (see Tiles: no two of them write the same node).
+template <class Body>
+void forEachParticleByColour(const Tiles& T, Body&& body) {
+  for (const std::vector<int>& tiles : T.colour) {
+    const long count = static_cast<long>(tiles.size());
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < count; ++k) {
+      const int t = tiles[k];
+      for (int q = T.start[t]; q < T.start[t + 1]; ++q) body(T.order[q]);
+    }
+  }
+}
+
 // P2G: nodal mass (eq. 18), momentum (eq. 19, or eq. 30 with the APIC affine term) and internal
 // force f_I = -sum_p V_p sigma_p grad S_Ip (eq. 13). Gravity is added on the grid (eq. 14 with a
 // uniform body force equals m_I g).
-template <class K>
-void particleToGrid(const Particles& P, Grid& G, bool apic, bool momentum, bool force) {
+template <class K, bool kApic, bool kMomentum, bool kForce>
+void particleToGrid(const Particles& P, Grid& G, const Tiles& T) {
   constexpr int S = K::kSupport;
   const Real inv_h = G.inv_h;
   const int nx = G.nx;
@@ -34,8 +50,7 @@ void particleToGrid(const Particles& P, Grid& G, bool apic, bool momentum, bool 
   Real* gpy = G.mom_y.data();
   Real* gfx = G.force_x.data();
   Real* gfy = G.force_y.data();
-  const std::size_t n = P.size();
-  for (std::size_t p = 0; p < n; ++p) {
+  forEachParticleByColour(T, [&](int p) {
     Real xg, yg;
     Stencil1D sx, sy;
     stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
@@ -43,15 +58,20 @@ void particleToGrid(const Particles& P, Grid& G, bool apic, bool momentum, bool 
     const Real mvx = m * P.vx[p], mvy = m * P.vy[p];
     // m B D^-1 (x_I - x_p) with D = diag(second moments) h^2 and offsets in grid units r h.
     Real cxx = 0, cxy = 0, cyx = 0, cyy = 0;
-    if (apic) {
+    if (kApic) {
       const Real ax = m * inv_h / sx.second_moment, ay = m * inv_h / sy.second_moment;
       cxx = P.bxx[p] * ax;
       cxy = P.bxy[p] * ay;
       cyx = P.byx[p] * ax;
       cyy = P.byy[p] * ay;
     }
-    const Real vol = P.volume0[p] * P.J[p] * inv_h;
-    const Real sxx = vol * P.sxx[p], syy = vol * P.syy[p], sxy = vol * P.sxy[p];
+    Real sxx = 0, syy = 0, sxy = 0;
+    if (kForce) {
+      const Real vol = P.volume0[p] * P.J[p] * inv_h;
+      sxx = vol * P.sxx[p];
+      syy = vol * P.syy[p];
+      sxy = vol * P.sxy[p];
+    }
     for (int j = 0; j < S; ++j) {
       const Real wy = sy.w[j], dwy = sy.dw[j];
       const Real ry = (sy.base + j) - yg;
@@ -60,62 +80,95 @@ void particleToGrid(const Particles& P, Grid& G, bool apic, bool momentum, bool 
         const int node = row + i;
         const Real wx = sx.w[i];
         const Real w = wx * wy;
-        if (momentum) {
+        if (kMomentum) {
           const Real rx = (sx.base + i) - xg;
           gm[node] += w * m;
           gpx[node] += w * (mvx + cxx * rx + cxy * ry);
           gpy[node] += w * (mvy + cyx * rx + cyy * ry);
         }
-        if (force) {
+        if (kForce) {
           const Real gx = sx.dw[i] * wy, gy = wx * dwy;
           gfx[node] -= sxx * gx + sxy * gy;
           gfy[node] -= sxy * gx + syy * gy;
         }
       }
     }
-  }
+  });
 }
 
-// Velocity gradient L_p = sum_I v_I (grad S_Ip)^T from the pre-kick grid velocity (USF, eq. 21-22).
+// The stress and volume of one point over dt with its velocity gradient L_p: Jaumann-rate
+// elasticity (eq. 21-25), the Drucker-Prager return for granular points only (eq. 31-35), and
+// V^{n+1} = det(I + dt L) V^n.
+inline void updatePointStress(const MaterialParams& m, Particles& P, long p, Real dt) {
+  const VelocityGradient L{P.lxx[p], P.lxy[p], P.lyx[p], P.lyy[p]};
+  Stress s{P.sxx[p], P.syy[p], P.sxy[p], P.szz[p]};
+  s = jaumannElasticUpdate(m, s, L, dt);
+  if (m.model == MaterialModel::kDruckerPrager) druckerPragerReturn(m, s);
+  P.sxx[p] = s.xx;
+  P.syy[p] = s.yy;
+  P.sxy[p] = s.xy;
+  P.szz[p] = s.zz;
+  P.J[p] *= (1 + dt * L.xx) * (1 + dt * L.yy) - dt * dt * L.xy * L.yx;
+}
+
+// The middle of a USF step (seed 000 sec. 2.2) in one sweep per point, coloured like P2G: the
+// velocity gradient L_p = sum_I v_I (grad S_Ip)^T from the pre-kick grid velocity (eq. 21-22),
+// the stress update over dt with it (skipped when dt = 0, the first step), then the internal
+// force of the new stress onto the same nodes (eq. 13).
 template <class K>
-void gridToParticleGradient(Particles& P, const Grid& G) {
+void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
+                            const std::vector<MaterialParams>& materials, Real dt) {
   constexpr int S = K::kSupport;
-  const long n = static_cast<long>(P.size());
-#pragma omp parallel for schedule(static)
-  for (long p = 0; p < n; ++p) {
+  const Real inv_h = G.inv_h;
+  const int nx = G.nx;
+  const Real* vx0 = G.vel0_x.data();
+  const Real* vy0 = G.vel0_y.data();
+  Real* gfx = G.force_x.data();
+  Real* gfy = G.force_y.data();
+  forEachParticleByColour(T, [&](int p) {
     Real xg, yg;
     Stencil1D sx, sy;
     stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
     Real lxx = 0, lxy = 0, lyx = 0, lyy = 0;
     for (int j = 0; j < S; ++j) {
-      const int row = (sy.base + j) * G.nx + sx.base;
+      const int row = (sy.base + j) * nx + sx.base;
       for (int i = 0; i < S; ++i) {
-        const Real gx = sx.dw[i] * sy.w[j] * G.inv_h, gy = sx.w[i] * sy.dw[j] * G.inv_h;
-        const Real vx = G.vel0_x[row + i], vy = G.vel0_y[row + i];
+        const Real gx = sx.dw[i] * sy.w[j], gy = sx.w[i] * sy.dw[j];
+        const Real vx = vx0[row + i], vy = vy0[row + i];
         lxx += vx * gx;
         lxy += vx * gy;
         lyx += vy * gx;
         lyy += vy * gy;
       }
     }
-    P.lxx[p] = lxx;
-    P.lxy[p] = lxy;
-    P.lyx[p] = lyx;
-    P.lyy[p] = lyy;
-  }
+    P.lxx[p] = lxx * inv_h;
+    P.lxy[p] = lxy * inv_h;
+    P.lyx[p] = lyx * inv_h;
+    P.lyy[p] = lyy * inv_h;
+    if (dt != 0) updatePointStress(materials[P.material[p]], P, p, dt);
+    const Real vol = P.volume0[p] * P.J[p] * inv_h;
+    const Real sxx = vol * P.sxx[p], syy = vol * P.syy[p], sxy = vol * P.sxy[p];
+    for (int j = 0; j < S; ++j) {
+      const int row = (sy.base + j) * nx + sx.base;
+      for (int i = 0; i < S; ++i) {
+        const Real gx = sx.dw[i] * sy.w[j], gy = sx.w[i] * sy.dw[j];
+        gfx[row + i] -= sxx * gx + sxy * gy;
+        gfy[row + i] -= sxy * gx + syy * gy;
+      }
+    }
+  });
 }
 
 struct G2PSettings {
-  TransferScheme scheme;
   Real pic_fraction;
   Real dt;
-  bool gradient;  // USL: also compute L_p from the post-kick velocity
-  Vec2 lo, hi;    // domain box: points are kept inside it
+  Vec2 lo, hi;  // domain box: points are kept inside it
 };
 
 // G2P: PIC velocity (eq. 26), FLIP blend (eq. 28) or APIC affine matrix (eq. 31), then
-// x_p += dt sum_I S_Ip v_I (the PIC velocity moves the point in every scheme).
-template <class K>
+// x_p += dt sum_I S_Ip v_I (the PIC velocity moves the point in every scheme). kGradient (USL):
+// also L_p from the post-kick velocity.
+template <class K, TransferScheme kScheme, bool kGradient>
 void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& clamped,
                     bool& finite) {
   constexpr int S = K::kSupport;
@@ -140,17 +193,17 @@ void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& cla
         const Real gvx = G.vel_x[node], gvy = G.vel_y[node];
         vx += w * gvx;
         vy += w * gvy;
-        if (s.scheme == TransferScheme::kFlip) {
+        if (kScheme == TransferScheme::kFlip) {
           dvx += w * (gvx - G.vel0_x[node]);
           dvy += w * (gvy - G.vel0_y[node]);
-        } else if (s.scheme == TransferScheme::kApic) {
+        } else if (kScheme == TransferScheme::kApic) {
           const Real rx = ((sx.base + i) - xg) * h;
           bxx += w * gvx * rx;
           bxy += w * gvx * ry;
           byx += w * gvy * rx;
           byy += w * gvy * ry;
         }
-        if (s.gradient) {
+        if (kGradient) {
           const Real gx = sx.dw[i] * sy.w[j] * inv_h, gy = sx.w[i] * sy.dw[j] * inv_h;
           lxx += gvx * gx;
           lxy += gvx * gy;
@@ -159,7 +212,7 @@ void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& cla
         }
       }
     }
-    if (s.scheme == TransferScheme::kFlip) {
+    if (kScheme == TransferScheme::kFlip) {
       const Real a = s.pic_fraction;
       P.vx[p] = a * vx + (1 - a) * (P.vx[p] + dvx);
       P.vy[p] = a * vy + (1 - a) * (P.vy[p] + dvy);
@@ -167,13 +220,13 @@ void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& cla
       P.vx[p] = vx;
       P.vy[p] = vy;
     }
-    if (s.scheme == TransferScheme::kApic) {
+    if (kScheme == TransferScheme::kApic) {
       P.bxx[p] = bxx;
       P.bxy[p] = bxy;
       P.byx[p] = byx;
       P.byy[p] = byy;
     }
-    if (s.gradient) {
+    if (kGradient) {
       P.lxx[p] = lxx;
       P.lxy[p] = lxy;
       P.lyx[p] = lyx;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 #include "mpm_sdem/core/constitutive.hpp"
 #include "transfer.hpp"
@@ -58,6 +59,7 @@ World::World(const WorldDef& def) : def_(def) {
   const Vec2 size = def.domain.max - def.domain.min;
   grid_.init(def.domain.min, cellCount(size.x(), def.cell_size, "width"),
              cellCount(size.y(), def.cell_size, "height"), def.cell_size);
+  tiles_.init(grid_);
   for (const MaterialDef& m : def.materials) params_.push_back(makeMaterialParams(m));
 
   std::size_t count = 0;
@@ -89,6 +91,9 @@ World::World(const WorldDef& def) : def_(def) {
       ++p;
     }
   }
+  // Points in tile order from the start, so that the sweeps read them in sequence.
+  tiles_.bin(particles_, grid_);
+  particles_.permute(tiles_.order);
   lightest_point_ = std::numeric_limits<Real>::infinity();
   for (Real m : particles_.mass) lightest_point_ = std::fmin(lightest_point_, m);
 
@@ -184,11 +189,20 @@ TimeStepChoice World::chooseTimeStep() {
   const Particles& P = particles_;
   const long n = static_cast<long>(P.size());
   Real fastest = 0;
-#pragma omp parallel for schedule(static) reduction(max : fastest)
-  for (long p = 0; p < n; ++p) {
-    const Real c2 = params_[P.material[p]].modulus_over_density * P.J[p];
-    const Real s = std::sqrt(std::fmax(c2, Real(0))) + std::hypot(P.vx[p], P.vy[p]);
-    fastest = std::fmax(fastest, s);
+  auto fastestWith = [&](auto modulusOverDensity) {
+#pragma omp parallel for simd schedule(static) reduction(max : fastest)
+    for (long p = 0; p < n; ++p) {
+      const Real c2 = modulusOverDensity(p) * P.J[p];
+      const Real v2 = P.vx[p] * P.vx[p] + P.vy[p] * P.vy[p];
+      const Real s = std::sqrt(c2 > 0 ? c2 : Real(0)) + std::sqrt(v2);
+      fastest = s > fastest ? s : fastest;  // a NaN speed is skipped, as fmax would
+    }
+  };
+  if (params_.size() == 1) {  // one material: no lookup, so the loop vectorises
+    const Real k = params_[0].modulus_over_density;
+    fastestWith([k](long) { return k; });
+  } else {
+    fastestWith([this, &P](long p) { return params_[P.material[p]].modulus_over_density; });
   }
   const Real cfl_dt =
       fastest > 0 ? def_.time_step.cfl * grid_.h / fastest : std::numeric_limits<Real>::infinity();
@@ -220,13 +234,12 @@ StepInfo World::step(Real dt) {
   // Seed 000 sec. 4.2: contact forces from the state at the start of the step, the MPM step with
   // them on the grid (eq. 48), then the blocks with the reactions.
   if (hasBlocks()) contactForces(dt);
+  binParticles();
   clearGrid();
   if (def_.solver.stress_update == StressUpdate::kUsf) {
     particleToGrid(true, false);
     gridVelocity(0, false);
-    gridToParticleGradient();
-    constitutiveUpdate(stress_lag_);
-    particleToGrid(false, true);
+    stressAndInternalForce(stress_lag_);
     if (hasBlocks()) contactForcesToGrid();
     gridVelocity(kick, true);
     gridToParticle(dt, info);
@@ -274,40 +287,68 @@ void World::stepBlocks(Real dt) {
   blocks_->step(dt);
 }
 
-void World::clearGrid() {
-  StageTimer timer(profile_, Stage::kClearGrid);
-  for (auto* v : {&grid_.mass, &grid_.mom_x, &grid_.mom_y, &grid_.force_x, &grid_.force_y}) {
-    std::fill(v->begin(), v->end(), Real(0));
+void World::binParticles() {
+  StageTimer timer(profile_, Stage::kSort);
+  tiles_.bin(particles_, grid_);
+}
+
+template <class F>
+void World::forActiveNodes(const std::vector<int>& tiles, F&& f) {
+  const long count = static_cast<long>(tiles.size());
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < count; ++k) {
+    tiles_.forRows(grid_, tiles[k], [&](int first, int n) {
+      for (int i = first; i < first + n; ++i) f(i);
+    });
   }
+}
+
+void World::clearGrid() {
+  // Only the tiles the last step used hold values; every other node is zero already.
+  StageTimer timer(profile_, Stage::kClearGrid);
+  Grid& G = grid_;
+  // Velocities are overwritten on every active node; a tile leaving the set is zeroed whole.
+  forActiveNodes(tiles_.previous, [&G](int i) {
+    G.mass[i] = G.mom_x[i] = G.mom_y[i] = G.force_x[i] = G.force_y[i] = 0;
+  });
+  forActiveNodes(tiles_.retired,
+                 [&G](int i) { G.vel_x[i] = G.vel_y[i] = G.vel0_x[i] = G.vel0_y[i] = 0; });
 }
 
 void World::particleToGrid(bool momentum, bool force) {
   StageTimer timer(profile_, Stage::kP2G);
   const bool apic = def_.solver.transfer == TransferScheme::kApic;
   withKernel(def_.solver.kernel, [&](auto k) {
-    detail::particleToGrid<decltype(k)>(particles_, grid_, apic, momentum, force);
+    using K = decltype(k);
+    const Particles& P = particles_;
+    if (momentum && force) {
+      apic ? detail::particleToGrid<K, true, true, true>(P, grid_, tiles_)
+           : detail::particleToGrid<K, false, true, true>(P, grid_, tiles_);
+    } else if (momentum) {
+      apic ? detail::particleToGrid<K, true, true, false>(P, grid_, tiles_)
+           : detail::particleToGrid<K, false, true, false>(P, grid_, tiles_);
+    } else {
+      detail::particleToGrid<K, false, false, true>(P, grid_, tiles_);
+    }
   });
 }
 
 void World::gridVelocity(Real kick, bool after_force) {
   StageTimer timer(profile_, Stage::kGridUpdate);
   Grid& G = grid_;
-  const long n = static_cast<long>(G.nodeCount());
   if (!after_force) {
     // Eq. 20: v_I = p_I / m_I; nodes without mass carry no velocity.
-#pragma omp parallel for schedule(static)
-    for (long i = 0; i < n; ++i) {
+    forActiveNodes(tiles_.active, [&G](int i) {
       const Real m = G.mass[i];
       G.vel0_x[i] = m > 0 ? G.mom_x[i] / m : Real(0);
       G.vel0_y[i] = m > 0 ? G.mom_y[i] / m : Real(0);
-    }
+    });
     applyWalls(G.vel0_x, G.vel0_y);
     return;
   }
   const Real gx = def_.solver.gravity.x(), gy = def_.solver.gravity.y();
   const Real damping = def_.solver.damping;
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < n; ++i) {
+  forActiveNodes(tiles_.active, [&](int i) {
     const Real m = G.mass[i];
     if (m > 0) {
       // Eq. 11 and 17: total nodal force, internal plus gravity (eq. 13-14).
@@ -322,7 +363,7 @@ void World::gridVelocity(Real kick, bool after_force) {
       G.vel_x[i] = 0;
       G.vel_y[i] = 0;
     }
-  }
+  });
   applyWalls(G.vel_x, G.vel_y);
 }
 
@@ -347,22 +388,37 @@ void World::applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const {
   }
 }
 
-void World::gridToParticleGradient() {
-  StageTimer timer(profile_, Stage::kG2P);
-  withKernel(def_.solver.kernel,
-             [&](auto k) { detail::gridToParticleGradient<decltype(k)>(particles_, grid_); });
+void World::stressAndInternalForce(Real dt) {
+  StageTimer timer(profile_, Stage::kStress);
+  withKernel(def_.solver.kernel, [&](auto k) {
+    detail::stressAndInternalForce<decltype(k)>(particles_, grid_, tiles_, params_, dt);
+  });
 }
 
 void World::gridToParticle(Real dt, StepInfo& info) {
   StageTimer timer(profile_, Stage::kG2P);
-  detail::G2PSettings s{def_.solver.transfer,
-                        def_.solver.pic_fraction,
-                        dt,
-                        def_.solver.stress_update == StressUpdate::kUsl,
-                        def_.domain.min,
-                        def_.domain.max};
+  const detail::G2PSettings s{def_.solver.pic_fraction, dt, def_.domain.min, def_.domain.max};
+  const bool usl = def_.solver.stress_update == StressUpdate::kUsl;
   withKernel(def_.solver.kernel, [&](auto k) {
-    detail::gridToParticle<decltype(k)>(particles_, grid_, s, info.clamped, info.finite);
+    using K = decltype(k);
+    auto run = [&](auto scheme) {
+      constexpr TransferScheme kScheme = decltype(scheme)::value;
+      usl ? detail::gridToParticle<K, kScheme, true>(particles_, grid_, s, info.clamped,
+                                                     info.finite)
+          : detail::gridToParticle<K, kScheme, false>(particles_, grid_, s, info.clamped,
+                                                      info.finite);
+    };
+    switch (def_.solver.transfer) {
+      case TransferScheme::kPic:
+        run(std::integral_constant<TransferScheme, TransferScheme::kPic>{});
+        break;
+      case TransferScheme::kFlip:
+        run(std::integral_constant<TransferScheme, TransferScheme::kFlip>{});
+        break;
+      case TransferScheme::kApic:
+        run(std::integral_constant<TransferScheme, TransferScheme::kApic>{});
+        break;
+    }
   });
 }
 
@@ -372,19 +428,7 @@ void World::constitutiveUpdate(Real dt) {
   Particles& P = particles_;
   const long n = static_cast<long>(P.size());
 #pragma omp parallel for schedule(static)
-  for (long p = 0; p < n; ++p) {
-    const MaterialParams& m = params_[P.material[p]];
-    const VelocityGradient L{P.lxx[p], P.lxy[p], P.lyx[p], P.lyy[p]};
-    Stress s{P.sxx[p], P.syy[p], P.sxy[p], P.szz[p]};
-    s = jaumannElasticUpdate(m, s, L, dt);
-    if (m.model == MaterialModel::kDruckerPrager) druckerPragerReturn(m, s);
-    P.sxx[p] = s.xx;
-    P.syy[p] = s.yy;
-    P.sxy[p] = s.xy;
-    P.szz[p] = s.zz;
-    // V^{n+1} = det(I + dt L) V^n.
-    P.J[p] *= (1 + dt * L.xx) * (1 + dt * L.yy) - dt * dt * L.xy * L.yx;
-  }
+  for (long p = 0; p < n; ++p) detail::updatePointStress(params_[P.material[p]], P, p, dt);
 }
 
 }  // namespace mpm_sdem

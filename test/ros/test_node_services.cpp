@@ -183,9 +183,13 @@ TEST(Node, InvalidRequestsAreRefusedAndTheSimulationKeepsStepping) {
   }
   add("9 vertices", s);
   s = ok;
-  s.request.vertices[2].x = 0;
-  s.request.vertices[2].y = 0;  // a dent: non-convex
+  s.request.vertices[2].x = -0.004;
+  s.request.vertices[2].y = -0.004;  // a dent: non-convex
   add("non-convex", s);
+  s = ok;
+  s.request.vertices[2].x = 0;
+  s.request.vertices[2].y = 0;  // on the line through its neighbours
+  add("collinear vertex", s);
   s = ok;
   s.request.name = "post";
   add("name clash", s);

@@ -26,6 +26,8 @@ struct Particles {
 
   std::size_t size() const { return x.size(); }
   void resize(std::size_t n);
+  // Reorder every column so that new point k is old point order[k] (order is a permutation).
+  void permute(const std::vector<int>& order);
 };
 
 }  // namespace mpm_sdem

@@ -6,14 +6,16 @@
 namespace mpm_sdem {
 
 enum class Stage : int {
-  kTimeStep,
-  kContact,
-  kClearGrid,
-  kP2G,
-  kGridUpdate,
-  kG2P,
-  kConstitutive,
-  kBlocks,
+  kTimeStep,      // stable time step (CFL and contact terms)
+  kContact,       // IMP search and forces, and their spreading onto the grid
+  kSort,          // particles binned by grid tile (Tiles)
+  kClearGrid,     // zeroing the nodes the last step used
+  kP2G,           // particle to grid: mass and momentum (USF), or with the internal force (USL)
+  kGridUpdate,    // nodal velocities, kick and walls
+  kG2P,           // grid to particle: velocity, affine matrix, position
+  kConstitutive,  // stress update of USL
+  kStress,        // USF: velocity gradient, stress update and internal force in one sweep
+  kBlocks,        // Box2D step of the blocks
   kCount
 };
 

@@ -15,6 +15,7 @@
 #include "mpm_sdem/core/particles.hpp"
 #include "mpm_sdem/core/profile.hpp"
 #include "mpm_sdem/core/shapes.hpp"
+#include "mpm_sdem/core/tiles.hpp"
 #include "mpm_sdem/core/types.hpp"
 
 namespace mpm_sdem {
@@ -121,10 +122,13 @@ class World {
   void resetProfile() { profile_ = Profile(); }
 
  private:
+  void binParticles();
+  template <class F>
+  void forActiveNodes(const std::vector<int>& tiles, F&& f);
   void clearGrid();
   void particleToGrid(bool momentum, bool force);
   void gridVelocity(Real kick, bool after_force);
-  void gridToParticleGradient();
+  void stressAndInternalForce(Real dt);
   void gridToParticle(Real dt, StepInfo& info);
   void constitutiveUpdate(Real dt);
   void applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const;
@@ -138,6 +142,7 @@ class World {
   std::vector<MaterialParams> params_;
   Particles particles_;
   Grid grid_;
+  Tiles tiles_;
   Profile profile_;
   std::unique_ptr<Blocks> blocks_;
   ImpCoupling coupling_;
