@@ -310,21 +310,43 @@ void Blocks::penaltyContacts(Real dt) {
   history_.swap(next_history_);
 }
 
-void Blocks::step(Real dt) {
-  if (defs_.empty()) return;
-  if (contact_.model == BlockContactModel::kPenalty) penaltyContacts(dt);
-  for (std::size_t i = 0; i < defs_.size(); ++i) {
-    b2Body* body = b2_->bodies[i];
-    if (defs_[i].type == BodyType::kDynamic) {
-      // F (N/m) and tau (N m/m) into Box2D units: lengths scale by s, masses do not.
-      body->ApplyForceToCenter(toB2(force_[i], scale_), true);
-      body->ApplyTorque(static_cast<float>(torque_[i] * scale_ * scale_), true);
+Real Blocks::stableStep(Real kappa2) const {
+  const Real block = lightestDynamicMass();
+  if (contact_.model != BlockContactModel::kPenalty || !std::isfinite(block) || count() < 2)
+    return std::numeric_limits<Real>::infinity();  // no block-block spring can form
+  return contactTimeStep(0.5 * block, contact_.normal_stiffness, max_zeta_, 4, kappa2);
+}
+
+int Blocks::step(Real dt, Real max_substep) {
+  if (defs_.empty()) return 0;
+  // The blocks' own springs are stiffer than the material's: the blocks take several steps for
+  // one MPM step (multi-rate explicit integration), each within the block-block bound.
+  const int substeps = dt > max_substep ? static_cast<int>(std::ceil(dt / max_substep)) : 1;
+  const Real h = dt / substeps;
+  held_force_ = force_;
+  held_torque_ = torque_;
+  for (int s = 0; s < substeps; ++s) {
+    for (std::size_t i = 0; i < defs_.size(); ++i) {
+      force_[i] = held_force_[i];
+      torque_[i] = held_torque_[i];
     }
+    if (contact_.model == BlockContactModel::kPenalty) penaltyContacts(h);
+    for (std::size_t i = 0; i < defs_.size(); ++i) {
+      b2Body* body = b2_->bodies[i];
+      if (defs_[i].type == BodyType::kDynamic) {
+        // F (N/m) and tau (N m/m) into Box2D units: lengths scale by s, masses do not.
+        body->ApplyForceToCenter(toB2(force_[i], scale_), true);
+        body->ApplyTorque(static_cast<float>(torque_[i] * scale_ * scale_), true);
+      }
+    }
+    b2_->world.Step(static_cast<float>(h), 8, 3);
+    refresh();
+  }
+  for (std::size_t i = 0; i < defs_.size(); ++i) {
     force_[i].setZero();
     torque_[i] = 0;
   }
-  b2_->world.Step(static_cast<float>(dt), 8, 3);
-  refresh();
+  return substeps;
 }
 
 }  // namespace mpm_sdem

@@ -28,6 +28,9 @@ MaterialParams makeMaterialParams(const MaterialDef& def) {
     // The tension cut-off cannot lie beyond the apex of the cone, sigma_m = k_phi / q_phi.
     const Real apex = p.q_phi > 0 ? p.k_phi / p.q_phi : std::numeric_limits<Real>::infinity();
     p.tension = std::fmin(def.tensile_strength, apex);
+    p.tau_corner = p.k_phi - p.q_phi * p.tension;
+    p.alpha_p = std::sqrt(1 + p.q_phi * p.q_phi) - p.q_phi;
+    p.inv_return_modulus = 1 / (p.shear + p.bulk * p.q_phi * p.q_psi);
   }
   return p;
 }

@@ -209,17 +209,13 @@ TimeStepChoice World::chooseTimeStep() {
   TimeStepChoice choice{def_.time_step.max, StepLimit::kMax};
   if (cfl_dt < choice.dt) choice = {cfl_dt, StepLimit::kCfl};
   if (hasBlocks()) {
-    // Eq. 51, second term, for the IMP springs (lightest point or block) and for the block-block
-    // springs (reduced mass of two of the lightest blocks).
+    // Eq. 51, second term, for the IMP springs (lightest point or block). The block-block
+    // springs do not bound this step: the blocks take substeps within their own bound.
     const Real kappa2 = def_.time_step.contact_factor;
     const Real zeta = blocks_->maxDampingRatio();  // the most damped contact bounds the step
     const Real block = blocks_->lightestDynamicMass();
-    Real dt = contactTimeStep(std::fmin(lightest_point_, block), coupling_.def().normal_stiffness,
-                              zeta, 1, kappa2);
-    if (def_.block_contact.model == BlockContactModel::kPenalty && std::isfinite(block)) {
-      dt = std::fmin(
-          dt, contactTimeStep(0.5 * block, def_.block_contact.normal_stiffness, zeta, 4, kappa2));
-    }
+    const Real dt = contactTimeStep(std::fmin(lightest_point_, block),
+                                    coupling_.def().normal_stiffness, zeta, 1, kappa2);
     if (dt < choice.dt) choice = {dt, StepLimit::kContact};
   }
   return choice;
@@ -284,7 +280,7 @@ void World::contactForcesToGrid() {
 
 void World::stepBlocks(Real dt) {
   StageTimer timer(profile_, Stage::kBlocks);
-  blocks_->step(dt);
+  blocks_->step(dt, blocks_->stableStep(def_.time_step.contact_factor));
 }
 
 void World::binParticles() {

@@ -87,8 +87,13 @@ class Blocks {
 
   // Forces for the next step, world frame (N/m), applied at a point (m); cleared by step().
   void addForce(int i, const Vec2& force, const Vec2& point);
-  // Block-block contact forces (penalty model), then one Box2D step of dt.
-  void step(Real dt);
+  // Stable step of the block-block penalty springs (contactTimeStep with the reduced mass of two
+  // of the lightest blocks and four springs, eq. 39); infinite when no spring can form.
+  Real stableStep(Real kappa2) const;
+  // Advance by dt in substeps no longer than max_substep: in each, block-block contact forces
+  // (penalty model) and one Box2D step. The forces added before the call (the material's) act
+  // unchanged through all substeps. Returns the number of substeps.
+  int step(Real dt, Real max_substep = std::numeric_limits<Real>::infinity());
 
   // What the material did to each block in the last step (for outputs).
   struct Coupling {
@@ -114,6 +119,8 @@ class Blocks {
   std::vector<Vec2> world_vertices_;
   std::vector<Vec2> force_;
   std::vector<Real> torque_;
+  std::vector<Vec2> held_force_;  // the material's forces, held through the substeps
+  std::vector<Real> held_torque_;
   std::vector<Coupling> coupling_;
   BlockContactDef contact_;
   Real scale_ = 1;

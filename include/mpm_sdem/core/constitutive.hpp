@@ -67,16 +67,12 @@ inline PlasticReturn druckerPragerReturn(const MaterialParams& m, Stress& s) {
   const Real ft = sm - m.tension;                // eq. 32
   if (fs <= 0 && ft <= 0) return out;
 
-  const Real tau_corner = m.k_phi - m.q_phi * m.tension;
-  bool shear = ft <= 0;
-  if (!shear) {
-    const Real alpha = std::sqrt(1 + m.q_phi * m.q_phi) - m.q_phi;
-    shear = tau - tau_corner - alpha * (sm - m.tension) > 0;
-  }
+  const Real tau_corner = m.tau_corner;
+  const bool shear = ft <= 0 || tau - tau_corner - m.alpha_p * (sm - m.tension) > 0;
   Real sm_new, tau_new;
   if (shear) {
     out.mode = PlasticMode::kShear;
-    out.multiplier = fs / (m.shear + m.bulk * m.q_phi * m.q_psi);
+    out.multiplier = fs * m.inv_return_modulus;
     sm_new = sm - m.bulk * m.q_psi * out.multiplier;
     tau_new = m.k_phi - m.q_phi * sm_new;
     if (sm_new > m.tension) {  // the return overshot the cut-off: land on the corner

@@ -31,7 +31,11 @@ struct MaterialParams {
   Real bulk = 0, shear = 0, lame = 0;    // K, G, lambda = K - 2G/3 (Pa)
   Real q_phi = 0, k_phi = 0, q_psi = 0;  // seed 000 eq. 35 and its dilatant analogue
   Real tension = 0;                      // effective tension cut-off (Pa)
-  Real modulus_over_density = 0;         // (K + 4G/3) / rho0: squared P-wave speed at J = 1
+  // Constants of the Drucker-Prager return, computed once: the corner shear stress
+  // k_phi - q_phi sigma^t (Pa), the slope alpha^P of the line that splits shear from tensile
+  // returns, and 1 / (G + K q_phi q_psi) (1/Pa).
+  Real tau_corner = 0, alpha_p = 0, inv_return_modulus = 0;
+  Real modulus_over_density = 0;  // (K + 4G/3) / rho0: squared P-wave speed at J = 1
 };
 
 MaterialParams makeMaterialParams(const MaterialDef& def);

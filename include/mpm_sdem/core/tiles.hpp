@@ -19,7 +19,7 @@ struct Tiles {
   // Cells per tile side. A particle in cell c touches nodes c-1 .. c+2 with every kernel (3 or 4
   // nodes), so tiles two apart must not share a node: needs kSize >= 3. Small tiles give two
   // threads enough tiles of each colour to share in small scenes.
-  static constexpr int kSize = 4;
+  static constexpr int kSize = 3;
 
   int nx = 0, ny = 0;                      // tiles per axis; tile (a, b) holds nodes a*kSize ...
   std::vector<int> start;                  // per tile, its first entry in order (size tiles+1)
