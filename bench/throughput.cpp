@@ -1,6 +1,7 @@
-// Scene-level throughput: particle-steps per second of the full step for column scenes of given
-// sizes, materials and thread counts; medians over repeats. Prints a table and, with --csv FILE,
-// writes it as CSV.
+// Scene-level throughput: particle-steps per second of the full step (time step choice included)
+// for the column scenes of given sizes and materials and for scene files (optionally refined to
+// another cell size), on given thread counts; medians over repeats, with the per-stage profile
+// of the first repeat. Prints a table and, with --csv FILE, writes it as CSV.
 #include <omp.h>
 
 #include <algorithm>
@@ -12,15 +13,16 @@
 #include <vector>
 
 #include "bench_scenes.hpp"
+#include "mpm_sdem/scene/scene.hpp"
 
 using namespace mpm_sdem;
 
 namespace {
 
-std::vector<long> parseList(const char* s) {
-  std::vector<long> out;
+std::vector<std::string> split(const char* s) {
+  std::vector<std::string> out;
   std::stringstream in(s);
-  for (std::string item; std::getline(in, item, ',');) out.push_back(std::atol(item.c_str()));
+  for (std::string item; std::getline(in, item, ',');) out.push_back(item);
   return out;
 }
 
@@ -30,18 +32,25 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+struct Case {
+  std::string name;
+  WorldDef def;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<long> sizes{10000, 100000}, threads{1, 2};
+  std::vector<std::string> sizes{"10000", "100000"}, threads{"1", "2"}, scenes;
   int steps = 200, repeats = 5;
   const char* csv = nullptr;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--particles")
-      sizes = parseList(argv[i + 1]);
+      sizes = split(argv[i + 1]);
     else if (a == "--threads")
-      threads = parseList(argv[i + 1]);
+      threads = split(argv[i + 1]);
+    else if (a == "--scenes")  // FILE[@CELL_SIZE],...
+      scenes = split(argv[i + 1]);
     else if (a == "--steps")
       steps = std::atoi(argv[i + 1]);
     else if (a == "--repeats")
@@ -50,51 +59,73 @@ int main(int argc, char** argv) {
       csv = argv[i + 1];
     else {
       std::fprintf(stderr,
-                   "usage: %s [--particles 10000,100000] [--threads 1,2] [--steps 200] "
-                   "[--repeats 5] [--csv FILE]\n",
+                   "usage: %s [--particles 10000,100000] [--threads 1,2] "
+                   "[--scenes FILE[@CELL_SIZE_M],...] [--steps 200] [--repeats 5] [--csv FILE]\n",
                    argv[0]);
       return 2;
     }
   }
-  FILE* out = csv ? std::fopen(csv, "w") : nullptr;
-  if (out) std::fprintf(out, "model,particles,threads,steps,median_particle_steps_per_s,min,max\n");
-  std::printf("%-15s %10s %8s %22s %10s %10s\n", "model", "particles", "threads",
-              "median Mpart-steps/s", "min", "max");
+  std::vector<Case> cases;
   for (MaterialModel model : {MaterialModel::kLinearElastic, MaterialModel::kDruckerPrager}) {
-    for (long n : sizes) {
-      for (long t : threads) {
-        omp_set_num_threads(static_cast<int>(t));
-        std::vector<double> rates;
-        long count = 0;
-        Profile profile;
-        for (int r = 0; r < repeats; ++r) {
-          World world(bench::columnWorld(n, model));
-          count = static_cast<long>(world.particles().size());
-          for (int s = 0; s < 10; ++s) world.step(world.chooseTimeStep().dt);  // warm-up
-          world.resetProfile();
-          const auto t0 = std::chrono::steady_clock::now();
-          for (int s = 0; s < steps; ++s) world.step(world.chooseTimeStep().dt);
-          const double sec =
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-          rates.push_back(static_cast<double>(count) * steps / sec);
-          if (r == 0) profile = world.profile();
-        }
-        const double med = median(rates);
-        const auto [lo, hi] = std::minmax_element(rates.begin(), rates.end());
-        std::printf("%-15s %10ld %8ld %22.3f %10.3f %10.3f\n", bench::modelName(model), count, t,
-                    med * 1e-6, *lo * 1e-6, *hi * 1e-6);
-        std::printf("  us per step:");
-        for (int k = 0; k < static_cast<int>(Stage::kCount); ++k) {
-          std::printf(" %s %.1f", stageName(static_cast<Stage>(k)),
-                      1e6 * profile.seconds[k] / std::max(1L, profile.steps));
-        }
-        std::printf("\n");
-        std::fflush(stdout);
-        if (out) {
-          std::fprintf(out, "%s,%ld,%ld,%d,%.6g,%.6g,%.6g\n", bench::modelName(model), count, t,
-                       steps, med, *lo, *hi);
-        }
+    for (const std::string& n : sizes) {
+      cases.push_back({std::string("column_") + bench::modelName(model),
+                       bench::columnWorld(std::atol(n.c_str()), model)});
+    }
+  }
+  for (const std::string& s : scenes) {
+    const std::size_t at = s.find('@');
+    Case c{s.substr(0, at), loadScene(s.substr(0, at)).world};
+    c.name = c.name.substr(c.name.find_last_of('/') + 1);
+    if (at != std::string::npos) {
+      c.def.cell_size = std::atof(s.c_str() + at + 1);  // same points per cell: refined
+      c.name += "@" + s.substr(at + 1);
+    }
+    cases.push_back(c);
+  }
+
+  FILE* out = csv ? std::fopen(csv, "w") : nullptr;
+  if (out) {
+    std::fprintf(out, "case,particles,threads,steps,median_particle_steps_per_s,min,max");
+    for (int k = 0; k < static_cast<int>(Stage::kCount); ++k)
+      std::fprintf(out, ",us_%s", stageName(static_cast<Stage>(k)));
+    std::fprintf(out, "\n");
+  }
+  std::printf("%-36s %10s %8s %14s %10s %10s\n", "case", "particles", "threads", "median M/s",
+              "min", "max");
+  for (const Case& c : cases) {
+    for (const std::string& t : threads) {
+      omp_set_num_threads(std::atoi(t.c_str()));
+      std::vector<double> rates;
+      long count = 0;
+      Profile profile;
+      for (int r = 0; r < repeats; ++r) {
+        World world(c.def);
+        count = static_cast<long>(world.particles().size());
+        for (int s = 0; s < 10; ++s) world.step(world.chooseTimeStep().dt);  // warm-up
+        world.resetProfile();
+        const auto t0 = std::chrono::steady_clock::now();
+        for (int s = 0; s < steps; ++s) world.step(world.chooseTimeStep().dt);
+        const double sec =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        rates.push_back(static_cast<double>(count) * steps / sec);
+        if (r == 0) profile = world.profile();
       }
+      const double med = median(rates);
+      const auto [lo, hi] = std::minmax_element(rates.begin(), rates.end());
+      std::printf("%-36s %10ld %8s %14.3f %10.3f %10.3f\n  us per step:", c.name.c_str(), count,
+                  t.c_str(), med * 1e-6, *lo * 1e-6, *hi * 1e-6);
+      if (out) {
+        std::fprintf(out, "%s,%ld,%s,%d,%.6g,%.6g,%.6g", c.name.c_str(), count, t.c_str(), steps,
+                     med, *lo, *hi);
+      }
+      for (int k = 0; k < static_cast<int>(Stage::kCount); ++k) {
+        const double us = 1e6 * profile.seconds[k] / std::max(1L, profile.steps);
+        std::printf(" %s %.1f", stageName(static_cast<Stage>(k)), us);
+        if (out) std::fprintf(out, ",%.2f", us);
+      }
+      std::printf("\n");
+      if (out) std::fprintf(out, "\n");
+      std::fflush(stdout);
     }
   }
   if (out) std::fclose(out);

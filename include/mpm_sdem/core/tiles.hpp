@@ -30,6 +30,8 @@ struct Tiles {
   std::vector<int> retired;                // tiles in previous but no longer active
 
   void init(const Grid& g);
+  // Bytes of the per-particle arrays (sort keys and order).
+  std::size_t particleBytes() const { return (key_.capacity() + order.capacity()) * sizeof(int); }
   // Bin the particles by the cell they are in (stable counting sort, O(N + tiles)).
   void bin(const Particles& P, const Grid& g);
   // Call f(first_node, count) for each row segment of nodes in tile t.

@@ -116,6 +116,13 @@ class World {
   const Particles& particles() const { return particles_; }
   Particles& particles() { return particles_; }
   const Grid& grid() const { return grid_; }
+  // Memory held, in bytes: the particle columns with their tile bins, and the grid arrays.
+  // Nodes the last step cleared and updated (the tiles within reach of a particle).
+  struct Memory {
+    std::size_t particle_bytes = 0, grid_bytes = 0;
+    std::size_t grid_nodes = 0, active_nodes = 0;
+  };
+  Memory memory() const;
   Real time() const { return time_; }
   long stepCount() const { return steps_; }
   const Profile& profile() const { return profile_; }
