@@ -106,15 +106,28 @@ TEST(BlockStack, Box2DModelHoldsAtRest) {
   EXPECT_LT(stackDrift(BlockContactModel::kBox2D), 1e-3);
 }
 
-TEST(BlockCollision, PenaltyConservesMomentum) {
-  // Two free disks, no gravity, head-on at 1 m/s: momentum is exchanged, not created.
+namespace {
+
+// Two free disks, no gravity, nearly head-on at 1 m/s, restitution 0.8, penalty springs 1e6 N/m.
+std::vector<BlockDef> collidingDisks() {
   std::vector<BlockDef> defs{test::diskBlock("a", Vec2(0, 0), 0.05, BodyType::kDynamic, 1000),
                              test::diskBlock("b", Vec2(0.2, 0.01), 0.05, BodyType::kDynamic, 1000)};
   defs[0].velocity = Vec2(1, 0);
   defs[0].restitution = defs[1].restitution = 0.8;
+  return defs;
+}
+
+BlockContactDef stiffPenalty() {
   BlockContactDef contact;
   contact.normal_stiffness = 1e6;
-  Blocks blocks(defs, contact, Vec2(0, 0));
+  return contact;
+}
+
+}  // namespace
+
+TEST(BlockCollision, PenaltyConservesMomentum) {
+  // Momentum is exchanged, not created.
+  Blocks blocks(collidingDisks(), stiffPenalty(), Vec2(0, 0));
   const Real m = blocks.massProperties(0).mass;
   const Vec2 p0 = m * blocks.state(0).velocity;
   for (int n = 0; n < 4000; ++n) {
@@ -129,13 +142,8 @@ TEST(BlockCollision, PenaltyConservesMomentum) {
 // the same Box2D sequence as 4 steps of dt, so the collision comes out the same up to the
 // single-precision rounding of dt.
 TEST(BlockCollision, SubstepsMatchShortSteps) {
-  std::vector<BlockDef> defs{test::diskBlock("a", Vec2(0, 0), 0.05, BodyType::kDynamic, 1000),
-                             test::diskBlock("b", Vec2(0.2, 0.01), 0.05, BodyType::kDynamic, 1000)};
-  defs[0].velocity = Vec2(1, 0);
-  defs[0].restitution = defs[1].restitution = 0.8;
-  BlockContactDef contact;
-  contact.normal_stiffness = 1e6;
-  Blocks short_steps(defs, contact, Vec2(0, 0)), substeps(defs, contact, Vec2(0, 0));
+  Blocks short_steps(collidingDisks(), stiffPenalty(), Vec2(0, 0));
+  Blocks substeps(collidingDisks(), stiffPenalty(), Vec2(0, 0));
   const Real dt = 5e-5;
   ASSERT_LT(dt, short_steps.stableStep(0.1));
   for (int n = 0; n < 1000; ++n) {

@@ -1,16 +1,14 @@
 #include "mpm_sdem/core/grid.hpp"
 #include "mpm_sdem/core/particles.hpp"
 
+#include <type_traits>
+
 namespace mpm_sdem {
 
 void Particles::resize(std::size_t n) {
-  for (auto* v : {&x, &y, &vx, &vy, &bxx, &bxy, &byx, &byy, &sxx, &syy, &sxy, &szz, &lxx, &lxy,
-                  &lyx, &lyy, &mass, &volume0, &half_size}) {
-    v->resize(n, Real(0));
-  }
-  J.resize(n, Real(1));  // a new point is undeformed
-  material.resize(n, 0);
-  body.resize(n, 0);
+  const std::size_t old = size();
+  forEachColumn([n](auto& column) { column.resize(n, 0); });
+  for (std::size_t p = old; p < n; ++p) J[p] = 1;  // a new point is undeformed
 }
 
 namespace {
@@ -26,13 +24,13 @@ void gather(std::vector<T>& column, const std::vector<int>& order, std::vector<T
 
 void Particles::permute(const std::vector<int>& order) {
   std::vector<Real> real_scratch;
-  for (auto* v : {&x,   &y,   &vx,  &vy,  &bxx, &bxy, &byx,  &byy,     &sxx, &syy,
-                  &sxy, &szz, &lxx, &lxy, &lyx, &lyy, &mass, &volume0, &J,   &half_size}) {
-    gather(*v, order, real_scratch);
-  }
   std::vector<std::uint16_t> int_scratch;
-  gather(material, order, int_scratch);
-  gather(body, order, int_scratch);
+  forEachColumn([&](auto& column) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(column[0])>, Real>)
+      gather(column, order, real_scratch);
+    else
+      gather(column, order, int_scratch);
+  });
 }
 
 void Grid::init(const Vec2& domain_min, int domain_cells_x, int domain_cells_y, Real cell_size) {
@@ -43,9 +41,7 @@ void Grid::init(const Vec2& domain_min, int domain_cells_x, int domain_cells_y, 
   nx = domain_cells_x + 1 + 2 * kPad;
   ny = domain_cells_y + 1 + 2 * kPad;
   origin = domain_min - Vec2(kPad * h, kPad * h);
-  for (auto* v : {&mass, &mom_x, &mom_y, &force_x, &force_y, &vel_x, &vel_y, &vel0_x, &vel0_y}) {
-    v->assign(nodeCount(), Real(0));
-  }
+  forEachField([this](std::vector<Real>& a) { a.assign(nodeCount(), Real(0)); });
 }
 
 }  // namespace mpm_sdem

@@ -178,18 +178,11 @@ void World::removeBlock(int index) {
 
 World::Memory World::memory() const {
   Memory m;
-  auto bytes = [](const auto& column) { return column.capacity() * sizeof(column[0]); };
-  const Particles& P = particles_;
-  for (const auto* c :
-       {&P.x,   &P.y,   &P.vx,  &P.vy,  &P.bxx, &P.bxy, &P.byx,  &P.byy,     &P.sxx, &P.syy,
-        &P.sxy, &P.szz, &P.lxx, &P.lxy, &P.lyx, &P.lyy, &P.mass, &P.volume0, &P.J,   &P.half_size})
-    m.particle_bytes += bytes(*c);
-  m.particle_bytes += bytes(P.material) + bytes(P.body) + tiles_.particleBytes();
-  const Grid& G = grid_;
-  for (const auto* c : {&G.mass, &G.mom_x, &G.mom_y, &G.force_x, &G.force_y, &G.vel_x, &G.vel_y,
-                        &G.vel0_x, &G.vel0_y})
-    m.grid_bytes += bytes(*c);
-  m.grid_nodes = G.nodeCount();
+  particles_.forEachColumn(
+      [&m](const auto& c) { m.particle_bytes += c.capacity() * sizeof(c[0]); });
+  m.particle_bytes += tiles_.particleBytes();
+  grid_.forEachField([&m](const auto& a) { m.grid_bytes += a.capacity() * sizeof(a[0]); });
+  m.grid_nodes = grid_.nodeCount();
   m.active_nodes = tiles_.active.size() * Tiles::kSize * Tiles::kSize;
   return m;
 }

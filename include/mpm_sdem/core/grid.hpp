@@ -24,6 +24,16 @@ struct Grid {
   std::vector<Real> vel0_x, vel0_y;    // velocity before the kick (m/s)
 
   void init(const Vec2& domain_min, int domain_cells_x, int domain_cells_y, Real cell_size);
+  // Call f(array) for every nodal array.
+  template <class F>
+  void forEachField(F&& f) {
+    for (auto* a : {&mass, &mom_x, &mom_y, &force_x, &force_y, &vel_x, &vel_y, &vel0_x, &vel0_y})
+      f(*a);
+  }
+  template <class F>
+  void forEachField(F&& f) const {
+    const_cast<Grid*>(this)->forEachField([&f](const auto& a) { f(a); });
+  }
   std::size_t nodeCount() const { return static_cast<std::size_t>(nx) * ny; }
   int index(int i, int j) const { return i + j * nx; }
 };

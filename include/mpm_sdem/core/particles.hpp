@@ -28,6 +28,20 @@ struct Particles {
   void resize(std::size_t n);
   // Reorder every column so that new point k is old point order[k] (order is a permutation).
   void permute(const std::vector<int>& order);
+  // Call f(column) for every column, the Real ones first; the one list that resizing,
+  // reordering and the memory report share.
+  template <class F>
+  void forEachColumn(F&& f) {
+    for (auto* c : {&x,   &y,   &vx,  &vy,  &bxx, &bxy, &byx,  &byy,     &sxx, &syy,
+                    &sxy, &szz, &lxx, &lxy, &lyx, &lyy, &mass, &volume0, &J,   &half_size})
+      f(*c);
+    f(material);
+    f(body);
+  }
+  template <class F>
+  void forEachColumn(F&& f) const {
+    const_cast<Particles*>(this)->forEachColumn([&f](const auto& c) { f(c); });
+  }
 };
 
 }  // namespace mpm_sdem
