@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
       sizes = split(argv[i + 1]);
     else if (a == "--threads")
       threads = split(argv[i + 1]);
-    else if (a == "--scenes")  // FILE[@CELL_SIZE],...
+    else if (a == "--scenes")  // FILE[@CELL_SIZE][#COUPLING_SCHEME],...
       scenes = split(argv[i + 1]);
     else if (a == "--steps")
       steps = std::atoi(argv[i + 1]);
@@ -58,10 +58,12 @@ int main(int argc, char** argv) {
     else if (a == "--csv")
       csv = argv[i + 1];
     else {
-      std::fprintf(stderr,
-                   "usage: %s [--particles 10000,100000] [--threads 1,2] "
-                   "[--scenes FILE[@CELL_SIZE_M],...] [--steps 200] [--repeats 5] [--csv FILE]\n",
-                   argv[0]);
+      std::fprintf(
+          stderr,
+          "usage: %s [--particles 10000,100000] [--threads 1,2] "
+          "[--scenes FILE[@CELL_SIZE_M][#COUPLING_SCHEME],...] [--steps 200] [--repeats 5] "
+          "[--csv FILE]\n",
+          argv[0]);
       return 2;
     }
   }
@@ -72,13 +74,33 @@ int main(int argc, char** argv) {
                        bench::columnWorld(std::atol(n.c_str()), model)});
     }
   }
-  for (const std::string& s : scenes) {
+  for (const std::string& spec : scenes) {
+    const std::size_t hash = spec.find('#');
+    const std::string s = spec.substr(0, hash);
     const std::size_t at = s.find('@');
     Case c{s.substr(0, at), loadScene(s.substr(0, at)).world};
     c.name = c.name.substr(c.name.find_last_of('/') + 1);
     if (at != std::string::npos) {
       c.def.cell_size = std::atof(s.c_str() + at + 1);  // same points per cell: refined
       c.name += "@" + s.substr(at + 1);
+    }
+    if (hash != std::string::npos) {
+      const std::string scheme = spec.substr(hash + 1);
+      bool known = false;
+      for (CouplingScheme k :
+           {CouplingScheme::kImp, CouplingScheme::kImpGrid, CouplingScheme::kMultiVelocity,
+            CouplingScheme::kParticleSurface, CouplingScheme::kPartitioned}) {
+        if (scheme == couplingSchemeName(k)) {
+          c.def.coupling.scheme = k;
+          known = true;
+        }
+      }
+      if (!known) {
+        std::fprintf(stderr, "unknown coupling scheme '%s' in '%s'\n", scheme.c_str(),
+                     spec.c_str());
+        return 2;
+      }
+      c.name += "#" + scheme;
     }
     cases.push_back(c);
   }
@@ -88,26 +110,30 @@ int main(int argc, char** argv) {
     std::fprintf(out, "case,particles,threads,steps,median_particle_steps_per_s,min,max");
     for (int k = 0; k < static_cast<int>(Stage::kCount); ++k)
       std::fprintf(out, ",us_%s", stageName(static_cast<Stage>(k)));
-    std::fprintf(out, "\n");
+    std::fprintf(out, ",median_realtime_factor,mean_dt_s\n");
   }
   std::printf("%-36s %10s %8s %14s %10s %10s\n", "case", "particles", "threads", "median M/s",
               "min", "max");
   for (const Case& c : cases) {
     for (const std::string& t : threads) {
       omp_set_num_threads(std::atoi(t.c_str()));
-      std::vector<double> rates;
+      std::vector<double> rates, realtime;
       long count = 0;
+      double mean_dt = 0;
       Profile profile;
       for (int r = 0; r < repeats; ++r) {
         World world(c.def);
         count = static_cast<long>(world.particles().size());
         for (int s = 0; s < 10; ++s) world.step(world.chooseTimeStep().dt);  // warm-up
         world.resetProfile();
+        const double sim0 = world.time();
         const auto t0 = std::chrono::steady_clock::now();
         for (int s = 0; s < steps; ++s) world.step(world.chooseTimeStep().dt);
         const double sec =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         rates.push_back(static_cast<double>(count) * steps / sec);
+        realtime.push_back((world.time() - sim0) / sec);
+        mean_dt = (world.time() - sim0) / steps;
         if (r == 0) profile = world.profile();
       }
       const double med = median(rates);
@@ -123,8 +149,8 @@ int main(int argc, char** argv) {
         std::printf(" %s %.1f", stageName(static_cast<Stage>(k)), us);
         if (out) std::fprintf(out, ",%.2f", us);
       }
-      std::printf("\n");
-      if (out) std::fprintf(out, "\n");
+      std::printf("\n  real-time factor %.3f, mean dt %.3g s\n", median(realtime), mean_dt);
+      if (out) std::fprintf(out, ",%.4g,%.4g\n", median(realtime), mean_dt);
       std::fflush(stdout);
     }
   }

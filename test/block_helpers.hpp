@@ -5,6 +5,7 @@
 #include <string>
 
 #include "helpers.hpp"
+#include "mpm_sdem/core/imp_coupling.hpp"
 
 namespace mpm_sdem::test {
 

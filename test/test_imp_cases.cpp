@@ -237,10 +237,11 @@ TEST(ImpCases, BlockComesToRestOnGranularBed) {
   EXPECT_LT((end.position - at_half.position).norm(), 1e-6);
   EXPECT_LT(std::abs(end.angle - at_half.angle), 1e-5);
   EXPECT_NEAR(test::couplingForce(w, 0).y() / weight, 1.0, 0.01);  // the bed pushes up
-  const long n = w.coupling().activeContacts();
+  const auto& imp = dynamic_cast<const ImpCoupling&>(*w.coupling());
+  const long n = imp.activeContacts();
   ASSERT_GT(n, 0);
   Real deepest = 0;
-  for (const ImpCoupling::Contact& c : w.coupling().contacts()) {
+  for (const ContactPair& c : imp.contacts()) {
     if (c.force.isZero()) continue;
     const Vec2 x(w.particles().x[c.particle], w.particles().y[c.particle]);
     deepest = std::max(deepest, a + rp - closestOnCore(w.blocks()->vertices(0), 4, x).distance);

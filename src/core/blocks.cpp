@@ -249,6 +249,18 @@ void Blocks::addForce(int i, const Vec2& f, const Vec2& point) {
   torque_[i] += cross(point - state_[i].position, f);
 }
 
+void Blocks::addMaterialForce(int i, const Vec2& f, const Vec2& point) {
+  addForce(i, f, point);
+  Coupling& c = coupling_[i];
+  c.force += f;
+  c.torque += cross(point - state_[i].position, f);
+  ++c.contacts;
+}
+
+void Blocks::clearCoupling() {
+  for (Coupling& c : coupling_) c = Coupling();
+}
+
 void Blocks::penaltyContacts(Real dt) {
   next_history_.clear();
   const int n = count();

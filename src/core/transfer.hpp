@@ -6,7 +6,6 @@
 
 #include "mpm_sdem/core/constitutive.hpp"
 #include "mpm_sdem/core/grid.hpp"
-#include "mpm_sdem/core/imp_coupling.hpp"
 #include "mpm_sdem/core/kernels.hpp"
 #include "mpm_sdem/core/particles.hpp"
 #include "mpm_sdem/core/tiles.hpp"
@@ -250,23 +249,127 @@ void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& cla
 }
 
 // Eq. 47: the contact force of each IMP goes to the grid like an external point load.
+// f_I += S_Ip f for a force f on particle p (seed 000 eq. 48).
 template <class K>
-void spreadContactForces(const std::vector<ImpCoupling::Contact>& contacts, const Particles& P,
-                         Grid& G) {
+void spreadParticleForce(Grid& G, const Particles& P, int p, const Vec2& f) {
   constexpr int S = K::kSupport;
-  for (const ImpCoupling::Contact& c : contacts) {
-    if (c.force.x() == 0 && c.force.y() == 0) continue;
-    Real xg, yg;
-    Stencil1D sx, sy;
-    stencils<K>(G, P.x[c.particle], P.y[c.particle], P.half_size[c.particle], xg, yg, sx, sy);
-    for (int j = 0; j < S; ++j) {
-      const int row = (sy.base + j) * G.nx + sx.base;
-      for (int i = 0; i < S; ++i) {
-        const Real w = sx.w[i] * sy.w[j];
-        G.force_x[row + i] += w * c.force.x();
-        G.force_y[row + i] += w * c.force.y();
-      }
+  Real xg, yg;
+  Stencil1D sx, sy;
+  stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+  for (int j = 0; j < S; ++j) {
+    const int row = (sy.base + j) * G.nx + sx.base;
+    for (int i = 0; i < S; ++i) {
+      const Real w = sx.w[i] * sy.w[j];
+      G.force_x[row + i] += w * f.x();
+      G.force_y[row + i] += w * f.y();
     }
+  }
+}
+
+// A point load at x on the nodes that carry mass, the weights renormalised over them (seed 003
+// eq. 14), so that all of it reaches the material. Returns false, adding nothing, when no node
+// around x has mass.
+// half_size: GIMP's half width of the load's area, in cells (> 0).
+template <class K>
+bool spreadPointLoad(Grid& G, const Vec2& x, Real half_size, const Vec2& f) {
+  constexpr int S = K::kSupport;
+  Real xg, yg;
+  Stencil1D sx, sy;
+  stencils<K>(G, x.x(), x.y(), half_size, xg, yg, sx, sy);
+  Real sum = 0;
+  for (int j = 0; j < S; ++j) {
+    const int row = (sy.base + j) * G.nx + sx.base;
+    for (int i = 0; i < S; ++i) sum += G.mass[row + i] > 0 ? sx.w[i] * sy.w[j] : 0;
+  }
+  if (!(sum > 0)) return false;
+  for (int j = 0; j < S; ++j) {
+    const int row = (sy.base + j) * G.nx + sx.base;
+    for (int i = 0; i < S; ++i) {
+      if (!(G.mass[row + i] > 0)) continue;
+      const Real w = sx.w[i] * sy.w[j] / sum;
+      G.force_x[row + i] += w * f.x();
+      G.force_y[row + i] += w * f.y();
+    }
+  }
+  return true;
+}
+
+// The grid velocity (vel_x, vel_y) at x, weights renormalised over the nodes with mass like
+// spreadPointLoad; zero when none has.
+template <class K>
+Vec2 gridVelocityAt(const Grid& G, const Vec2& x, Real half_size) {
+  constexpr int S = K::kSupport;
+  Real xg, yg;
+  Stencil1D sx, sy;
+  stencils<K>(G, x.x(), x.y(), half_size, xg, yg, sx, sy);
+  Real sum = 0;
+  Vec2 v(0, 0);
+  for (int j = 0; j < S; ++j) {
+    const int row = (sy.base + j) * G.nx + sx.base;
+    for (int i = 0; i < S; ++i) {
+      if (!(G.mass[row + i] > 0)) continue;
+      const Real w = sx.w[i] * sy.w[j];
+      sum += w;
+      v += w * Vec2(G.vel_x[row + i], G.vel_y[row + i]);
+    }
+  }
+  return sum > 0 ? Vec2(v / sum) : Vec2(0, 0);
+}
+
+// An impulse J on particle p (N s/m) onto the updated grid velocities: v_I += S_Ip J / m_I
+// (seed 002 eq. 54 times the step).
+template <class K>
+void addParticleImpulse(Grid& G, const Particles& P, int p, const Vec2& J) {
+  constexpr int S = K::kSupport;
+  Real xg, yg;
+  Stencil1D sx, sy;
+  stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+  for (int j = 0; j < S; ++j) {
+    const int row = (sy.base + j) * G.nx + sx.base;
+    for (int i = 0; i < S; ++i) {
+      const Real m = G.mass[row + i];
+      if (!(m > 0)) continue;
+      const Real w = sx.w[i] * sy.w[j] / m;
+      G.vel_x[row + i] += w * J.x();
+      G.vel_y[row + i] += w * J.y();
+    }
+  }
+}
+
+// How fast particle p's interpolated velocity responds to an impulse on it spread by
+// addParticleImpulse: sum_I S_Ip^2 / m_I (1/kg per metre). At least 1/m_p's neighbours share
+// the nodes, so it is below 1 / m_p.
+template <class K>
+Real particleGridInverseMass(const Grid& G, const Particles& P, int p) {
+  constexpr int S = K::kSupport;
+  Real xg, yg;
+  Stencil1D sx, sy;
+  stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+  Real sum = 0;
+  for (int j = 0; j < S; ++j) {
+    const int row = (sy.base + j) * G.nx + sx.base;
+    for (int i = 0; i < S; ++i) {
+      const Real m = G.mass[row + i];
+      const Real w = sx.w[i] * sy.w[j];
+      if (m > 0) sum += w * w / m;
+    }
+  }
+  return sum;
+}
+
+// Call f(Kernel{}) for the scene's kernel: one dispatch per stage, none per particle.
+template <class F>
+void withKernel(KernelType k, F&& f) {
+  switch (k) {
+    case KernelType::kQuadraticBSpline:
+      f(QuadraticBSpline{});
+      break;
+    case KernelType::kCubicBSpline:
+      f(CubicBSpline{});
+      break;
+    case KernelType::kGimp:
+      f(Gimp{});
+      break;
   }
 }
 

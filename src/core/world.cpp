@@ -35,23 +35,6 @@ int cellCount(Real extent, Real h, const char* what) {
   return static_cast<int>(r);
 }
 
-// Call f.template operator()<Kernel>() for the scene's kernel: one dispatch per stage, none per
-// particle.
-template <class F>
-void withKernel(KernelType k, F&& f) {
-  switch (k) {
-    case KernelType::kQuadraticBSpline:
-      f(QuadraticBSpline{});
-      break;
-    case KernelType::kCubicBSpline:
-      f(CubicBSpline{});
-      break;
-    case KernelType::kGimp:
-      f(Gimp{});
-      break;
-  }
-}
-
 }  // namespace
 
 World::World(const WorldDef& def) : def_(def) {
@@ -103,14 +86,20 @@ World::World(const WorldDef& def) : def_(def) {
   }
 }
 
-void World::initCoupling() {
+CouplingDef World::resolvedCoupling() const {
   CouplingDef c = def_.coupling;
   int ppc = 1;
   for (const BodyDef& b : def_.bodies) ppc = std::max(ppc, b.points_per_cell);
   // Eq. 45 asks h / sqrt(n) < r_p < h with n points per cell: the geometric mean of the bounds.
   if (c.contact_radius <= 0) c.contact_radius = def_.cell_size / std::sqrt(static_cast<Real>(ppc));
   if (c.verlet_distance <= 0) c.verlet_distance = 0.5 * def_.cell_size;
-  coupling_.init(c, def_.domain.min, def_.domain.max, def_.cell_size);
+  // Seed 003: boundary particles a third of the point spacing inside the outline.
+  if (c.boundary_inset <= 0) c.boundary_inset = def_.cell_size / (3 * ppc);
+  return c;
+}
+
+void World::initCoupling() {
+  coupling_ = makeCoupling(resolvedCoupling(), def_.domain.min, def_.domain.max, def_.cell_size);
 }
 
 std::string World::placementProblem(const BlockDef& d, bool allow_overlap, int moving) const {
@@ -167,13 +156,13 @@ int World::addBlock(const BlockDef& d) {
     initCoupling();
   }
   const int i = blocks_->add(d);
-  coupling_.invalidate();
+  coupling_->blockAdded();
   return i;
 }
 
 void World::removeBlock(int index) {
   blocks_->remove(index);
-  coupling_.removeBlock(index);
+  coupling_->blockRemoved(index);
 }
 
 World::Memory World::memory() const {
@@ -219,14 +208,14 @@ TimeStepChoice World::chooseTimeStep() {
       fastest > 0 ? def_.time_step.cfl * grid_.h / fastest : std::numeric_limits<Real>::infinity();
   TimeStepChoice choice{def_.time_step.max, StepLimit::kMax};
   if (cfl_dt < choice.dt) choice = {cfl_dt, StepLimit::kCfl};
-  if (hasBlocks()) {
-    // Eq. 51, second term, for the IMP springs (lightest point or block). The block-block
+  if (hasBlocks() && coupling_->hasSprings()) {
+    // Eq. 51, second term, for the coupling springs (lightest point or block). The block-block
     // springs do not bound this step: the blocks take substeps within their own bound.
     const Real kappa2 = def_.time_step.contact_factor;
     const Real zeta = blocks_->maxDampingRatio();  // the most damped contact bounds the step
     const Real block = blocks_->lightestDynamicMass();
     const Real dt = contactTimeStep(std::fmin(lightest_point_, block),
-                                    coupling_.def().normal_stiffness, zeta, 1, kappa2);
+                                    coupling_->def().normal_stiffness, zeta, 1, kappa2);
     if (dt < choice.dt) choice = {dt, StepLimit::kContact};
   }
   return choice;
@@ -239,28 +228,38 @@ StepInfo World::step(Real dt) {
   // half a step past the positions' time.
   const Real kick = Real(0.5) * dt + velocity_lag_;
   // Seed 000 sec. 4.2: contact forces from the state at the start of the step, the MPM step with
-  // them on the grid (eq. 48), then the blocks with the reactions.
-  if (hasBlocks()) contactForces(dt);
+  // them on the grid (eq. 48), then the blocks with the reactions. Each coupling scheme does its
+  // part in the stages of coupling.hpp.
+  const bool coupled = hasBlocks();
+  auto stage = [&](void (Coupling::*f)(CouplingStep&)) {
+    if (coupled) couplingStage(dt, kick, f);
+  };
+  stage(&Coupling::beforeStep);
   binParticles();
   clearGrid();
   if (def_.solver.stress_update == StressUpdate::kUsf) {
     particleToGrid(true, false);
     gridVelocity(0, false);
     stressAndInternalForce(stress_lag_);
-    if (hasBlocks()) contactForcesToGrid();
+    stage(&Coupling::addGridForces);
     gridVelocity(kick, true);
+    stage(&Coupling::correctGridVelocity);
+    if (coupled) applyWalls(grid_.vel_x, grid_.vel_y);  // a correction may push into a wall
     gridToParticle(dt, info);
     stress_lag_ = dt;
   } else {
     particleToGrid(true, true);
-    if (hasBlocks()) contactForcesToGrid();
+    stage(&Coupling::addGridForces);
     gridVelocity(0, false);
     gridVelocity(kick, true);
+    stage(&Coupling::correctGridVelocity);
+    if (coupled) applyWalls(grid_.vel_x, grid_.vel_y);
     gridToParticle(dt, info);
     constitutiveUpdate(dt);
     stress_lag_ = 0;
   }
-  if (hasBlocks()) stepBlocks(dt);
+  stage(&Coupling::afterMaterialStep);
+  if (coupled) stepBlocks(dt);
   velocity_lag_ = Real(0.5) * dt;
   time_ += dt;
   ++steps_;
@@ -277,16 +276,11 @@ void World::reverseVelocities() {
   stress_lag_ = -stress_lag_;
 }
 
-void World::contactForces(Real dt) {
+void World::couplingStage(Real dt, Real kick, void (Coupling::*stage)(CouplingStep&)) {
   StageTimer timer(profile_, Stage::kContact);
-  coupling_.computeForces(particles_, *blocks_, dt);
-}
-
-void World::contactForcesToGrid() {
-  StageTimer timer(profile_, Stage::kContact);
-  withKernel(def_.solver.kernel, [&](auto k) {
-    detail::spreadContactForces<decltype(k)>(coupling_.contacts(), particles_, grid_);
-  });
+  CouplingStep s{particles_,          grid_, tiles_, *blocks_, def_.solver.kernel,
+                 def_.solver.gravity, dt,    kick};
+  ((*coupling_).*stage)(s);
 }
 
 void World::stepBlocks(Real dt) {
@@ -325,7 +319,7 @@ void World::clearGrid() {
 void World::particleToGrid(bool momentum, bool force) {
   StageTimer timer(profile_, Stage::kP2G);
   const bool apic = def_.solver.transfer == TransferScheme::kApic;
-  withKernel(def_.solver.kernel, [&](auto k) {
+  detail::withKernel(def_.solver.kernel, [&](auto k) {
     using K = decltype(k);
     const Particles& P = particles_;
     if (momentum && force) {
@@ -397,7 +391,7 @@ void World::applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const {
 
 void World::stressAndInternalForce(Real dt) {
   StageTimer timer(profile_, Stage::kStress);
-  withKernel(def_.solver.kernel, [&](auto k) {
+  detail::withKernel(def_.solver.kernel, [&](auto k) {
     detail::stressAndInternalForce<decltype(k)>(particles_, grid_, tiles_, params_, dt);
   });
 }
@@ -406,7 +400,7 @@ void World::gridToParticle(Real dt, StepInfo& info) {
   StageTimer timer(profile_, Stage::kG2P);
   const detail::G2PSettings s{def_.solver.pic_fraction, dt, def_.domain.min, def_.domain.max};
   const bool usl = def_.solver.stress_update == StressUpdate::kUsl;
-  withKernel(def_.solver.kernel, [&](auto k) {
+  detail::withKernel(def_.solver.kernel, [&](auto k) {
     using K = decltype(k);
     auto run = [&](auto scheme) {
       constexpr TransferScheme kScheme = decltype(scheme)::value;

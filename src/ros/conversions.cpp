@@ -191,7 +191,7 @@ mpm_sdem::SimStats toStats(const World& world, const Diagnostics& d, const Stats
   s.particles = static_cast<std::uint32_t>(world.particles().size());
   s.blocks = world.blocks() ? static_cast<std::uint32_t>(world.blocks()->count()) : 0;
   s.imp_contacts =
-      world.blocks() ? static_cast<std::uint32_t>(world.coupling().activeContacts()) : 0;
+      world.coupling() ? static_cast<std::uint32_t>(world.coupling()->activeContacts()) : 0;
   s.paused = in.paused;
   s.kinetic_energy = d.kinetic;
   s.elastic_energy = d.elastic;

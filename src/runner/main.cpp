@@ -34,12 +34,26 @@ void printSummary(const Scene& s, World& w) {
       s.name.c_str(), s.source.c_str(), w.particles().size(), w.grid().cells_x, w.grid().cells_y,
       d.cell_size, d.time_step.automatic ? "automatic" : "fixed", s.end_time);
   if (const Blocks* b = w.blocks()) {
-    const CouplingDef& c = w.resolvedCoupling();
-    std::fprintf(stderr,
-                 "%d blocks (Box2D scale %.4g units/m), IMP contact radius %g m, Verlet distance "
-                 "%g m, k_n %g N/m\n",
-                 b->count(), b->lengthScale(), c.contact_radius, c.verlet_distance,
-                 c.normal_stiffness);
+    const CouplingDef c = w.resolvedCoupling();
+    std::fprintf(stderr, "%d blocks (Box2D scale %.4g units/m), coupling %s", b->count(),
+                 b->lengthScale(), couplingSchemeName(c.scheme));
+    switch (c.scheme) {
+      case CouplingScheme::kImp:
+      case CouplingScheme::kImpGrid:
+        std::fprintf(stderr, ": contact radius %g m, Verlet distance %g m, k_n %g N/m\n",
+                     c.contact_radius, c.verlet_distance, c.normal_stiffness);
+        break;
+      case CouplingScheme::kMultiVelocity:
+        std::fprintf(stderr, ": %d block points per cell side\n", c.block_points_per_cell);
+        break;
+      case CouplingScheme::kParticleSurface:
+        std::fprintf(stderr, ": no contact stiffness, Verlet distance %g m\n", c.verlet_distance);
+        break;
+      case CouplingScheme::kPartitioned:
+        std::fprintf(stderr, ": boundary inset %g m, rebuilt every %d steps, k_n %g N/m\n",
+                     c.boundary_inset, c.boundary_interval, c.normal_stiffness);
+        break;
+    }
   }
   const TimeStepChoice dt = w.chooseTimeStep();
   std::fprintf(stderr, "time step %.4g s, set by the %s term\n", dt.dt, stepLimitName(dt.limit));

@@ -485,16 +485,37 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
     readSprings(r, c.normal_stiffness, c.tangential_stiffness);
   }
   if (top.has("coupling")) {
-    MapReader r(ctx, top.node("coupling"), "coupling",
-                {"normal_stiffness", "tangential_stiffness", "contact_radius", "verlet_distance"});
+    MapReader r(
+        ctx, top.node("coupling"), "coupling",
+        {"scheme", "normal_stiffness", "tangential_stiffness", "contact_radius", "verlet_distance",
+         "block_points_per_cell", "boundary_inset", "boundary_interval"});
     CouplingDef& c = s.world.coupling;
+    c.scheme = r.choice<CouplingScheme>("scheme",
+                                        {{"imp", CouplingScheme::kImp},
+                                         {"imp_grid", CouplingScheme::kImpGrid},
+                                         {"multi_velocity", CouplingScheme::kMultiVelocity},
+                                         {"particle_surface", CouplingScheme::kParticleSurface},
+                                         {"partitioned", CouplingScheme::kPartitioned}},
+                                        c.scheme);
     readSprings(r, c.normal_stiffness, c.tangential_stiffness);
+    c.block_points_per_cell = r.integer("block_points_per_cell", c.block_points_per_cell);
+    r.require(c.block_points_per_cell >= 1 && c.block_points_per_cell <= 8, "block_points_per_cell",
+              "must be 1 to 8 points per cell side, got " + num(c.block_points_per_cell));
+    c.boundary_interval = r.integer("boundary_interval", c.boundary_interval);
+    r.require(c.boundary_interval >= 1, "boundary_interval",
+              "must be >= 1 step, got " + num(c.boundary_interval));
     const Real h = s.world.cell_size;
     if (r.has("contact_radius")) {
       c.contact_radius = r.number("contact_radius", "m");
       r.require(c.contact_radius > 0 && c.contact_radius < h, "contact_radius",
                 "must be in (0, cell_size = " + num(h) + ") m (seed 000 eq. 45), got " +
                     num(c.contact_radius));
+    }
+    if (r.has("boundary_inset")) {
+      c.boundary_inset = r.number("boundary_inset", "m");
+      r.require(
+          c.boundary_inset > 0 && c.boundary_inset < 0.5 * h, "boundary_inset",
+          "must be in (0, cell_size / 2 = " + num(0.5 * h) + ") m, got " + num(c.boundary_inset));
     }
     if (r.has("verlet_distance")) {
       c.verlet_distance = r.number("verlet_distance", "m");

@@ -87,6 +87,9 @@ class Blocks {
 
   // Forces for the next step, world frame (N/m), applied at a point (m); cleared by step().
   void addForce(int i, const Vec2& force, const Vec2& point);
+  // A force from the material: added for the next step and to coupling()[i] (one contact).
+  void addMaterialForce(int i, const Vec2& force, const Vec2& point);
+  void clearCoupling();
   // Stable step of the block-block penalty springs (contactTimeStep with the reduced mass of two
   // of the lightest blocks and four springs, eq. 39); infinite when no spring can form.
   Real stableStep(Real kappa2) const;

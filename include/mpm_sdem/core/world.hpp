@@ -8,8 +8,8 @@
 
 #include "mpm_sdem/core/blocks.hpp"
 #include "mpm_sdem/core/boundary.hpp"
+#include "mpm_sdem/core/coupling.hpp"
 #include "mpm_sdem/core/grid.hpp"
-#include "mpm_sdem/core/imp_coupling.hpp"
 #include "mpm_sdem/core/kernels.hpp"
 #include "mpm_sdem/core/material.hpp"
 #include "mpm_sdem/core/particles.hpp"
@@ -61,7 +61,7 @@ struct WorldDef {
   std::vector<BodyDef> bodies;
   std::vector<BlockDef> blocks;
   BlockContactDef block_contact;
-  CouplingDef coupling;  // IMP contact between material and blocks
+  CouplingDef coupling;  // contact between material and blocks (scheme and its settings)
 };
 
 // The step to take towards end_time given the stable step dt: lands exactly on end_time and
@@ -110,9 +110,10 @@ class World {
   // The rigid blocks, or nullptr in a scene without any (no block or coupling work is done).
   const Blocks* blocks() const { return blocks_.get(); }
   Blocks* blocks() { return blocks_.get(); }
-  const ImpCoupling& coupling() const { return coupling_; }
+  // The material-block coupling, or nullptr while there are no blocks.
+  const Coupling* coupling() const { return coupling_.get(); }
   // The coupling settings with their defaults resolved (r_p, V_d in metres).
-  const CouplingDef& resolvedCoupling() const { return coupling_.def(); }
+  CouplingDef resolvedCoupling() const;
   const Particles& particles() const { return particles_; }
   Particles& particles() { return particles_; }
   const Grid& grid() const { return grid_; }
@@ -139,8 +140,7 @@ class World {
   void gridToParticle(Real dt, StepInfo& info);
   void constitutiveUpdate(Real dt);
   void applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const;
-  void contactForces(Real dt);
-  void contactForcesToGrid();
+  void couplingStage(Real dt, Real kick, void (Coupling::*stage)(CouplingStep&));
   void stepBlocks(Real dt);
   void initCoupling();
   bool hasBlocks() const { return blocks_ && blocks_->count() > 0; }
@@ -152,7 +152,7 @@ class World {
   Tiles tiles_;
   Profile profile_;
   std::unique_ptr<Blocks> blocks_;
-  ImpCoupling coupling_;
+  std::unique_ptr<Coupling> coupling_;
   Real lightest_point_ = 0;  // kg/m, for the contact term of the time step
   Real time_ = 0;
   long steps_ = 0;

@@ -1,0 +1,97 @@
+// Material-block coupling: one interface, five schemes picked per scene. Every scheme gives the
+// same outputs: forces on the blocks (Blocks::coupling(), Blocks::addForce), forces or momentum
+// on the grid, and a count of active contacts. World calls the stages in this order each step:
+//   beforeStep -> [P2G, internal force] -> addGridForces -> [velocity update]
+//   -> correctGridVelocity -> [G2P] -> afterMaterialStep -> [blocks step]
+#pragma once
+
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "mpm_sdem/core/blocks.hpp"
+#include "mpm_sdem/core/grid.hpp"
+#include "mpm_sdem/core/kernels.hpp"
+#include "mpm_sdem/core/particles.hpp"
+#include "mpm_sdem/core/tiles.hpp"
+#include "mpm_sdem/core/types.hpp"
+
+namespace mpm_sdem {
+
+enum class CouplingScheme {
+  kImp,              // seed 000 sec. 4: DEM springs between blocks and identified material points
+  kImpGrid,          // seed 000 sec. 5.4 "MPM-GRID": the same springs, force put on the grid
+                     // nodes around the contact point instead of on the material point
+  kMultiVelocity,    // seed 002 sec. 2.4: the block's own velocity field on the grid, nodal
+                     // stick/slip contact (eq. 22-32)
+  kParticleSurface,  // seed 002 sec. 3: particle-to-surface contact, no penalty stiffness
+                     // (eq. 42-54 with the block's effective mass at the contact point)
+  kPartitioned,      // seed 003 Algorithm 1: blocks meet a wall of segments through boundary
+                     // particles; the wall forces go to the MPM side as point loads
+};
+const char* couplingSchemeName(CouplingScheme s);
+
+struct CouplingDef {
+  CouplingScheme scheme = CouplingScheme::kImp;
+  // Spring schemes (kImp, kImpGrid, kPartitioned).
+  Real normal_stiffness = 1e6;      // k_n of one contact (N/m per metre of thickness)
+  Real tangential_stiffness = 5e5;  // k_t (N/m per metre)
+  Real contact_radius = 0;          // r_p (m); 0: h / sqrt(points per cell), inside eq. 45
+  Real verlet_distance = 0;         // V_d (m); 0: half a cell
+  // kMultiVelocity: the block's points per cell side (its nodal mass and normal, eq. 23).
+  int block_points_per_cell = 2;
+  // kPartitioned: how far inside the material's outline the boundary particles sit (m); 0: a
+  // third of the point spacing (seed 003 sec. on the wooden blocks). Rebuilt every
+  // boundary_interval steps from the outline; in between they move with the material.
+  Real boundary_inset = 0;
+  int boundary_interval = 1;
+};
+
+// What a stage may read and change.
+struct CouplingStep {
+  Particles& particles;
+  Grid& grid;
+  const Tiles& tiles;
+  Blocks& blocks;
+  KernelType kernel;
+  Vec2 gravity;  // m/s^2
+  Real dt;       // s, the step
+  Real kick;     // s, the grid velocity update's span (dt, half of it on the first step)
+};
+
+class Coupling {
+ public:
+  virtual ~Coupling() = default;
+  // Contact forces from the state at the start of the step (spring schemes).
+  virtual void beforeStep(CouplingStep&) {}
+  // Nodal forces, added to the internal forces before the velocity update.
+  virtual void addGridForces(CouplingStep&) {}
+  // Momentum exchange on the updated (trial) grid velocities (penalty-free schemes).
+  virtual void correctGridVelocity(CouplingStep&) {}
+  // After the points moved.
+  virtual void afterMaterialStep(CouplingStep&) {}
+  // True when contacts are springs, which bound the time step (seed 000 eq. 51, second term).
+  virtual bool hasSprings() const = 0;
+  // A block was added (rebuild the search) or removed (drop its pairs; later indices shift).
+  virtual void blockAdded() {}
+  virtual void blockRemoved(int) {}
+
+  CouplingScheme scheme() const { return def_.scheme; }
+  // Settings with defaults resolved (r_p, V_d, inset in metres).
+  const CouplingDef& def() const { return def_; }
+  long activeContacts() const { return active_; }
+  // Sum of what the last step gave the material (N/m): impulses are divided by dt.
+  Vec2 forceOnMaterial() const { return on_material_; }
+
+ protected:
+  explicit Coupling(const CouplingDef& def) : def_(def) {}
+  CouplingDef def_;
+  long active_ = 0;
+  Vec2 on_material_{0, 0};
+};
+
+// def must have its defaults resolved (World does it from the cell size and points per cell).
+std::unique_ptr<Coupling> makeCoupling(const CouplingDef& def, const Vec2& domain_min,
+                                       const Vec2& domain_max, Real cell_size);
+
+}  // namespace mpm_sdem

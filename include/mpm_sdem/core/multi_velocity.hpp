@@ -1,0 +1,42 @@
+// Grid-based multi-velocity contact (seed 002 sec. 2.4; the scheme of Liu et al. that seed 000
+// compares against, its Fig. 17C): each block is sampled by points of its own, which give the
+// block a mass and an outward normal at the grid nodes (eq. 23). At a node shared with the
+// material, an approach (eq. 22) is resolved by the stick impulse that equalises the two
+// velocities (eq. 27-28), or its Coulomb-slip limit (eq. 29-32). Adapted to rigid blocks: the
+// block's side of eq. 28 uses its effective mass at the node (mass and inertia), so that stick
+// makes the node's material velocity equal to the block's velocity there.
+#pragma once
+
+#include <vector>
+
+#include "mpm_sdem/core/coupling.hpp"
+
+namespace mpm_sdem {
+
+class MultiVelocityCoupling final : public Coupling {
+ public:
+  MultiVelocityCoupling(const CouplingDef& def, Real cell_size);
+
+  void correctGridVelocity(CouplingStep& s) override;
+  bool hasSprings() const override { return false; }
+  void blockAdded() override { samples_.clear(); }
+  void blockRemoved(int) override { samples_.clear(); }
+
+  // Points sampling block b (resampled after a block is added or removed).
+  int samplesOf(int b) const { return static_cast<int>(samples_[b].offset.size()); }
+
+ private:
+  struct Samples {
+    std::vector<Vec2> offset;  // from the centre of mass at angle0, world axes (m)
+    Real angle0 = 0;
+    Real mass = 0;  // of each point (kg/m)
+  };
+  void sample(const Blocks& B);
+
+  Real h_;
+  std::vector<Samples> samples_;
+  std::vector<Real> patch_mass_;
+  std::vector<Vec2> patch_normal_;
+};
+
+}  // namespace mpm_sdem

@@ -1,0 +1,122 @@
+#include "mpm_sdem/core/multi_velocity.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "contact_impulse.hpp"
+#include "transfer.hpp"
+
+namespace mpm_sdem {
+
+MultiVelocityCoupling::MultiVelocityCoupling(const CouplingDef& def, Real cell_size)
+    : Coupling(def), h_(cell_size) {}
+
+void MultiVelocityCoupling::sample(const Blocks& B) {
+  samples_.assign(B.count(), Samples());
+  const Real spacing = h_ / def_.block_points_per_cell;
+  for (int b = 0; b < B.count(); ++b) {
+    const Vec2* core = B.vertices(b);
+    const int n = B.vertexCount(b);
+    const Real a = B.def(b).rounding;
+    Vec2 lo = core[0], hi = core[0];
+    for (int k = 1; k < n; ++k) {
+      lo = lo.cwiseMin(core[k]);
+      hi = hi.cwiseMax(core[k]);
+    }
+    lo.array() -= a;
+    hi.array() += a;
+    Samples& s = samples_[b];
+    const Vec2 com = B.state(b).position;
+    s.angle0 = B.state(b).angle;
+    for (Real y = lo.y() + spacing / 2; y < hi.y(); y += spacing)
+      for (Real x = lo.x() + spacing / 2; x < hi.x(); x += spacing)
+        if (closestOnCore(core, n, Vec2(x, y)).distance < a) s.offset.push_back(Vec2(x, y) - com);
+    if (s.offset.empty()) s.offset.push_back(Vec2(0, 0));  // smaller than a point spacing
+    s.mass = B.massProperties(b).mass / static_cast<Real>(s.offset.size());
+  }
+}
+
+void MultiVelocityCoupling::correctGridVelocity(CouplingStep& s) {
+  Blocks& B = s.blocks;
+  Grid& G = s.grid;
+  if (static_cast<int>(samples_.size()) != B.count()) sample(B);
+  B.clearCoupling();
+  active_ = 0;
+  on_material_.setZero();
+  const Real half_size = Real(0.5) / def_.block_points_per_cell;  // GIMP, in cells
+  detail::withKernel(s.kernel, [&](auto k) {
+    using K = decltype(k);
+    constexpr int S = K::kSupport;
+    for (int b = 0; b < B.count(); ++b) {
+      const Samples& smp = samples_[b];
+      const BlockState& st = B.state(b);
+      const Real c = std::cos(st.angle - smp.angle0), sn = std::sin(st.angle - smp.angle0);
+      auto placed = [&](const Vec2& o) {
+        return Vec2(st.position + Vec2(c * o.x() - sn * o.y(), sn * o.x() + c * o.y()));
+      };
+      // The block's nodal patch: every node its points touch.
+      Vec2 lo = placed(smp.offset[0]), hi = lo;
+      for (const Vec2& o : smp.offset) {
+        lo = lo.cwiseMin(placed(o));
+        hi = hi.cwiseMax(placed(o));
+      }
+      const int i0 = std::max(0, static_cast<int>((lo.x() - G.origin.x()) * G.inv_h) - 2);
+      const int j0 = std::max(0, static_cast<int>((lo.y() - G.origin.y()) * G.inv_h) - 2);
+      const int i1 = std::min(G.nx - 1, static_cast<int>((hi.x() - G.origin.x()) * G.inv_h) + 3);
+      const int j1 = std::min(G.ny - 1, static_cast<int>((hi.y() - G.origin.y()) * G.inv_h) + 3);
+      const int w = i1 - i0 + 1;
+      patch_mass_.assign(static_cast<std::size_t>(w) * (j1 - j0 + 1), 0);
+      patch_normal_.assign(patch_mass_.size(), Vec2(0, 0));
+      for (const Vec2& o : smp.offset) {
+        const Vec2 x = placed(o);
+        Real xg, yg;
+        Stencil1D sx, sy;
+        detail::stencils<K>(G, x.x(), x.y(), half_size, xg, yg, sx, sy);
+        for (int j = 0; j < S; ++j) {
+          for (int i = 0; i < S; ++i) {
+            const int pi = sx.base + i - i0, pj = sy.base + j - j0;
+            if (pi < 0 || pi >= w || pj < 0 || pj > j1 - j0) continue;
+            const std::size_t q = static_cast<std::size_t>(pi + pj * w);
+            patch_mass_[q] += sx.w[i] * sy.w[j] * smp.mass;
+            // Eq. 23: n_I = sum_p m_p grad S_Ip, pointing out of the block.
+            patch_normal_[q] += smp.mass * G.inv_h * Vec2(sx.dw[i] * sy.w[j], sx.w[i] * sy.dw[j]);
+          }
+        }
+      }
+      // Trial block velocity, updated after each node's exchange (Gauss-Seidel), so that the
+      // nodes of one contact share the block's momentum.
+      const bool dynamic = B.def(b).type == BodyType::kDynamic;
+      Vec2 vb = st.velocity + (dynamic ? Vec2(s.dt * s.gravity) : Vec2(0, 0));
+      Real wb = st.angular_velocity;
+      const Real mu = B.def(b).friction;
+      for (int pj = 0; pj <= j1 - j0; ++pj) {
+        for (int pi = 0; pi < w; ++pi) {
+          const std::size_t q = static_cast<std::size_t>(pi + pj * w);
+          const int node = G.index(i0 + pi, j0 + pj);
+          const Real ms = G.mass[node];
+          const Real nn = patch_normal_[q].norm();
+          if (!(patch_mass_[q] > 0 && ms > 0 && nn > 0)) continue;  // not a shared node
+          const Vec2 n = patch_normal_[q] / nn;
+          const Vec2 xI = G.origin + Vec2(i0 + pi, j0 + pj) * G.h;
+          const Vec2 r = xI - st.position;
+          const Vec2 u = Vec2(G.vel_x[node], G.vel_y[node]) - (vb + wb * Vec2(-r.y(), r.x()));
+          if (!(u.dot(n) < 0)) continue;  // eq. 22: not approaching
+          const detail::Mat2 Kb = detail::blockInverseMass(B, b, xI);
+          const detail::Exchange e =
+              detail::exchange(detail::Mat2::Identity() / ms + Kb, u, n, 0, mu);
+          G.vel_x[node] += e.impulse.x() / ms;  // eq. 25
+          G.vel_y[node] += e.impulse.y() / ms;
+          if (dynamic) {
+            vb -= e.impulse / B.massProperties(b).mass;
+            wb -= (r.x() * e.impulse.y() - r.y() * e.impulse.x()) / B.massProperties(b).inertia;
+          }
+          B.addMaterialForce(b, -e.impulse / s.dt, xI);  // the same impulse over the step
+          on_material_ += e.impulse / s.dt;
+          ++active_;
+        }
+      }
+    }
+  });
+}
+
+}  // namespace mpm_sdem
