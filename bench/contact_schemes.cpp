@@ -45,7 +45,10 @@ Result run(CouplingScheme scheme, Real h) {
   def.domain.min = Vec2(0, 0);
   def.domain.max = Vec2(width, std::ceil(0.02 / h) * h);
   def.solver.gravity = Vec2(0, 0);
-  def.solver.kernel = KernelType::kGimp;  // seed 000 sec. 5
+  // Quadratic B-spline, not seed 000's GIMP: with GIMP this one-point-thick rod at 50 to 100
+  // points per cell (l_p = 0.01 to 0.005 cells) became non-finite within 32 steps, before any
+  // contact, at d_g = 0.5, 0.6 and 1.0 cm (README, Limitations).
+  def.solver.kernel = KernelType::kQuadraticBSpline;
   MaterialDef m;
   m.name = "rod";
   m.density = rho;
@@ -83,16 +86,15 @@ Result run(CouplingScheme scheme, Real h) {
   def.coupling.verlet_distance = 0.002;
   World w(def);
   const Diagnostics d0 = measure(w);
-  const Real e0 = d0.kinetic + d0.elastic + d0.block_kinetic;
+  const Real e0 = d0.kinetic + d0.elastic;  // kinetic includes the blocks
   const Real end = gap / v + 0.06;
   const auto t0 = std::chrono::steady_clock::now();
   while (w.time() < end) w.step(stepTowards(w.chooseTimeStep().dt, end, w.time()));
   const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const Diagnostics d = measure(w);
-  const Real e = d.kinetic + d.elastic + d.block_kinetic;
-  const Real k0 = d0.kinetic + d0.block_kinetic, k = d.kinetic + d.block_kinetic;
-  return {std::abs(e - e0) / e0, std::abs(k - k0) / k0, w.blocks()->state(0).velocity.norm(),
-          1e6 * sec / w.stepCount(), w.stepCount()};
+  const Real e = d.kinetic + d.elastic;
+  return {std::abs(e - e0) / e0, std::abs(d.kinetic - d0.kinetic) / d0.kinetic,
+          w.blocks()->state(0).velocity.norm(), 1e6 * sec / w.stepCount(), w.stepCount()};
 }
 
 }  // namespace

@@ -60,6 +60,7 @@ void MultiVelocityCoupling::correctGridVelocity(CouplingStep& s) {
         lo = lo.cwiseMin(placed(o));
         hi = hi.cwiseMax(placed(o));
       }
+      if (!lo.allFinite() || !hi.allFinite()) continue;  // World reports the non-finite state
       const int i0 = std::max(0, static_cast<int>((lo.x() - G.origin.x()) * G.inv_h) - 2);
       const int j0 = std::max(0, static_cast<int>((lo.y() - G.origin.y()) * G.inv_h) - 2);
       const int i1 = std::min(G.nx - 1, static_cast<int>((hi.x() - G.origin.x()) * G.inv_h) + 3);

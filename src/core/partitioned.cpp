@@ -23,6 +23,7 @@ void PartitionedCoupling::rebuild(const CouplingStep& s) {
     using K = decltype(k);
     constexpr int S = K::kSupport;
     for (std::size_t p = 0; p < P.size(); ++p) {
+      if (!std::isfinite(P.x[p]) || !std::isfinite(P.y[p])) continue;  // World reports it
       Real xg, yg;
       Stencil1D sx, sy;
       detail::stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
@@ -291,6 +292,7 @@ void PartitionedCoupling::afterMaterialStep(CouplingStep& s) {
   detail::withKernel(s.kernel, [&](auto k) {
     using K = decltype(k);
     for (std::size_t e = 0; e < x_.size(); ++e) {
+      if (!x_[e].allFinite()) continue;
       v_[e] = detail::gridVelocityAt<K>(s.grid, x_[e], half_size_);
       x_[e] += s.dt * v_[e];
       drift_ = std::max(drift_, (x_[e] - x_built_[e]).norm());
