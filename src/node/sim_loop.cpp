@@ -138,10 +138,13 @@ int Simulation::run(const volatile std::sig_atomic_t& stop) {
   start_wall_ = last_log_ = Clock::now();
   restartPacing();
   publishers_.publish(*world_, dt_, paused_, true);
-  ROS_INFO("scene %s: %zu material points, %d blocks, end %g s, first dt %.3g s (%s)%s",
-           scene_.name.c_str(), world_->particles().size(),
-           world_->blocks() ? world_->blocks()->count() : 0, scene_.end_time, dt_.dt,
-           stepLimitName(dt_.limit), paused_ ? "; paused (call ~resume)" : "");
+  ROS_INFO(
+      "scene %s: %zu material points, %d blocks (coupling %s), end %g s, first dt %.3g s "
+      "(%s)%s",
+      scene_.name.c_str(), world_->particles().size(),
+      world_->blocks() ? world_->blocks()->count() : 0,
+      couplingSchemeName(world_->def().coupling.scheme), scene_.end_time, dt_.dt,
+      stepLimitName(dt_.limit), paused_ ? "; paused (call ~resume)" : "");
   while (!stop && ros::ok() && !shutdown_) {
     commands_.runPending(*this);
     if (paused_) {
