@@ -24,7 +24,7 @@ const char* couplingSchemeName(CouplingScheme s) {
 }
 
 std::unique_ptr<Coupling> makeCoupling(const CouplingDef& def, const Vec2& lo, const Vec2& hi,
-                                       Real cell_size) {
+                                       Real cell_size, const std::vector<BodyDef>& bodies) {
   switch (def.scheme) {
     case CouplingScheme::kImp:
     case CouplingScheme::kImpGrid:
@@ -34,7 +34,7 @@ std::unique_ptr<Coupling> makeCoupling(const CouplingDef& def, const Vec2& lo, c
     case CouplingScheme::kParticleSurface:
       return std::make_unique<ParticleSurfaceCoupling>(def, lo, hi, cell_size);
     case CouplingScheme::kPartitioned:
-      return std::make_unique<PartitionedCoupling>(def, cell_size);
+      return std::make_unique<PartitionedCoupling>(def, cell_size, bodies);
   }
   return nullptr;
 }

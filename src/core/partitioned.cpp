@@ -2,173 +2,101 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "transfer.hpp"
 
 namespace mpm_sdem {
 
-PartitionedCoupling::PartitionedCoupling(const CouplingDef& def, Real cell_size)
-    : Coupling(def), h_(cell_size) {}
+namespace {
 
-void PartitionedCoupling::rebuild(const CouplingStep& s) {
-  const Particles& P = s.particles;
-  const Grid& G = s.grid;
-  const std::size_t nodes = static_cast<std::size_t>(G.nx) * G.ny;
-  volume_.assign(nodes, 0);
-  mass_.assign(nodes, 0);
-  mom_x_.assign(nodes, 0);
-  mom_y_.assign(nodes, 0);
-  Real level = 0.5;
-  detail::withKernel(s.kernel, [&](auto k) {
-    using K = decltype(k);
-    constexpr int S = K::kSupport;
-    for (std::size_t p = 0; p < P.size(); ++p) {
-      if (!std::isfinite(P.x[p]) || !std::isfinite(P.y[p])) continue;  // World reports it
-      Real xg, yg;
-      Stencil1D sx, sy;
-      detail::stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
-      const Real vol = P.volume0[p] * P.J[p];
-      for (int j = 0; j < S; ++j) {
-        for (int i = 0; i < S; ++i) {
-          const int q = G.index(sx.base + i, sy.base + j);
-          const Real w = sx.w[i] * sy.w[j];
-          volume_[q] += w * vol;
-          mass_[q] += w * P.mass[p];
-          mom_x_[q] += w * P.mass[p] * P.vx[p];
-          mom_y_[q] += w * P.mass[p] * P.vy[p];
-        }
+// The closed outline of a body's shape, counter-clockwise (m).
+std::vector<Vec2> outline(const ShapeDef& shape, Real spacing) {
+  std::vector<Vec2> poly;
+  switch (shape.type) {
+    case ShapeType::kRectangle:
+      poly = {shape.min, Vec2(shape.max.x(), shape.min.y()), shape.max,
+              Vec2(shape.min.x(), shape.max.y())};
+      break;
+    case ShapeType::kPolygon:
+      poly = shape.vertices;
+      break;
+    case ShapeType::kDisk: {
+      const int n = std::max(8, static_cast<int>(std::ceil(2 * M_PI * shape.radius / spacing)));
+      for (int k = 0; k < n; ++k) {
+        const Real a = 2 * M_PI * k / n;
+        poly.push_back(shape.center + shape.radius * Vec2(std::cos(a), std::sin(a)));
+      }
+      break;
+    }
+  }
+  if (signedArea(poly) < 0) std::reverse(poly.begin(), poly.end());
+  return poly;
+}
+
+// poly moved inwards by d: each vertex along the bisector of its edges' inward normals, by d
+// over the cosine of half the turn (capped for sharp corners).
+std::vector<Vec2> inset(const std::vector<Vec2>& poly, Real d) {
+  const std::size_t n = poly.size();
+  std::vector<Vec2> out(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 e0 = (poly[i] - poly[(i + n - 1) % n]).normalized();
+    const Vec2 e1 = (poly[(i + 1) % n] - poly[i]).normalized();
+    const Vec2 n0(-e0.y(), e0.x()), n1(-e1.y(), e1.x());  // inward for counter-clockwise
+    const Vec2 m = (n0 + n1).normalized();
+    out[i] = poly[i] + d / std::max<Real>(m.dot(n0), 0.2) * m;
+  }
+  return out;
+}
+
+}  // namespace
+
+PartitionedCoupling::PartitionedCoupling(const CouplingDef& def, Real cell_size,
+                                         const std::vector<BodyDef>& bodies)
+    : Coupling(def), h_(cell_size) {
+  // Boundary particles half a cell apart on each body's outline, inset (seed 003).
+  const Real spacing = 0.5 * cell_size;
+  for (const BodyDef& body : bodies) {
+    const std::vector<Vec2> poly = inset(outline(body.shape, spacing), def.boundary_inset);
+    const int first = static_cast<int>(x_.size());
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      const Vec2 a = poly[i], b = poly[(i + 1) % poly.size()];
+      const int pieces = std::max(1, static_cast<int>(std::ceil((b - a).norm() / spacing)));
+      for (int k = 0; k < pieces; ++k) {
+        x_.push_back(a + (b - a) * (static_cast<Real>(k) / pieces));
+        v_.push_back(body.velocity);
       }
     }
-    half_size_ = P.size() > 0 ? P.half_size[0] : Real(0.25);
-    Stencil1D at_node;
-    K::stencil(Real(8), half_size_, at_node);  // the weight of the node under the point
-    const Real s0 = at_node.w[8 - at_node.base];
-    level = std::min<Real>(0.5 + s0 * def_.boundary_inset / h_, 0.9);
-  });
-  Real total = 0;
-  for (Real m : P.mass) total += m;
-  wall_mass_ = P.size() > 0 ? total / P.size() : 0;
-
-  // Marching squares on the volume fraction: a crossing point on every grid edge whose ends are
-  // on either side of the level, joined into segments cell by cell.
-  const Real inv_area = G.inv_h * G.inv_h;
-  auto inside = [&](int q) { return volume_[q] * inv_area >= level; };
-  edge_point_.assign(2 * nodes, -1);
-  x_.clear();
-  v_.clear();
-  segments_.clear();
-  auto point = [&](int q0, int q1, int edge) {
-    if (edge_point_[edge] >= 0) return edge_point_[edge];
-    const Real f0 = volume_[q0] * inv_area, f1 = volume_[q1] * inv_area;
-    const Real t = (level - f0) / (f1 - f0);
-    const Vec2 x0 = G.origin + Vec2(q0 % G.nx, q0 / G.nx) * G.h;
-    const Vec2 x1 = G.origin + Vec2(q1 % G.nx, q1 / G.nx) * G.h;
-    auto vel = [&](int q) {
-      return mass_[q] > 0 ? Vec2(mom_x_[q] / mass_[q], mom_y_[q] / mass_[q]) : Vec2(0, 0);
-    };
-    edge_point_[edge] = static_cast<int>(x_.size());
-    x_.push_back(x0 + t * (x1 - x0));
-    v_.push_back(vel(q0) + t * (vel(q1) - vel(q0)));
-    return edge_point_[edge];
-  };
-  cells_x_ = G.nx - 1;
-  cells_y_ = G.ny - 1;
-  cell_start_.assign(static_cast<std::size_t>(cells_x_) * cells_y_ + 1, 0);
-  for (int j = 0; j < cells_y_; ++j) {
-    for (int i = 0; i < cells_x_; ++i) {
-      const int a = G.index(i, j), b = G.index(i + 1, j), c = G.index(i + 1, j + 1),
-                d = G.index(i, j + 1);
-      const int bits = inside(a) | inside(b) << 1 | inside(c) << 2 | inside(d) << 3;
-      const int cell = i + j * cells_x_;
-      cell_start_[cell + 1] = cell_start_[cell];
-      if (bits == 0 || bits == 15) continue;
-      // Edges: 0 bottom (a-b), 1 right (b-c), 2 top (d-c), 3 left (a-d).
-      auto e = [&](int which) {
-        switch (which) {
-          case 0:
-            return point(a, b, 2 * a);
-          case 1:
-            return point(b, c, 2 * b + 1);
-          case 2:
-            return point(d, c, 2 * d);
-          default:
-            return point(a, d, 2 * a + 1);
-        }
-      };
-      // Each segment with the material on its left, so that its right normal points out.
-      const Vec2 corner = G.origin + Vec2(i, j) * G.h;
-      Vec2 inner(0, 0);
-      int n_in = 0;
-      const int quad[4][3] = {{a, 0, 0}, {b, 1, 0}, {c, 1, 1}, {d, 0, 1}};
-      for (const auto& q : quad) {
-        if (!inside(q[0])) continue;
-        inner += corner + Vec2(q[1], q[2]) * G.h;
-        ++n_in;
-      }
-      inner /= n_in;
-      auto join = [&](int e0, int e1) {
-        int p0 = e(e0), p1 = e(e1);
-        const Vec2 edge = x_[p1] - x_[p0];
-        const Vec2 to_inner = inner - x_[p0];
-        if (edge.x() * to_inner.y() - edge.y() * to_inner.x() < 0) std::swap(p0, p1);
-        segments_.push_back({p0, p1});
-        ++cell_start_[cell + 1];
-      };
-      const bool centre =
-          (volume_[a] + volume_[b] + volume_[c] + volume_[d]) * inv_area / 4 >= level;
-      switch (bits) {
-        case 1:
-        case 14:
-          join(3, 0);
-          break;
-        case 2:
-        case 13:
-          join(0, 1);
-          break;
-        case 3:
-        case 12:
-          join(3, 1);
-          break;
-        case 4:
-        case 11:
-          join(1, 2);
-          break;
-        case 6:
-        case 9:
-          join(0, 2);
-          break;
-        case 7:
-        case 8:
-          join(3, 2);
-          break;
-        case 5:  // saddle: a and c inside
-          if (centre) {
-            join(0, 1);
-            join(2, 3);
-          } else {
-            join(3, 0);
-            join(1, 2);
-          }
-          break;
-        case 10:  // saddle: b and d inside
-          if (centre) {
-            join(3, 0);
-            join(1, 2);
-          } else {
-            join(0, 1);
-            join(2, 3);
-          }
-          break;
-        default:
-          break;
-      }
-    }
+    const int last = static_cast<int>(x_.size()) - 1;
+    for (int k = first; k < last; ++k) segments_.push_back({k, k + 1});
+    if (last > first) segments_.push_back({last, first});
   }
   load_.assign(x_.size(), Vec2(0, 0));
   stamp_.assign(x_.size(), -1);
-  x_built_ = x_;
-  drift_ = 0;
-  since_rebuild_ = 0;
+}
+
+void PartitionedCoupling::bucketSegments(const Grid& G) {
+  // Counting sort of the segments by the cell of their middle; they move every step.
+  cells_x_ = G.nx - 1;
+  cells_y_ = G.ny - 1;
+  cell_start_.assign(static_cast<std::size_t>(cells_x_) * cells_y_ + 1, 0);
+  std::vector<int>& cell_of = cell_segments_;  // reused: first the cells, then the order
+  std::vector<int> cells(segments_.size());
+  longest_ = 0;
+  for (std::size_t k = 0; k < segments_.size(); ++k) {
+    const Vec2 a = x_[segments_[k][0]], b = x_[segments_[k][1]];
+    longest_ = std::max(longest_, (b - a).norm());
+    const Vec2 mid = (0.5 * (a + b) - G.origin) * G.inv_h;
+    const int i = std::clamp(static_cast<int>(mid.x()), 0, cells_x_ - 1);
+    const int j = std::clamp(static_cast<int>(mid.y()), 0, cells_y_ - 1);
+    cells[k] = i + j * cells_x_;
+    ++cell_start_[cells[k] + 1];
+  }
+  for (std::size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
+  cell_of.assign(segments_.size(), 0);
+  std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
+  for (std::size_t k = 0; k < segments_.size(); ++k)
+    cell_of[fill[cells[k]]++] = static_cast<int>(k);
 }
 
 void PartitionedCoupling::contact(Blocks& B, int b, const Vec2& n, Real overlap, const Vec2& point,
@@ -197,9 +125,16 @@ void PartitionedCoupling::contact(Blocks& B, int b, const Vec2& n, Real overlap,
 }
 
 void PartitionedCoupling::beforeStep(CouplingStep& s) {
-  if (since_rebuild_ < 0 || since_rebuild_ >= def_.boundary_interval) rebuild(s);
   Blocks& B = s.blocks;
   const Grid& G = s.grid;
+  const Particles& P = s.particles;
+  if (wall_mass_ == 0 && P.size() > 0) {
+    Real total = 0;
+    for (Real m : P.mass) total += m;
+    wall_mass_ = total / P.size();
+    half_size_ = P.half_size[0];
+  }
+  bucketSegments(G);
   B.clearCoupling();
   std::fill(load_.begin(), load_.end(), Vec2(0, 0));
   active_ = 0;
@@ -215,7 +150,7 @@ void PartitionedCoupling::beforeStep(CouplingStep& s) {
       lo = lo.cwiseMin(core[k]);
       hi = hi.cwiseMax(core[k]);
     }
-    const Real grow = a + drift_ + G.h;
+    const Real grow = a + 0.5 * longest_ + G.h;  // segments are filed by their middle
     const int i0 = std::max(0, static_cast<int>((lo.x() - grow - G.origin.x()) * G.inv_h));
     const int j0 = std::max(0, static_cast<int>((lo.y() - grow - G.origin.y()) * G.inv_h));
     const int i1 =
@@ -232,14 +167,14 @@ void PartitionedCoupling::beforeStep(CouplingStep& s) {
     for (int j = j0; j <= j1; ++j) {
       for (int i = i0; i <= i1; ++i) {
         const int cell = i + j * cells_x_;
-        for (int sg = cell_start_[cell]; sg < cell_start_[cell + 1]; ++sg) {
+        for (int q = cell_start_[cell]; q < cell_start_[cell + 1]; ++q) {
+          const int sg = cell_segments_[q];
           for (int e : segments_[sg]) {  // the wall's nodes, each once per block
             if (stamp_[e] == b) continue;
             stamp_[e] = b;
             const CoreDistance d = closestOnCore(core, nv, x_[e]);
-            // Only within the rounding: a wall node inside the core came from material that
-            // passed the wall between two contour updates (a lone point has no contour), and
-            // a spring stretched across the block would throw it out.
+            // Only within the rounding: a wall node inside the core got there by passing the
+            // block's outline, and a spring stretched across the block would throw it out.
             if (d.distance > 0 && d.distance < a)
               contact(B, b, d.normal, a - d.distance, d.point + (a + d.distance) / 2 * d.normal,
                       v_[e], e, e, 0);
@@ -292,13 +227,28 @@ void PartitionedCoupling::afterMaterialStep(CouplingStep& s) {
   detail::withKernel(s.kernel, [&](auto k) {
     using K = decltype(k);
     for (std::size_t e = 0; e < x_.size(); ++e) {
-      if (!x_[e].allFinite()) continue;
-      v_[e] = detail::gridVelocityAt<K>(s.grid, x_[e], half_size_);
+      if (!x_[e].allFinite()) continue;  // World reports the non-finite state
+      v_[e] = detail::materialVelocityAt<K>(s.grid, x_[e], half_size_);
       x_[e] += s.dt * v_[e];
-      drift_ = std::max(drift_, (x_[e] - x_built_[e]).norm());
+      // Inside the domain, as the material points are kept.
+      const Vec2 lo = s.grid.origin + Vec2::Constant(Grid::kPad * s.grid.h);
+      const Vec2 hi = lo + Vec2(s.grid.cells_x, s.grid.cells_y) * s.grid.h;
+      x_[e] = x_[e].cwiseMax(lo).cwiseMin(hi);
     }
   });
-  ++since_rebuild_;
+  // Keep the wall closed as the surface stretches: split segments longer than a cell.
+  const std::size_t count = segments_.size();
+  for (std::size_t k = 0; k < count; ++k) {
+    const int a = segments_[k][0], b = segments_[k][1];
+    if (!((x_[b] - x_[a]).norm() > h_)) continue;
+    const int m = static_cast<int>(x_.size());
+    x_.push_back(0.5 * (x_[a] + x_[b]));
+    v_.push_back(0.5 * (v_[a] + v_[b]));
+    load_.emplace_back(0, 0);
+    stamp_.push_back(-1);
+    segments_[k][1] = m;
+    segments_.push_back({m, b});
+  }
 }
 
 }  // namespace mpm_sdem

@@ -294,26 +294,42 @@ bool spreadPointLoad(Grid& G, const Vec2& x, Real half_size, const Vec2& f) {
   return true;
 }
 
-// The grid velocity (vel_x, vel_y) at x, weights renormalised over the nodes with mass like
-// spreadPointLoad; zero when none has.
+// The grid velocity (vel_x, vel_y) at x as G2P interpolates it: sum_I S_I(x) v_I (nodes
+// without mass carry zero).
 template <class K>
 Vec2 gridVelocityAt(const Grid& G, const Vec2& x, Real half_size) {
   constexpr int S = K::kSupport;
   Real xg, yg;
   Stencil1D sx, sy;
   stencils<K>(G, x.x(), x.y(), half_size, xg, yg, sx, sy);
-  Real sum = 0;
   Vec2 v(0, 0);
   for (int j = 0; j < S; ++j) {
     const int row = (sy.base + j) * G.nx + sx.base;
+    for (int i = 0; i < S; ++i) v += sx.w[i] * sy.w[j] * Vec2(G.vel_x[row + i], G.vel_y[row + i]);
+  }
+  return v;
+}
+
+// The material's velocity at x for a massless tracer: sum_I S_I m_I v_I / sum_I S_I m_I. A node
+// that holds only a sliver of mass at the edge of the material can carry a wild velocity
+// (force over a tiny mass) that the points there barely see; weighting by mass keeps it out.
+template <class K>
+Vec2 materialVelocityAt(const Grid& G, const Vec2& x, Real half_size) {
+  constexpr int S = K::kSupport;
+  Real xg, yg;
+  Stencil1D sx, sy;
+  stencils<K>(G, x.x(), x.y(), half_size, xg, yg, sx, sy);
+  Real sum = 0;
+  Vec2 p(0, 0);
+  for (int j = 0; j < S; ++j) {
+    const int row = (sy.base + j) * G.nx + sx.base;
     for (int i = 0; i < S; ++i) {
-      if (!(G.mass[row + i] > 0)) continue;
-      const Real w = sx.w[i] * sy.w[j];
+      const Real w = sx.w[i] * sy.w[j] * G.mass[row + i];
       sum += w;
-      v += w * Vec2(G.vel_x[row + i], G.vel_y[row + i]);
+      p += w * Vec2(G.vel_x[row + i], G.vel_y[row + i]);
     }
   }
-  return sum > 0 ? Vec2(v / sum) : Vec2(0, 0);
+  return sum > 0 ? Vec2(p / sum) : Vec2(0, 0);
 }
 
 // An impulse J on particle p (N s/m) onto the updated grid velocities: v_I += S_Ip J / m_I

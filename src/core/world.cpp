@@ -99,7 +99,8 @@ CouplingDef World::resolvedCoupling() const {
 }
 
 void World::initCoupling() {
-  coupling_ = makeCoupling(resolvedCoupling(), def_.domain.min, def_.domain.max, def_.cell_size);
+  coupling_ = makeCoupling(resolvedCoupling(), def_.domain.min, def_.domain.max, def_.cell_size,
+                           def_.bodies);
 }
 
 std::string World::placementProblem(const BlockDef& d, bool allow_overlap, int moving) const {
@@ -115,6 +116,9 @@ std::string World::placementProblem(const BlockDef& d, bool allow_overlap, int m
   if (!(d.friction >= 0 && finite(d.friction))) return "friction must be a finite number >= 0";
   if (!(d.restitution > 0 && d.restitution <= 1))
     return "restitution must be in (0, 1] (1: elastic)";
+  if (!coupling_ && def_.coupling.scheme == CouplingScheme::kPartitioned && steps_ > 0)
+    return "the partitioned coupling builds its wall from the material's initial outline: give "
+           "the scene a block from the start, or use another coupling scheme";
   if (moving < 0 && blocks_ && blocks_->find(d.name) >= 0)
     return "a block named '" + d.name + "' exists";
   if (d.name.empty()) return "the block needs a name";

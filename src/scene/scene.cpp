@@ -485,10 +485,9 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
     readSprings(r, c.normal_stiffness, c.tangential_stiffness);
   }
   if (top.has("coupling")) {
-    MapReader r(
-        ctx, top.node("coupling"), "coupling",
-        {"scheme", "normal_stiffness", "tangential_stiffness", "contact_radius", "verlet_distance",
-         "block_points_per_cell", "boundary_inset", "boundary_interval"});
+    MapReader r(ctx, top.node("coupling"), "coupling",
+                {"scheme", "normal_stiffness", "tangential_stiffness", "contact_radius",
+                 "verlet_distance", "block_points_per_cell", "boundary_inset"});
     CouplingDef& c = s.world.coupling;
     c.scheme = r.choice<CouplingScheme>("scheme",
                                         {{"imp", CouplingScheme::kImp},
@@ -501,9 +500,6 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
     c.block_points_per_cell = r.integer("block_points_per_cell", c.block_points_per_cell);
     r.require(c.block_points_per_cell >= 1 && c.block_points_per_cell <= 8, "block_points_per_cell",
               "must be 1 to 8 points per cell side, got " + num(c.block_points_per_cell));
-    c.boundary_interval = r.integer("boundary_interval", c.boundary_interval);
-    r.require(c.boundary_interval >= 1, "boundary_interval",
-              "must be >= 1 step, got " + num(c.boundary_interval));
     const Real h = s.world.cell_size;
     if (r.has("contact_radius")) {
       c.contact_radius = r.number("contact_radius", "m");

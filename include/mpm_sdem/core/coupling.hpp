@@ -13,6 +13,7 @@
 #include "mpm_sdem/core/grid.hpp"
 #include "mpm_sdem/core/kernels.hpp"
 #include "mpm_sdem/core/particles.hpp"
+#include "mpm_sdem/core/shapes.hpp"
 #include "mpm_sdem/core/tiles.hpp"
 #include "mpm_sdem/core/types.hpp"
 
@@ -40,11 +41,9 @@ struct CouplingDef {
   Real verlet_distance = 0;         // V_d (m); 0: half a cell
   // kMultiVelocity: the block's points per cell side (its nodal mass and normal, eq. 23).
   int block_points_per_cell = 2;
-  // kPartitioned: how far inside the material's outline the boundary particles sit (m); 0: a
-  // third of the point spacing (seed 003 sec. on the wooden blocks). Rebuilt every
-  // boundary_interval steps from the outline; in between they move with the material.
+  // kPartitioned: how far inside each body's initial outline the boundary particles start (m);
+  // 0: a third of the point spacing (seed 003, the wooden-block case).
   Real boundary_inset = 0;
-  int boundary_interval = 1;
 };
 
 // What a stage may read and change.
@@ -92,6 +91,7 @@ class Coupling {
 
 // def must have its defaults resolved (World does it from the cell size and points per cell).
 std::unique_ptr<Coupling> makeCoupling(const CouplingDef& def, const Vec2& domain_min,
-                                       const Vec2& domain_max, Real cell_size);
+                                       const Vec2& domain_max, Real cell_size,
+                                       const std::vector<BodyDef>& bodies);
 
 }  // namespace mpm_sdem
