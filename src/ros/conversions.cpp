@@ -101,9 +101,9 @@ mpm_sdem::BlockStates toBlockStates(const World& world, const std_msgs::Header& 
     m.center_of_mass.x = s.position.x();
     m.center_of_mass.y = s.position.y();
     const Blocks::Coupling& c = B->coupling()[i];
-    m.imp_force.x = c.force.x();
-    m.imp_force.y = c.force.y();
-    m.imp_torque = c.torque;
+    m.coupling_force.x = c.force.x();
+    m.coupling_force.y = c.force.y();
+    m.coupling_torque = c.torque;
     m.contact_count = static_cast<std::uint32_t>(c.contacts);
   }
   return out;
@@ -190,7 +190,8 @@ mpm_sdem::SimStats toStats(const World& world, const Diagnostics& d, const Stats
   s.real_time_factor = in.real_time_factor;
   s.particles = static_cast<std::uint32_t>(world.particles().size());
   s.blocks = world.blocks() ? static_cast<std::uint32_t>(world.blocks()->count()) : 0;
-  s.imp_contacts =
+  s.coupling = couplingSchemeName(world.def().coupling.scheme);
+  s.contacts =
       world.coupling() ? static_cast<std::uint32_t>(world.coupling()->activeContacts()) : 0;
   s.paused = in.paused;
   s.kinetic_energy = d.kinetic;

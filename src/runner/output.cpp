@@ -30,8 +30,8 @@ void TimeSeriesWriter::write(const World& w, const Diagnostics& d, const TimeSte
 }
 
 BlockSeriesWriter::BlockSeriesWriter(const std::string& path) : out_(openCsv(path)) {
-  out_ << "time,block,name,x,y,angle,vx,vy,angular_velocity,imp_force_x,imp_force_y,imp_torque,"
-          "imp_contacts\n";
+  out_ << "time,block,name,x,y,angle,vx,vy,angular_velocity,coupling_force_x,coupling_force_y,"
+          "coupling_torque,contacts\n";
   out_.flush();
 }
 

@@ -95,7 +95,7 @@ TEST(Node, PublishesCloudBlocksAndTf) {
   // rounding included: 0.8 kg/m, 7.85 N/m), which only IMP contacts can supply.
   ASSERT_TRUE(n.block("box", box));
   EXPECT_GT(box.contact_count, 0u);
-  EXPECT_NEAR(box.imp_force.y, 0.8 * 9.81, 0.1 * 0.8 * 9.81);
+  EXPECT_NEAR(box.coupling_force.y, 0.8 * 9.81, 0.1 * 0.8 * 9.81);
 }
 
 TEST(Node, SpawnedBlockAppearsFallsOntoTheMaterialAndIsRemoved) {
@@ -110,7 +110,7 @@ TEST(Node, SpawnedBlockAppearsFallsOntoTheMaterialAndIsRemoved) {
   // It falls about 6 cm onto the bed and the material pushes back.
   ASSERT_TRUE(waitFor([&] { return n.block("dropper", b) && b.contact_count > 0; }, 20))
       << "the spawned block never touched the material";
-  ASSERT_TRUE(waitFor([&] { return n.block("dropper", b) && b.imp_force.y > 0; }, 5));
+  ASSERT_TRUE(waitFor([&] { return n.block("dropper", b) && b.coupling_force.y > 0; }, 5));
   EXPECT_LT(b.pose.position.y, 0.12);
   RemoveObstacle r;
   r.request.name = "dropper";
