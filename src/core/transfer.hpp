@@ -353,8 +353,8 @@ void addParticleImpulse(Grid& G, const Particles& P, int p, const Vec2& J) {
 }
 
 // How fast particle p's interpolated velocity responds to an impulse on it spread by
-// addParticleImpulse: sum_I S_Ip^2 / m_I (1/kg per metre). At least 1/m_p's neighbours share
-// the nodes, so it is below 1 / m_p.
+// addParticleImpulse: sum_I S_Ip^2 / m_I (per kg per metre); below 1 / m_p wherever other
+// points share p's nodes.
 template <class K>
 Real particleGridInverseMass(const Grid& G, const Particles& P, int p) {
   constexpr int S = K::kSupport;
