@@ -235,6 +235,7 @@ StepInfo World::step(Real dt) {
   // them on the grid (eq. 48), then the blocks with the reactions. Each coupling scheme does its
   // part in the stages of coupling.hpp.
   const bool coupled = hasBlocks();
+  const bool corrected = coupled && coupling_->correctsVelocities();
   auto stage = [&](void (Coupling::*f)(CouplingStep&)) {
     if (coupled) couplingStage(dt, kick, f);
   };
@@ -248,7 +249,7 @@ StepInfo World::step(Real dt) {
     stage(&Coupling::addGridForces);
     gridVelocity(kick, true);
     stage(&Coupling::correctGridVelocity);
-    if (coupled) applyWalls(grid_.vel_x, grid_.vel_y);  // a correction may push into a wall
+    if (corrected) applyWalls(grid_.vel_x, grid_.vel_y);  // a correction may push into a wall
     gridToParticle(dt, info);
     stress_lag_ = dt;
   } else {
@@ -257,7 +258,7 @@ StepInfo World::step(Real dt) {
     gridVelocity(0, false);
     gridVelocity(kick, true);
     stage(&Coupling::correctGridVelocity);
-    if (coupled) applyWalls(grid_.vel_x, grid_.vel_y);
+    if (corrected) applyWalls(grid_.vel_x, grid_.vel_y);
     gridToParticle(dt, info);
     constitutiveUpdate(dt);
     stress_lag_ = 0;

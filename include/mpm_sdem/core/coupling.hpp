@@ -71,6 +71,8 @@ class Coupling {
   virtual void afterMaterialStep(CouplingStep&) {}
   // True when contacts are springs, which bound the time step (seed 000 eq. 51, second term).
   virtual bool hasSprings() const = 0;
+  // True when correctGridVelocity changes nodal velocities (the walls are then applied again).
+  virtual bool correctsVelocities() const { return false; }
   // A block was added (rebuild the search) or removed (drop its pairs; later indices shift).
   virtual void blockAdded() {}
   virtual void blockRemoved(int) {}

@@ -19,6 +19,7 @@ class MultiVelocityCoupling final : public Coupling {
 
   void correctGridVelocity(CouplingStep& s) override;
   bool hasSprings() const override { return false; }
+  bool correctsVelocities() const override { return true; }
   void blockAdded() override { samples_.clear(); }
   void blockRemoved(int) override { samples_.clear(); }
 

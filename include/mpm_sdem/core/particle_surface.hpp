@@ -20,6 +20,7 @@ class ParticleSurfaceCoupling final : public Coupling {
 
   void correctGridVelocity(CouplingStep& s) override;
   bool hasSprings() const override { return false; }
+  bool correctsVelocities() const override { return true; }
   void blockAdded() override { search_.invalidate(); }
   void blockRemoved(int b) override { search_.removeBlock(b); }
 
