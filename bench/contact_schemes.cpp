@@ -1,14 +1,7 @@
-// Seed 000 sec. 5.4 (Fig. 17-18), extended to every coupling scheme: a one-dimensional elastic
-// rod of 400 material points at 2 cm/s hits a free rigid rod of equal mass; the energy the
-// contact loses or creates is measured against the grid size d_g = 0.1 to 1.0 cm, with the time
-// per step. Table 1 material (hard: K = 5 MPa, G = 3.7 MPa, rho = 2000 kg/m^3), k_n = 6e3 N/m,
-// k_t = 3e2 N/m (Table 1 read in cgs, see test/test_imp_collision.cpp), r_p = V_d/2 = 1 mm.
-//
-// Geometry (the seed gives the point count, the speed, equal masses and that the rigid rod is
-// one 1 cm cell long at d_g = 1 cm; the rest is ours): the elastic rod is 4 cm long and one
-// point (0.1 mm) thick, the rigid rod a 1 cm capsule of radius 1 mm, its density set for equal
-// mass. The rods start 2 mm apart (more than the IMP reach r_p), no gravity; the run ends 60 ms
-// after the free approach would close the gap, when the rods have separated.
+// Seed 000 sec. 5.4 (Fig. 17-18), extended to every coupling scheme: the rod collision of
+// validation/cases.hpp (400-point elastic rod at 2 cm/s into a free rigid rod of equal mass,
+// Table 1's hard material and cgs-read stiffnesses) at grid sizes d_g = 0.1 to 1.0 cm; the run
+// ends 60 ms after the free approach would close the gap, when the rods have separated.
 //
 // Reported per scheme and grid size:
 //   energy error = |E(end) - E(0)| / E(0), E the kinetic energy of both rods plus the rod's
@@ -24,6 +17,7 @@
 #include <cstring>
 #include <string>
 
+#include "cases.hpp"
 #include "mpm_sdem/core/diagnostics.hpp"
 #include "mpm_sdem/core/world.hpp"
 
@@ -37,57 +31,12 @@ struct Result {
 };
 
 Result run(CouplingScheme scheme, Real h) {
-  const Real L1 = 0.04, s = L1 / 400, L2 = 0.01, a = 0.001, v = 0.02, rho = 2000;
-  const Real gap = 0.002;
-  WorldDef def;
-  def.cell_size = h;
-  const Real width = std::ceil((L1 + gap + L2 + 0.04) / h) * h;
-  def.domain.min = Vec2(0, 0);
-  def.domain.max = Vec2(width, std::ceil(0.02 / h) * h);
-  def.solver.gravity = Vec2(0, 0);
-  // Quadratic B-spline, not seed 000's GIMP: with GIMP this one-point-thick rod at 50 to 100
-  // points per cell (l_p = 0.01 to 0.005 cells) became non-finite within 32 steps, before any
-  // contact, at d_g = 0.5, 0.6 and 1.0 cm (README, Limitations).
-  def.solver.kernel = KernelType::kQuadraticBSpline;
-  MaterialDef m;
-  m.name = "rod";
-  m.density = rho;
-  m.bulk_modulus = 5e6;
-  m.shear_modulus = 3.7e6;
-  def.materials.push_back(m);
-  const int ppc = static_cast<int>(std::lround(h / s));  // 10 to 100: one row of 0.1 mm points
-  const Real x0 = std::round(0.01 / s) * s;
-  const Real y0 = std::round(0.5 * def.domain.max.y() / s) * s;  // a lattice row at y0 + s/2
-  BodyDef rod;
-  rod.name = "rod";
-  rod.shape.type = ShapeType::kRectangle;
-  rod.shape.min = Vec2(x0, y0);
-  rod.shape.max = Vec2(x0 + L1, y0 + s);
-  rod.points_per_cell = ppc;
-  rod.velocity = Vec2(v, 0);
-  def.bodies.push_back(rod);
-  const Real yc = y0 + s / 2;
-  // The rod's last points sit s/2 inside its end; the gap is counted from them.
-  const Real tip = x0 + L1 - s / 2;
-  BlockDef b;
-  b.name = "rigid_rod";
-  b.core = {Vec2(0, 0), Vec2(L2 - 2 * a, 0)};
-  b.rounding = a;
-  b.position = Vec2(tip + gap + a, yc);
-  b.restitution = 1;
-  b.friction = 0.1;
-  const Real rod_mass = rho * L1 * s;
-  b.density = rod_mass / spheropolygonMass(b.core, a, 1).mass;
-  def.blocks.push_back(b);
-  def.coupling.scheme = scheme;
-  def.coupling.normal_stiffness = 6e3;
-  def.coupling.tangential_stiffness = 3e2;
-  def.coupling.contact_radius = 0.001;
-  def.coupling.verlet_distance = 0.002;
+  Real approach = 0;
+  const WorldDef def = cases::rodCollision(scheme, h, approach);
   World w(def);
   const Diagnostics d0 = measure(w);
   const Real e0 = d0.kinetic + d0.elastic;  // kinetic includes the blocks
-  const Real end = gap / v + 0.06;
+  const Real end = approach + 0.06;
   const auto t0 = std::chrono::steady_clock::now();
   while (w.time() < end) w.step(stepTowards(w.chooseTimeStep().dt, end, w.time()));
   const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -19,6 +19,7 @@
 #include <cstdio>
 
 #include "block_helpers.hpp"
+#include "cases.hpp"
 #include "mpm_sdem/core/particle_surface.hpp"
 #include "mpm_sdem/core/partitioned.hpp"
 
@@ -58,27 +59,9 @@ void checkStep(const World& w) {
 class Schemes : public ::testing::TestWithParam<CouplingScheme> {};
 
 TEST_P(Schemes, TwoDiskCollisionConservesMomentum) {
-  const Real R = 0.02, rho = 2000, h = 0.004;
-  WorldDef def = test::box(Vec2(0, 0), Vec2(50 * h, 27 * h), h);
-  def.solver.gravity = Vec2(0, 0);
-  def.solver.kernel = KernelType::kGimp;
-  MaterialDef m = test::elastic(rho, 1, 0.3);
-  m.bulk_modulus = 5e6;  // Table 1, hard disk
-  m.shear_modulus = 3.7e6;
-  def.materials.push_back(m);
-  BodyDef disk = test::disk(Vec2(0.05, 0.04), R, 2);
-  disk.velocity = Vec2(2, 0);
-  def.bodies.push_back(disk);
-  BlockDef block =
-      test::diskBlock("block", Vec2(0.05 + 2 * R + 0.004, 0.04), R, BodyType::kDynamic, rho);
-  block.restitution = 1;
-  block.friction = 0.1;
-  def.blocks.push_back(block);
-  def.coupling.scheme = GetParam();
-  def.coupling.normal_stiffness = test::kSeedNormalStiffness;
-  def.coupling.tangential_stiffness = test::kSeedTangentialStiffness;
-  def.coupling.contact_radius = 0.001;
-  def.coupling.verlet_distance = 0.002;
+  cases::DiskCollision c;  // hard disk, CI resolution
+  c.scheme = GetParam();
+  const WorldDef def = cases::diskCollision(c);
   World w(def);
   const Diagnostics d0 = measure(w);
   Real worst = 0;

@@ -24,6 +24,7 @@
 #include <cstdio>
 
 #include "block_helpers.hpp"
+#include "cases.hpp"
 
 using namespace mpm_sdem;
 
@@ -40,31 +41,14 @@ struct Outcome {
 constexpr Real kRoundOff = 1e-12;
 
 Outcome collide(Real bulk, Real shear, Real kn, Real kt, Real duration) {
-  const Real R = 0.02, rho = 2000;
-  const Real h = test::seedResolution() ? 0.003 : 0.004;
-  const int ppc = test::seedResolution() ? 6 : 2;
-  WorldDef def = test::box(Vec2(0, 0), Vec2(50 * h, 27 * h), h);
-  def.solver.gravity = Vec2(0, 0);
-  def.solver.kernel = KernelType::kGimp;  // seed 000 uses GIMP for the elastic disks
-  def.solver.transfer = TransferScheme::kApic;
-  MaterialDef m;
-  m.name = "disk";
-  m.density = rho;
-  m.bulk_modulus = bulk;
-  m.shear_modulus = shear;
-  def.materials.push_back(m);
-  BodyDef disk = test::disk(Vec2(0.05, 0.04), R, ppc);
-  disk.velocity = Vec2(2, 0);
-  def.bodies.push_back(disk);
-  BlockDef block =
-      test::diskBlock("block", Vec2(0.05 + 2 * R + 0.004, 0.04), R, BodyType::kDynamic, rho);
-  block.restitution = 1;  // Table 1 has no contact damping
-  block.friction = 0.1;
-  def.blocks.push_back(block);
-  def.coupling.normal_stiffness = kn;
-  def.coupling.tangential_stiffness = kt;
-  def.coupling.contact_radius = 0.001;
-  def.coupling.verlet_distance = 0.002;
+  cases::DiskCollision c;
+  c.bulk_modulus = bulk;
+  c.shear_modulus = shear;
+  c.normal_stiffness = kn;
+  c.tangential_stiffness = kt;
+  c.cell_size = test::seedResolution() ? 0.003 : 0.004;
+  c.points_per_cell = test::seedResolution() ? 6 : 2;
+  const WorldDef def = cases::diskCollision(c);
   World w(def);
   const Diagnostics d0 = measure(w);
   Outcome out{0, 0, 0};
