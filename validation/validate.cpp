@@ -1,0 +1,225 @@
+// mpm_sdem_validate: runs the seeds' verification and validation cases and writes what they
+// measured for the report (scripts/validate turns it into docs/validation/REPORT.md):
+//   <out>/results.csv   one row per quantity: case, quantity, value, reference, unit, source,
+//                       error (relative to the reference, or absolute when the reference is 0),
+//                       wall time of the run, settings;
+//   <out>/<case>_*.csv  time series and sweeps for the plots.
+// --fast runs every case at CI resolution (seconds); without it, at the seeds' resolution.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "cases.hpp"
+#include "mpm_sdem/core/diagnostics.hpp"
+#include "mpm_sdem/core/world.hpp"
+#include "mpm_sdem/scene/scene.hpp"
+
+using namespace mpm_sdem;
+
+namespace {
+
+struct Options {
+  std::string out = "validation_out";
+  bool fast = false;
+};
+
+class Results {
+ public:
+  explicit Results(const std::string& path) : f_(std::fopen(path.c_str(), "w")) {
+    if (f_) std::fprintf(f_, "case,quantity,value,reference,unit,source,error,wall_s,settings\n");
+  }
+  ~Results() {
+    if (f_) std::fclose(f_);
+  }
+  bool ok() const { return f_ != nullptr; }
+  void add(const std::string& c, const std::string& quantity, double value, double reference,
+           const std::string& unit, const std::string& source, double wall,
+           const std::string& settings) {
+    const double error =
+        reference != 0 ? std::abs(value - reference) / std::abs(reference) : std::abs(value);
+    std::fprintf(f_, "%s,\"%s\",%.8g,%.8g,%s,\"%s\",%.6g,%.4g,\"%s\"\n", c.c_str(),
+                 quantity.c_str(), value, reference, unit.c_str(), source.c_str(), error, wall,
+                 settings.c_str());
+    std::fflush(f_);
+    std::printf("  %-36s %12.6g  (reference %.6g %s, error %.3g)\n", quantity.c_str(), value,
+                reference, unit.c_str(), error);
+  }
+
+ private:
+  FILE* f_;
+};
+
+double seconds(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Seed 000 sec. 5.1.1: the block's share of the kinetic energy after the collision (seed: 99.2%
+// hard, 92.16% soft), with the energy curves.
+void collision(const Options& o, Results& r) {
+  for (const bool hard : {true, false}) {
+    cases::DiskCollision c;
+    c.bulk_modulus = hard ? 5e6 : 5e5;
+    c.shear_modulus = hard ? 3.7e6 : 3.7e5;
+    c.cell_size = o.fast ? 0.004 : 0.003;
+    c.points_per_cell = o.fast ? 2 : 6;
+    World w(cases::diskCollision(c));
+    const std::string name = hard ? "hard" : "soft";
+    FILE* series = std::fopen((o.out + "/collision_" + name + ".csv").c_str(), "w");
+    std::fprintf(series, "time,disk_kinetic,block_kinetic,elastic\n");
+    const Diagnostics d0 = measure(w);
+    Real next_sample = 0;
+    const auto t0 = std::chrono::steady_clock::now();
+    while (w.time() < 0.15) {
+      w.step(w.chooseTimeStep().dt);
+      if (w.time() >= next_sample) {
+        next_sample += 2.5e-4;
+        const Diagnostics d = measure(w);
+        std::fprintf(series, "%.6g,%.8g,%.8g,%.8g\n", w.time(), d.kinetic - d.block_kinetic,
+                     d.block_kinetic, d.elastic);
+      }
+    }
+    std::fclose(series);
+    const double wall = seconds(t0);
+    const Diagnostics d = measure(w);
+    char settings[160];
+    std::snprintf(settings, sizeof settings,
+                  "h %g m, %d x %d points per cell, %zu points, %ld steps", c.cell_size,
+                  c.points_per_cell, c.points_per_cell, w.particles().size(), w.stepCount());
+    r.add("collision", "block kinetic share, " + name, 100 * d.block_kinetic / d0.kinetic,
+          hard ? 99.2 : 92.16, "%", "seed 000 sec. 5.1.1", wall, settings);
+    r.add("collision", "momentum error, " + name,
+          (d.momentum - d0.momentum).norm() / d0.momentum.norm(), 0, "-", "conservation", wall,
+          settings);
+  }
+}
+
+// Seed 000 sec. 5.4, every coupling scheme: the change of sum m v^2 against the grid size, and
+// the wall time per step.
+void contactSchemes(const Options& o, Results& r) {
+  FILE* sweep = std::fopen((o.out + "/contact_schemes.csv").c_str(), "w");
+  std::fprintf(sweep, "scheme,cell_size_m,v2_error,block_speed_m_s,us_per_step,wall_s\n");
+  const std::vector<Real> sizes =
+      o.fast ? std::vector<Real>{0.005, 0.01} : std::vector<Real>{0.001, 0.002, 0.003, 0.004, 0.005,
+                                                                  0.006, 0.007, 0.008, 0.009, 0.01};
+  for (CouplingScheme s :
+       {CouplingScheme::kImp, CouplingScheme::kImpGrid, CouplingScheme::kMultiVelocity,
+        CouplingScheme::kParticleSurface, CouplingScheme::kPartitioned}) {
+    for (Real h : sizes) {
+      Real approach = 0;
+      World w(cases::rodCollision(s, h, approach));
+      const Diagnostics d0 = measure(w);
+      const Real end = approach + 0.06;
+      const auto t0 = std::chrono::steady_clock::now();
+      while (w.time() < end) w.step(stepTowards(w.chooseTimeStep().dt, end, w.time()));
+      const double wall = seconds(t0);
+      const Diagnostics d = measure(w);
+      const Real v2 = std::abs(d.kinetic - d0.kinetic) / d0.kinetic;
+      std::fprintf(sweep, "%s,%g,%.6g,%.6g,%.4g,%.4g\n", couplingSchemeName(s), h, v2,
+                   w.blocks()->state(0).velocity.norm(), 1e6 * wall / w.stepCount(), wall);
+      char q[96], settings[96];
+      std::snprintf(q, sizeof q, "v^2 error, %s, d_g %.1f cm", couplingSchemeName(s), 100 * h);
+      std::snprintf(settings, sizeof settings, "%ld steps, %.1f us per step", w.stepCount(),
+                    1e6 * wall / w.stepCount());
+      r.add("contact_schemes", q, v2, 0, "-", "seed 000 sec. 5.4 (no loss)", wall, settings);
+    }
+  }
+  std::fclose(sweep);
+}
+
+// Seed 000 sec. 6 / seed 003: the default scene; final left faces against the measured 34.6 cm
+// (block 2) and 40.1 cm (block 1), first motion against about 0.25 s, block 2's angle in time.
+void debris(const Options& o, Results& r) {
+  const std::string file = std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/" +
+                           (o.fast ? "debris_impact.yaml" : "debris_impact_fine.yaml");
+  const Scene scene = loadScene(file);
+  for (CouplingScheme s :
+       {CouplingScheme::kImp, CouplingScheme::kImpGrid, CouplingScheme::kMultiVelocity,
+        CouplingScheme::kParticleSurface, CouplingScheme::kPartitioned}) {
+    WorldDef def = scene.world;
+    def.coupling.scheme = s;
+    World w(def);
+    const Blocks& B = *w.blocks();
+    const int b1 = B.find("block1"), b2 = B.find("block2");
+    const std::string name = couplingSchemeName(s);
+    FILE* series = std::fopen((o.out + "/debris_" + name + ".csv").c_str(), "w");
+    std::fprintf(series, "time,block2_angle_deg,block1_angle_deg\n");
+    Real first_motion = -1, next_sample = 0;
+    const auto t0 = std::chrono::steady_clock::now();
+    while (w.time() < scene.end_time) {
+      w.step(stepTowards(w.chooseTimeStep().dt, scene.end_time, w.time()));
+      if (first_motion < 0 &&
+          (B.state(b1).velocity.norm() > 0.01 || B.state(b2).velocity.norm() > 0.01))
+        first_motion = w.time();
+      if (w.time() >= next_sample) {
+        std::fprintf(series, "%.5g,%.5g,%.5g\n", w.time(), B.state(b2).angle * 180 / M_PI,
+                     B.state(b1).angle * 180 / M_PI);
+        next_sample += 0.01;
+      }
+    }
+    std::fclose(series);
+    const double wall = seconds(t0);
+    // Left face of a 2 x 1.8 cm block at its pose.
+    auto left = [&](int b) {
+      const BlockState& st = B.state(b);
+      return st.position.x() -
+             (std::abs(std::cos(st.angle)) * 0.01 + std::abs(std::sin(st.angle)) * 0.009);
+    };
+    char settings[160];
+    std::snprintf(settings, sizeof settings, "%s, %s, h %g m, %zu points, %ld steps",
+                  o.fast ? "debris_impact.yaml" : "debris_impact_fine.yaml", name.c_str(),
+                  def.cell_size, w.particles().size(), w.stepCount());
+    r.add("debris", "block 2 left face, " + name, 100 * left(b2), 34.6, "cm",
+          "seed 003 (experiment)", wall, settings);
+    r.add("debris", "block 1 left face, " + name, 100 * left(b1), 40.1, "cm",
+          "seed 003 (experiment)", wall, settings);
+    r.add("debris", "first block motion, " + name, first_motion, 0.25, "s",
+          "seed 000 sec. 6 (experiment, about)", wall, settings);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  std::vector<std::string> only;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--fast") {
+      o.fast = true;
+    } else if (a == "--out" && i + 1 < argc) {
+      o.out = argv[++i];
+    } else if (a == "--cases" && i + 1 < argc) {
+      std::string list = argv[++i];
+      for (std::size_t p = 0; p != std::string::npos;) {
+        const std::size_t q = list.find(',', p);
+        only.push_back(list.substr(p, q == std::string::npos ? q : q - p));
+        p = q == std::string::npos ? q : q + 1;
+      }
+    } else {
+      std::fprintf(stderr,
+                   "usage: %s [--out DIR] [--fast] [--cases collision,contact_schemes,debris]\n",
+                   argv[0]);
+      return 2;
+    }
+  }
+  Results results(o.out + "/results.csv");
+  if (!results.ok()) {
+    std::fprintf(stderr, "cannot write %s/results.csv (does the directory exist?)\n",
+                 o.out.c_str());
+    return 1;
+  }
+  const std::vector<std::pair<const char*, std::function<void(const Options&, Results&)>>> all{
+      {"collision", collision}, {"contact_schemes", contactSchemes}, {"debris", debris}};
+  for (const auto& [name, run] : all) {
+    if (!only.empty() && std::find(only.begin(), only.end(), name) == only.end()) continue;
+    std::printf("%s (%s)\n", name, o.fast ? "fast" : "report resolution");
+    std::fflush(stdout);
+    run(o, results);
+  }
+  return 0;
+}
