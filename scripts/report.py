@@ -20,7 +20,7 @@ SCHEMES = ["imp", "imp_grid", "multi_velocity", "particle_surface", "partitioned
 CASES = [
     ("collision", "Seed 000 sec. 5.1: collision energy transfer (5.1.1)", True),
     ("drop", "Seed 000 sec. 5.1: drop and bounce energy", False),
-    ("forces", "Seed 000 sec. 5.2: normal force at Table 2's grid sizes, friction force", False),
+    ("forces", "Seed 000 sec. 5.2: normal force at Table 2's grid sizes, friction force", True),
     ("silo", "Seed 000 sec. 5.3: silo discharge against Beverloo", False),
     ("contact_schemes", "Seed 000 sec. 5.4: contact-scheme comparison (1D rod)", True),
     ("debris", "Seed 000 sec. 6 / seed 003: granular flow hitting three wooden blocks", True),

@@ -79,25 +79,8 @@ TEST_P(Schemes, TwoDiskCollisionConservesMomentum) {
 }
 
 TEST_P(Schemes, RestingSquareForceEqualsWeight) {
-  const Real h = 0.005, side = 0.1, rho = 2500, g = 1.0, a = 0.005;
-  WorldDef def = test::box(Vec2(0, 0), Vec2(0.3, 0.2), h);
-  def.solver.gravity = Vec2(0, -g);
-  def.solver.kernel = KernelType::kGimp;
-  def.solver.transfer = TransferScheme::kPic;  // settles the square (see test_imp_forces.cpp)
-  MaterialDef m = test::elastic(rho, 1, 0.3);
-  m.bulk_modulus = 6e6;  // Table 2
-  m.shear_modulus = 3.5e6;
-  def.materials.push_back(m);
-  BlockDef floor = test::boxBlock("floor", Vec2(0.15, 0.025), 0.28, 0.05, a, BodyType::kStatic);
-  floor.restitution = 0.5;
-  def.blocks.push_back(floor);
-  def.coupling.scheme = GetParam();
-  def.coupling.normal_stiffness = test::kSeedNormalStiffness;
-  def.coupling.tangential_stiffness = test::kSeedTangentialStiffness;
-  def.coupling.contact_radius = 0.001;
-  def.coupling.verlet_distance = 0.002;
-  const Real y0 = 0.05 + 0.001 - h / 4;
-  def.bodies.push_back(test::rectangle(Vec2(0.1, y0), Vec2(0.1 + side, y0 + side), 2));
+  const Real h = 0.005, g = 1.0;
+  const WorldDef def = cases::restingSquare(h, 0.5, GetParam());
   World w(def);
   const Real weight = measure(w).mass * g;
   // The soft contacts of the spring schemes ring with a period of about 0.3 s, decaying over

@@ -89,4 +89,77 @@ WorldDef rodCollision(CouplingScheme scheme, Real h, Real& end_of_approach) {
   return def;
 }
 
+WorldDef restingSquare(Real h, Real friction, CouplingScheme scheme) {
+  const Real side = 0.1, rho = 2500, g = 1.0, a = 0.005;
+  WorldDef def;
+  def.domain.min = Vec2(0, 0);
+  def.domain.max = Vec2(std::round(0.6 / h) * h, std::round(0.2 / h) * h);
+  def.cell_size = h;
+  def.solver.gravity = Vec2(0, -g);
+  def.solver.kernel = KernelType::kGimp;
+  def.solver.transfer = TransferScheme::kPic;
+  MaterialDef m;
+  m.name = "square";
+  m.density = rho;
+  m.bulk_modulus = 6e6;
+  m.shear_modulus = 3.5e6;
+  def.materials.push_back(m);
+  BlockDef floor;  // 0.58 x 0.05 m outer size, top surface at y = 0.05
+  floor.name = "floor";
+  floor.core = {Vec2(-0.29 + a, -0.025 + a), Vec2(0.29 - a, -0.025 + a), Vec2(0.29 - a, 0.025 - a),
+                Vec2(-0.29 + a, 0.025 - a)};
+  floor.rounding = a;
+  floor.position = Vec2(0.3, 0.025);
+  floor.type = BodyType::kStatic;
+  floor.friction = friction;
+  floor.restitution = 0.5;
+  def.blocks.push_back(floor);
+  def.coupling.scheme = scheme;
+  def.coupling.normal_stiffness = 6e3;
+  def.coupling.tangential_stiffness = 3e2;
+  def.coupling.contact_radius = 0.001;
+  def.coupling.verlet_distance = 0.002;
+  // The lowest point row h/4 above the square's base, i.e. r_p + a - (half a point spacing)
+  // above the core: just touching.
+  const Real y0 = 0.05 + 0.001 - h / 4;
+  BodyDef square;
+  square.name = "square";
+  square.shape.type = ShapeType::kRectangle;
+  square.shape.min = Vec2(0.05, y0);
+  square.shape.max = Vec2(0.05 + side, y0 + side);
+  square.points_per_cell = 2;
+  def.bodies.push_back(square);
+  return def;
+}
+
+RestingForces restingSquareForces(World& w, Real slide_speed) {
+  RestingForces out;
+  out.weight = measure(w).mass * -w.def().solver.gravity.y();
+  int quiet = 0;
+  while (quiet < 25 && w.time() < 3.0) {
+    const Real until = w.time() + 0.01;
+    while (w.time() < until - 1e-12) w.step(std::fmin(w.chooseTimeStep().dt, until - w.time()));
+    quiet = measure(w).max_speed < 1e-4 ? quiet + 1 : 0;
+  }
+  out.settled = quiet == 25;
+  out.settled_at = w.time();
+  if (slide_speed > 0) {
+    // Sliding is resisted by friction alone: no damping of the sliding motion.
+    Particles& P = w.particles();
+    for (std::size_t p = 0; p < P.size(); ++p) P.vx[p] += slide_speed;
+  }
+  Vec2 sum(0, 0);
+  long samples = 0;
+  const Real start = w.time() + (slide_speed > 0 ? 0.1 : 0);
+  while (w.time() < start + 0.05) {
+    w.step(w.chooseTimeStep().dt);
+    if (w.time() > start) {
+      sum += w.blocks()->coupling()[0].force;
+      ++samples;
+    }
+  }
+  out.mean_force = sum / samples;
+  return out;
+}
+
 }  // namespace mpm_sdem::cases

@@ -3,6 +3,7 @@
 // only.
 #pragma once
 
+#include "mpm_sdem/core/diagnostics.hpp"
 #include "mpm_sdem/core/world.hpp"
 
 namespace mpm_sdem::cases {
@@ -28,5 +29,24 @@ WorldDef diskCollision(const DiskCollision& c);
 // any contact at three of the sizes). Returns the time at which the free approach would close
 // the gap in end_of_approach (s).
 WorldDef rodCollision(CouplingScheme scheme, Real cell_size, Real& end_of_approach);
+
+// Seed 000 sec. 5.2 (Table 2 in SI units, g = 1 m/s^2): a 10 cm elastic square (K = 6 MPa,
+// G = 3.5 MPa, rho = 2500 kg/m^3, 2 x 2 points per cell) resting on a static block (a = 5 mm,
+// restitution 0.5, friction mu) whose top is at y = 5 cm, the square's lowest points just
+// touching; GIMP with PIC (which, with the contact damping, settles it); IMP springs as in
+// Table 2 read in cgs (6e3, 3e2 N/m), r_p = 1 mm, V_d = 2 mm.
+WorldDef restingSquare(Real cell_size, Real friction, CouplingScheme scheme = CouplingScheme::kImp);
+
+// The forces on the resting square's block: runs until every point is slower than 0.1 mm/s for
+// 0.25 s on end (the soft contact rings with a period of about 0.2 s, seed 000 Fig. 12), or 3 s;
+// then, when slide_speed > 0, sets the square sliding; then averages the contact force on the
+// block over 0.05 s, starting 0.1 s after the slide began (at once without a slide).
+struct RestingForces {
+  Vec2 mean_force{0, 0};  // on the block (N/m)
+  Real weight = 0;        // of the square (N/m)
+  Real settled_at = 0;    // s
+  bool settled = false;   // false: still moving after 3 s
+};
+RestingForces restingSquareForces(World& w, Real slide_speed);
 
 }  // namespace mpm_sdem::cases

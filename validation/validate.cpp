@@ -98,6 +98,34 @@ void collision(const Options& o, Results& r) {
   }
 }
 
+// Seed 000 sec. 5.2: the summed IMP normal force on the block under the resting square at the
+// four grid sizes of Table 2 (the seed: equal to the weight, independent of the grid), and the
+// friction force while it slides at 2 m/s with mu = 0.3 (the seed: mu times the weight).
+void forces(const Options& o, Results& r) {
+  const std::vector<Real> sizes =
+      o.fast ? std::vector<Real>{0.01} : std::vector<Real>{0.0035, 0.004, 0.0045, 0.005};
+  for (Real h : sizes) {
+    World w(cases::restingSquare(h, 0.1));
+    const auto t0 = std::chrono::steady_clock::now();
+    const cases::RestingForces f = cases::restingSquareForces(w, 0);
+    char q[64], settings[128];
+    std::snprintf(q, sizeof q, "normal force / weight, d_g %.2f cm", 100 * h);
+    std::snprintf(settings, sizeof settings, "%zu points, %s at %.2f s, mean over 0.05 s",
+                  w.particles().size(), f.settled ? "at rest" : "NOT at rest", f.settled_at);
+    r.add("forces", q, -f.mean_force.y() / f.weight, 1, "-", "seed 000 sec. 5.2.1 (statics)",
+          seconds(t0), settings);
+  }
+  const Real mu = 0.3, h = o.fast ? 0.01 : 0.005;
+  World w(cases::restingSquare(h, mu));
+  const auto t0 = std::chrono::steady_clock::now();
+  const cases::RestingForces f = cases::restingSquareForces(w, 2.0);
+  char settings[128];
+  std::snprintf(settings, sizeof settings, "d_g %.2f cm, %zu points, sliding at 2 m/s, mu 0.3",
+                100 * h, w.particles().size());
+  r.add("forces", "friction force / (mu weight)", f.mean_force.x() / (mu * f.weight), 1, "-",
+        "seed 000 sec. 5.2.2 (Coulomb)", seconds(t0), settings);
+}
+
 // Seed 000 sec. 5.4, every coupling scheme: the change of sum m v^2 against the grid size, and
 // the wall time per step.
 void contactSchemes(const Options& o, Results& r) {
@@ -201,9 +229,10 @@ int main(int argc, char** argv) {
         p = q == std::string::npos ? q : q + 1;
       }
     } else {
-      std::fprintf(stderr,
-                   "usage: %s [--out DIR] [--fast] [--cases collision,contact_schemes,debris]\n",
-                   argv[0]);
+      std::fprintf(
+          stderr,
+          "usage: %s [--out DIR] [--fast] [--cases collision,forces,contact_schemes,debris]\n",
+          argv[0]);
       return 2;
     }
   }
@@ -214,7 +243,10 @@ int main(int argc, char** argv) {
     return 1;
   }
   const std::vector<std::pair<const char*, std::function<void(const Options&, Results&)>>> all{
-      {"collision", collision}, {"contact_schemes", contactSchemes}, {"debris", debris}};
+      {"collision", collision},
+      {"forces", forces},
+      {"contact_schemes", contactSchemes},
+      {"debris", debris}};
   for (const auto& [name, run] : all) {
     if (!only.empty() && std::find(only.begin(), only.end(), name) == only.end()) continue;
     std::printf("%s (%s)\n", name, o.fast ? "fast" : "report resolution");
