@@ -13,84 +13,26 @@
 //    the same block velocity within 2%, and so does a block-block collision with Box2D's solver.
 #include <gtest/gtest.h>
 
-#include <Eigen/Dense>
 #include <vector>
 
 #include "block_helpers.hpp"
+#include "cases.hpp"
 
 using namespace mpm_sdem;
 
-namespace {
-
-// Least-squares acceleration of x(t) = x0 + v0 t + a t^2 / 2 over the samples with t >= t0.
-Real fittedAcceleration(const std::vector<Real>& t, const std::vector<Real>& x, Real t0) {
-  Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d b = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    if (t[i] < t0) continue;
-    const Eigen::Vector3d f(1, t[i], 0.5 * t[i] * t[i]);
-    M += f * f.transpose();
-    b += f * x[i];
-  }
-  return M.ldlt().solve(b)(2);
-}
-
-Real inclineAcceleration(Real mu) {
-  const Real th = M_PI / 4, R = 0.05, a = 0.005, h = 0.01;
-  WorldDef def = test::box(Vec2(0, 0), Vec2(0.8, 0.8), h);
-  def.solver.kernel = KernelType::kGimp;
-  def.materials.push_back(test::elastic(1000, 1e7, 0.3));
-  const Vec2 t(std::cos(th), -std::sin(th)), n(std::sin(th), std::cos(th));
-  const Vec2 top0(0.05, 0.75);  // a point of the incline's surface
-  BlockDef incline =
-      test::boxBlock("incline", top0 + 0.5 * t - 0.025 * n, 1.2, 0.05, a, BodyType::kStatic);
-  incline.angle = -th;
-  incline.friction = mu;
-  def.blocks.push_back(incline);
-  def.coupling.normal_stiffness = 1e7;
-  def.coupling.tangential_stiffness = 5e6;
-  // Released half a millimetre above contact: the outermost points sit a quarter cell inside R.
-  const Real rp = h / std::sqrt(2.0);
-  def.bodies.push_back(test::disk(top0 + 0.15 * t + (R + rp - 0.25 * h + 0.0005) * n, R, 2));
-  World w(def);
-  std::vector<Real> ts, xs;
-  const Real x0 = (measure(w).center_of_mass - top0).dot(t);
-  while (w.time() < 0.3) {
-    w.step(w.chooseTimeStep().dt);
-    ts.push_back(w.time());
-    xs.push_back((measure(w).center_of_mass - top0).dot(t) - x0);
-  }
-  return fittedAcceleration(ts, xs, 0.05);
-}
-
-}  // namespace
-
 TEST(ImpCases, SlidesDownInclineWithCoulombFriction) {
   const Real mu = 0.2, expected = 9.81 * (std::sin(M_PI / 4) - mu * std::cos(M_PI / 4));
-  EXPECT_NEAR(inclineAcceleration(mu) / expected, 1.0, 0.05);
+  EXPECT_NEAR(cases::inclineAcceleration(mu, 0.01) / expected, 1.0, 0.05);
 }
 
 TEST(ImpCases, RollsDownInclineWithoutSlip) {
   const Real expected = 9.81 * std::sin(M_PI / 4) * 2 / 3;
-  EXPECT_NEAR(inclineAcceleration(0.4) / expected, 1.0, 0.05);
+  EXPECT_NEAR(cases::inclineAcceleration(0.4, 0.01) / expected, 1.0, 0.05);
 }
 
 TEST(ImpCases, DropBouncesNoHigherThanReleased) {
-  const Real R = 0.02, drop = 0.03;
-  WorldDef def = test::box(Vec2(0, 0), Vec2(0.1, 0.12), 0.004);
-  def.solver.kernel = KernelType::kGimp;
-  MaterialDef m = test::elastic(2000, 1, 0.278);
-  m.bulk_modulus = 5e6;  // seed 000 Table 1, hard disk
-  m.shear_modulus = 3.7e6;
-  def.materials.push_back(m);
-  BlockDef floor = test::boxBlock("floor", Vec2(0.05, 0.01), 0.1, 0.02, 0.02, BodyType::kStatic);
-  floor.restitution = 1;
-  def.blocks.push_back(floor);
-  def.coupling.normal_stiffness = test::kSeedNormalStiffness;
-  def.coupling.tangential_stiffness = test::kSeedTangentialStiffness;
-  def.coupling.contact_radius = 0.001;
-  const Real y0 = 0.02 + drop + R;
-  def.bodies.push_back(test::disk(Vec2(0.05, y0), R, 2));
+  const Real drop = 0.03;
+  const WorldDef def = cases::dropDisk();
   World w(def);
   const Real start = measure(w).center_of_mass.y();
   bool bounced = false;

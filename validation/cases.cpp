@@ -1,6 +1,9 @@
 #include "cases.hpp"
 
+#include <Eigen/Dense>
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace mpm_sdem::cases {
 
@@ -160,6 +163,109 @@ RestingForces restingSquareForces(World& w, Real slide_speed) {
   }
   out.mean_force = sum / samples;
   return out;
+}
+
+namespace {
+
+// Least-squares acceleration of x(t) = x0 + v0 t + a t^2 / 2 over the samples with t >= t0.
+Real fittedAcceleration(const std::vector<Real>& t, const std::vector<Real>& x, Real t0) {
+  Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (t[i] < t0) continue;
+    const Eigen::Vector3d f(1, t[i], 0.5 * t[i] * t[i]);
+    M += f * f.transpose();
+    b += f * x[i];
+  }
+  return M.ldlt().solve(b)(2);
+}
+
+BlockDef box(const std::string& name, const Vec2& center, Real w, Real h, Real a) {
+  BlockDef b;
+  b.name = name;
+  b.core = {Vec2(-w / 2 + a, -h / 2 + a), Vec2(w / 2 - a, -h / 2 + a), Vec2(w / 2 - a, h / 2 - a),
+            Vec2(-w / 2 + a, h / 2 - a)};  // outer size w x h including the rounding
+  b.rounding = a;
+  b.position = center;
+  b.type = BodyType::kStatic;
+  return b;
+}
+
+BodyDef disk(const Vec2& c, Real r, int ppc) {
+  BodyDef b;
+  b.name = "disk";
+  b.shape.type = ShapeType::kDisk;
+  b.shape.center = c;
+  b.shape.radius = r;
+  b.points_per_cell = ppc;
+  return b;
+}
+
+}  // namespace
+
+Real inclineAnalytic(Real mu) {
+  const Real th = M_PI / 4, g = 9.81;
+  return std::tan(th) > 3 * mu ? g * (std::sin(th) - mu * std::cos(th)) : g * std::sin(th) * 2 / 3;
+}
+
+Real inclineAcceleration(Real mu, Real h, CouplingScheme scheme) {
+  const Real th = M_PI / 4, R = 0.05, a = 0.005;
+  WorldDef def;
+  def.domain.min = Vec2(0, 0);
+  def.domain.max = Vec2::Constant(std::round(0.8 / h) * h);
+  def.cell_size = h;
+  def.solver.kernel = KernelType::kGimp;
+  MaterialDef m;
+  m.name = "disk";
+  m.density = 1000;
+  m.bulk_modulus = 1e7 / (3 * (1 - 2 * 0.3));  // E = 10 MPa, nu = 0.3
+  m.shear_modulus = 1e7 / (2 * (1 + 0.3));
+  def.materials.push_back(m);
+  const Vec2 t(std::cos(th), -std::sin(th)), n(std::sin(th), std::cos(th));
+  const Vec2 top0(0.05, 0.75);  // a point of the incline's surface
+  BlockDef incline = box("incline", top0 + 0.5 * t - 0.025 * n, 1.2, 0.05, a);
+  incline.angle = -th;
+  incline.friction = mu;
+  def.blocks.push_back(incline);
+  def.coupling.scheme = scheme;
+  def.coupling.normal_stiffness = 1e7;
+  def.coupling.tangential_stiffness = 5e6;
+  // Released half a millimetre above contact: the outermost points sit a quarter cell inside R.
+  const Real rp = h / std::sqrt(2.0);
+  def.bodies.push_back(disk(top0 + 0.15 * t + (R + rp - 0.25 * h + 0.0005) * n, R, 2));
+  World w(def);
+  std::vector<Real> ts, xs;
+  const Real x0 = (measure(w).center_of_mass - top0).dot(t);
+  while (w.time() < 0.3) {
+    w.step(w.chooseTimeStep().dt);
+    ts.push_back(w.time());
+    xs.push_back((measure(w).center_of_mass - top0).dot(t) - x0);
+  }
+  return fittedAcceleration(ts, xs, 0.05);
+}
+
+WorldDef dropDisk(CouplingScheme scheme) {
+  const Real R = 0.02, drop = 0.03;
+  WorldDef def;
+  def.domain.min = Vec2(0, 0);
+  def.domain.max = Vec2(0.1, 0.12);
+  def.cell_size = 0.004;
+  def.solver.kernel = KernelType::kGimp;
+  MaterialDef m;
+  m.name = "disk";
+  m.density = 2000;
+  m.bulk_modulus = 5e6;  // seed 000 Table 1, hard disk
+  m.shear_modulus = 3.7e6;
+  def.materials.push_back(m);
+  BlockDef floor = box("floor", Vec2(0.05, 0.01), 0.1, 0.02, 0.02);
+  floor.restitution = 1;
+  def.blocks.push_back(floor);
+  def.coupling.scheme = scheme;
+  def.coupling.normal_stiffness = 6e3;
+  def.coupling.tangential_stiffness = 3e2;
+  def.coupling.contact_radius = 0.001;
+  def.bodies.push_back(disk(Vec2(0.05, 0.02 + drop + R), R, 2));
+  return def;
 }
 
 }  // namespace mpm_sdem::cases

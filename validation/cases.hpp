@@ -49,4 +49,18 @@ struct RestingForces {
 };
 RestingForces restingSquareForces(World& w, Real slide_speed);
 
+// 2D analogue of seed 002 sec. 4.1: an elastic disk (R = 5 cm, rho = 1000 kg/m^3, E = 10 MPa,
+// nu = 0.3, GIMP) released just above a static 45 deg incline with friction mu; IMP springs
+// 1e7 and 5e6 N/m. Returns the acceleration of the disk's centre along the incline fitted to
+// x = x0 + v0 t + a t^2 / 2 over t in [0.05, 0.3] s (after the landing). Analytic (eq. 55 for a
+// cylinder): g (sin - mu cos) when tan > 3 mu (slides), 2/3 g sin otherwise (rolls).
+Real inclineAcceleration(Real mu, Real cell_size, CouplingScheme scheme = CouplingScheme::kImp);
+// The analytic acceleration of inclineAcceleration's disk (m/s^2).
+Real inclineAnalytic(Real mu);
+
+// Seed 000 sec. 5.1.2: the Table 1 hard elastic disk (R = 2 cm) dropped from 3 cm onto a static
+// block (restitution 1), 4 mm cells, 2 x 2 points per cell. Call dropDiskHeight(w) for its
+// centre's height above the release point's (m).
+WorldDef dropDisk(CouplingScheme scheme = CouplingScheme::kImp);
+
 }  // namespace mpm_sdem::cases
