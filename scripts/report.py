@@ -35,13 +35,13 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
-def fmt(x):
+def fmt(x, digits=4):
     v = float(x)
     if v == 0:
         return "0"
-    if abs(v) >= 1e4 or abs(v) < 1e-3:
+    if abs(v) >= 1e5 or abs(v) < 1e-3:
         return "%.3g" % v
-    return "%.4g" % v
+    return "%.*g" % (digits, v)
 
 
 def table(rows):
@@ -49,7 +49,7 @@ def table(rows):
            "| --- | --- | --- | --- | --- | --- | --- | --- |"]
     for r in rows:
         out.append("| %s | %s | %s | %s | %s | %s | %s | %s |" % (
-            r["quantity"], fmt(r["value"]), fmt(r["reference"]), r["unit"], r["source"],
+            r["quantity"], fmt(r["value"], 6), fmt(r["reference"], 6), r["unit"], r["source"],
             fmt(r["error"]), fmt(r["wall_s"]), r["settings"]))
     return "\n".join(out)
 
