@@ -4,6 +4,10 @@
 // tolerance of 1e-9 m.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+#include <string>
+
 #include "helpers.hpp"
 
 using namespace mpm_sdem;
@@ -55,3 +59,32 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{KernelType::kGimp, TransferScheme::kApic, StressUpdate::kUsf}));
 
 }  // namespace
+
+// A fixed step above the critical one is refused before the first step, naming the term and the
+// step the automatic choice would take (issue 7, stability on hard cases). The body: E = 1 MPa,
+// nu = 0.3, rho = 1000 kg/m^3 (P-wave speed 36.7 m/s) at 2.5 m/s in 10 cm cells: critical CFL
+// step h / (c + |v|) = 2.55 ms, automatic 0.3 of it; 1 ms runs (above), 10 ms is refused.
+TEST(FixedStep, AboveTheCriticalStepIsRefused) {
+  WorldDef def = test::box(Vec2(0, 0), Vec2(4, 10), 0.1);
+  def.time_step.automatic = false;
+  def.time_step.fixed = 1e-2;
+  def.materials.push_back(test::elastic(1000, 1e6, 0.3));
+  BodyDef b = test::rectangle(Vec2(1.0, 6.0), Vec2(1.1, 6.1), 1);
+  b.velocity = Vec2(1.5, 2.0);
+  def.bodies.push_back(b);
+  try {
+    World w(def);
+    FAIL() << "a 10 ms step was accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string msg = e.what();
+    const Real E = 1e6, nu = 0.3, K = E / (3 * (1 - 2 * nu)), G = E / (2 * (1 + nu));
+    const Real critical = 0.1 / (std::sqrt((K + 4 * G / 3) / 1000) + 2.5);
+    char expected[160];
+    std::snprintf(expected, sizeof expected,
+                  "time.dt = 0.01 s is above the critical step %.3g s of the cfl term", critical);
+    EXPECT_NE(msg.find(expected), std::string::npos) << msg;
+    std::snprintf(expected, sizeof expected, "set time.dt: auto (it would take %.3g s)",
+                  0.3 * critical);
+    EXPECT_NE(msg.find(expected), std::string::npos) << msg;
+  }
+}

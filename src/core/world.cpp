@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <type_traits>
 
@@ -83,6 +84,21 @@ World::World(const WorldDef& def) : def_(def) {
   if (!def.blocks.empty()) {
     blocks_ = std::make_unique<Blocks>(def.blocks, def.block_contact, def.solver.gravity);
     initCoupling();
+  }
+  if (!def.time_step.automatic) {
+    // A fixed step past the critical one (eq. 51 with kappa_1 = 1 and pi kappa_2 = 1) would blow
+    // up: refuse it before the first step, naming the term and the step that would be taken.
+    const TimeStepChoice critical = stepBound(1, 1 / M_PI);
+    if (def.time_step.fixed > critical.dt) {
+      const TimeStepChoice safe = stepBound(0.3, 0.1);
+      char msg[320];
+      std::snprintf(msg, sizeof msg,
+                    "time.dt = %.3g s is above the critical step %.3g s of the %s term (seed 000 "
+                    "eq. 51 with kappa_1 = 1, kappa_2 = 1/pi) at the start; set time.dt: auto "
+                    "(it would take %.3g s) or a fixed step below that",
+                    def.time_step.fixed, critical.dt, stepLimitName(critical.limit), safe.dt);
+      throw std::invalid_argument(msg);
+    }
   }
 }
 
@@ -188,6 +204,10 @@ Real stepTowards(Real dt, Real end_time, Real time) {
 TimeStepChoice World::chooseTimeStep() {
   StageTimer timer(profile_, Stage::kTimeStep);
   if (!def_.time_step.automatic) return {def_.time_step.fixed, StepLimit::kFixed};
+  return stepBound(def_.time_step.cfl, def_.time_step.contact_factor);
+}
+
+TimeStepChoice World::stepBound(Real cfl, Real kappa2) const {
   // Seed 000 eq. 51, first term: dt = kappa_1 h / max_p (c_p + |v_p|), with the P-wave speed
   // c_p = sqrt((K + 4G/3) / rho_p) at the current density rho_p = rho_0 / J_p.
   const Particles& P = particles_;
@@ -208,14 +228,12 @@ TimeStepChoice World::chooseTimeStep() {
   } else {
     fastestWith([this, &P](long p) { return params_[P.material[p]].modulus_over_density; });
   }
-  const Real cfl_dt =
-      fastest > 0 ? def_.time_step.cfl * grid_.h / fastest : std::numeric_limits<Real>::infinity();
+  const Real cfl_dt = fastest > 0 ? cfl * grid_.h / fastest : std::numeric_limits<Real>::infinity();
   TimeStepChoice choice{def_.time_step.max, StepLimit::kMax};
   if (cfl_dt < choice.dt) choice = {cfl_dt, StepLimit::kCfl};
   if (hasBlocks() && coupling_->hasSprings()) {
     // Eq. 51, second term, for the coupling springs (lightest point or block). The block-block
     // springs do not bound this step: the blocks take substeps within their own bound.
-    const Real kappa2 = def_.time_step.contact_factor;
     const Real zeta = blocks_->maxDampingRatio();  // the most damped contact bounds the step
     const Real block = blocks_->lightestDynamicMass();
     const Real dt = contactTimeStep(std::fmin(lightest_point_, block),

@@ -130,6 +130,8 @@ class World {
   void resetProfile() { profile_ = Profile(); }
 
  private:
+  // The automatic step (seed 000 eq. 51) with factors kappa_1 = cfl and kappa_2.
+  TimeStepChoice stepBound(Real cfl, Real kappa2) const;
   void binParticles();
   template <class F>
   void forActiveNodes(const std::vector<int>& tiles, F&& f);
