@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "cases.hpp"
 #include "helpers.hpp"
 #include "mpm_sdem/core/imp_coupling.hpp"
 
@@ -22,18 +23,7 @@ inline bool seedResolution() {
   return e != nullptr && std::string(e) == "1";
 }
 
-inline BlockDef boxBlock(const std::string& name, const Vec2& center, Real w, Real h, Real a,
-                         BodyType type, Real density = 1000) {
-  BlockDef b;
-  b.name = name;
-  b.core = {Vec2(-w / 2 + a, -h / 2 + a), Vec2(w / 2 - a, -h / 2 + a), Vec2(w / 2 - a, h / 2 - a),
-            Vec2(-w / 2 + a, h / 2 - a)};  // outer size w x h including the rounding
-  b.rounding = a;
-  b.position = center;
-  b.type = type;
-  b.density = density;
-  return b;
-}
+using cases::boxBlock;
 
 inline BlockDef diskBlock(const std::string& name, const Vec2& center, Real radius, BodyType type,
                           Real density) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "cases.hpp"
 #include "mpm_sdem/core/diagnostics.hpp"
 #include "mpm_sdem/core/world.hpp"
 
@@ -40,12 +41,7 @@ inline BodyDef rectangle(const Vec2& lo, const Vec2& hi, int ppc, int material =
 }
 
 inline BodyDef disk(const Vec2& c, Real r, int ppc, int material = 0) {
-  BodyDef b;
-  b.name = "disk";
-  b.shape.type = ShapeType::kDisk;
-  b.shape.center = c;
-  b.shape.radius = r;
-  b.points_per_cell = ppc;
+  BodyDef b = cases::diskBody(c, r, ppc);
   b.material = material;
   return b;
 }

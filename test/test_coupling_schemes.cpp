@@ -119,18 +119,8 @@ TEST_P(Schemes, RestingSquareForceEqualsWeight) {
 }
 
 TEST_P(Schemes, BlockThrownAt20MetresPerSecondDoesNotTunnel) {
-  WorldDef def = test::box(Vec2(0, 0), Vec2(0.3, 0.2), 0.005);
-  def.domain.bottom.type = WallType::kSticky;
-  def.materials.push_back(test::druckerPrager(1500, 1e6, 0.3, 30, 0));
-  def.bodies.push_back(test::rectangle(Vec2(0, 0), Vec2(0.3, 0.08), 2));
-  BlockDef rock = test::boxBlock("rock", Vec2(0.15, 0.08 + 0.005 + 0.015 + 0.003), 0.03, 0.03,
-                                 0.005, BodyType::kDynamic, 2500);
-  rock.velocity = Vec2(3, -20);
-  rock.restitution = 0.2;
-  def.blocks.push_back(rock);
-  def.coupling.scheme = GetParam();
-  def.coupling.normal_stiffness = 1e7;
-  def.coupling.tangential_stiffness = 5e6;
+  const WorldDef def = cases::rockIntoBed(GetParam());
+  const BlockDef& rock = def.blocks[0];
   World w(def);
   const Particles& P = w.particles();
   Real deepest = -1;  // deepest any point came into the rounded outline (m)

@@ -54,17 +54,8 @@ TEST(ImpCases, BlockThrownAt20MetresPerSecondDoesNotTunnel) {
   // Bed of granular material 30 cm x 8 cm; a 3 cm rounded box (a = 5 mm > r_p = 3.5 mm) hits it
   // at 20 m/s. Points may enter the rounding layer by up to r_p, never deeper (eq. 44 with
   // xi <= 2 r_p).
-  WorldDef def = test::box(Vec2(0, 0), Vec2(0.3, 0.2), 0.005);
-  def.domain.bottom.type = WallType::kSticky;
-  def.materials.push_back(test::druckerPrager(1500, 1e6, 0.3, 30, 0));
-  def.bodies.push_back(test::rectangle(Vec2(0, 0), Vec2(0.3, 0.08), 2));
-  BlockDef rock = test::boxBlock("rock", Vec2(0.15, 0.08 + 0.005 + 0.015 + 0.003), 0.03, 0.03,
-                                 0.005, BodyType::kDynamic, 2500);
-  rock.velocity = Vec2(3, -20);
-  rock.restitution = 0.2;
-  def.blocks.push_back(rock);
-  def.coupling.normal_stiffness = 1e7;
-  def.coupling.tangential_stiffness = 5e6;
+  const WorldDef def = cases::rockIntoBed();
+  const BlockDef& rock = def.blocks[0];
   World w(def);
   const Real a = rock.rounding, rp = w.resolvedCoupling().contact_radius;
   ASSERT_GT(a, rp);

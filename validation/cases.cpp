@@ -7,6 +7,29 @@
 
 namespace mpm_sdem::cases {
 
+BlockDef boxBlock(const std::string& name, const Vec2& center, Real w, Real h, Real a,
+                  BodyType type, Real density) {
+  BlockDef b;
+  b.name = name;
+  b.core = {Vec2(-w / 2 + a, -h / 2 + a), Vec2(w / 2 - a, -h / 2 + a), Vec2(w / 2 - a, h / 2 - a),
+            Vec2(-w / 2 + a, h / 2 - a)};
+  b.rounding = a;
+  b.position = center;
+  b.type = type;
+  b.density = density;
+  return b;
+}
+
+BodyDef diskBody(const Vec2& center, Real radius, int ppc) {
+  BodyDef b;
+  b.name = "disk";
+  b.shape.type = ShapeType::kDisk;
+  b.shape.center = center;
+  b.shape.radius = radius;
+  b.points_per_cell = ppc;
+  return b;
+}
+
 WorldDef diskCollision(const DiskCollision& c) {
   const Real R = 0.02, rho = 2000, h = c.cell_size;
   WorldDef def;
@@ -107,13 +130,8 @@ WorldDef restingSquare(Real h, Real friction, CouplingScheme scheme) {
   m.bulk_modulus = 6e6;
   m.shear_modulus = 3.5e6;
   def.materials.push_back(m);
-  BlockDef floor;  // 0.58 x 0.05 m outer size, top surface at y = 0.05
-  floor.name = "floor";
-  floor.core = {Vec2(-0.29 + a, -0.025 + a), Vec2(0.29 - a, -0.025 + a), Vec2(0.29 - a, 0.025 - a),
-                Vec2(-0.29 + a, 0.025 - a)};
-  floor.rounding = a;
-  floor.position = Vec2(0.3, 0.025);
-  floor.type = BodyType::kStatic;
+  // Top surface at y = 0.05.
+  BlockDef floor = boxBlock("floor", Vec2(0.3, 0.025), 0.58, 0.05, a, BodyType::kStatic);
   floor.friction = friction;
   floor.restitution = 0.5;
   def.blocks.push_back(floor);
@@ -180,27 +198,6 @@ Real fittedAcceleration(const std::vector<Real>& t, const std::vector<Real>& x, 
   return M.ldlt().solve(b)(2);
 }
 
-BlockDef box(const std::string& name, const Vec2& center, Real w, Real h, Real a) {
-  BlockDef b;
-  b.name = name;
-  b.core = {Vec2(-w / 2 + a, -h / 2 + a), Vec2(w / 2 - a, -h / 2 + a), Vec2(w / 2 - a, h / 2 - a),
-            Vec2(-w / 2 + a, h / 2 - a)};  // outer size w x h including the rounding
-  b.rounding = a;
-  b.position = center;
-  b.type = BodyType::kStatic;
-  return b;
-}
-
-BodyDef disk(const Vec2& c, Real r, int ppc) {
-  BodyDef b;
-  b.name = "disk";
-  b.shape.type = ShapeType::kDisk;
-  b.shape.center = c;
-  b.shape.radius = r;
-  b.points_per_cell = ppc;
-  return b;
-}
-
 }  // namespace
 
 Real inclineAnalytic(Real mu) {
@@ -223,7 +220,8 @@ Real inclineAcceleration(Real mu, Real h, CouplingScheme scheme) {
   def.materials.push_back(m);
   const Vec2 t(std::cos(th), -std::sin(th)), n(std::sin(th), std::cos(th));
   const Vec2 top0(0.05, 0.75);  // a point of the incline's surface
-  BlockDef incline = box("incline", top0 + 0.5 * t - 0.025 * n, 1.2, 0.05, a);
+  BlockDef incline =
+      boxBlock("incline", top0 + 0.5 * t - 0.025 * n, 1.2, 0.05, a, BodyType::kStatic);
   incline.angle = -th;
   incline.friction = mu;
   def.blocks.push_back(incline);
@@ -232,7 +230,7 @@ Real inclineAcceleration(Real mu, Real h, CouplingScheme scheme) {
   def.coupling.tangential_stiffness = 5e6;
   // Released half a millimetre above contact: the outermost points sit a quarter cell inside R.
   const Real rp = h / std::sqrt(2.0);
-  def.bodies.push_back(disk(top0 + 0.15 * t + (R + rp - 0.25 * h + 0.0005) * n, R, 2));
+  def.bodies.push_back(diskBody(top0 + 0.15 * t + (R + rp - 0.25 * h + 0.0005) * n, R, 2));
   World w(def);
   std::vector<Real> ts, xs;
   const Real x0 = (measure(w).center_of_mass - top0).dot(t);
@@ -257,14 +255,47 @@ WorldDef dropDisk(CouplingScheme scheme) {
   m.bulk_modulus = 5e6;  // seed 000 Table 1, hard disk
   m.shear_modulus = 3.7e6;
   def.materials.push_back(m);
-  BlockDef floor = box("floor", Vec2(0.05, 0.01), 0.1, 0.02, 0.02);
+  BlockDef floor = boxBlock("floor", Vec2(0.05, 0.01), 0.1, 0.02, 0.02, BodyType::kStatic);
   floor.restitution = 1;
   def.blocks.push_back(floor);
   def.coupling.scheme = scheme;
   def.coupling.normal_stiffness = 6e3;
   def.coupling.tangential_stiffness = 3e2;
   def.coupling.contact_radius = 0.001;
-  def.bodies.push_back(disk(Vec2(0.05, 0.02 + drop + R), R, 2));
+  def.bodies.push_back(diskBody(Vec2(0.05, 0.02 + drop + R), R, 2));
+  return def;
+}
+
+WorldDef rockIntoBed(CouplingScheme scheme) {
+  WorldDef def;
+  def.domain.min = Vec2(0, 0);
+  def.domain.max = Vec2(0.3, 0.2);
+  def.cell_size = 0.005;
+  def.domain.bottom.type = WallType::kSticky;
+  MaterialDef m;
+  m.name = "bed";
+  m.model = MaterialModel::kDruckerPrager;
+  m.density = 1500;
+  m.bulk_modulus = 1e6 / (3 * (1 - 2 * 0.3));
+  m.shear_modulus = 1e6 / (2 * (1 + 0.3));
+  m.friction_angle = 30 * M_PI / 180;
+  m.dilation_angle = 0;
+  def.materials.push_back(m);
+  BodyDef bed;
+  bed.name = "bed";
+  bed.shape.type = ShapeType::kRectangle;
+  bed.shape.min = Vec2(0, 0);
+  bed.shape.max = Vec2(0.3, 0.08);
+  bed.points_per_cell = 2;
+  def.bodies.push_back(bed);
+  BlockDef rock = boxBlock("rock", Vec2(0.15, 0.08 + 0.005 + 0.015 + 0.003), 0.03, 0.03, 0.005,
+                           BodyType::kDynamic, 2500);
+  rock.velocity = Vec2(3, -20);
+  rock.restitution = 0.2;
+  def.blocks.push_back(rock);
+  def.coupling.scheme = scheme;
+  def.coupling.normal_stiffness = 1e7;
+  def.coupling.tangential_stiffness = 5e6;
   return def;
 }
 

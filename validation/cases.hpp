@@ -3,10 +3,18 @@
 // only.
 #pragma once
 
+#include <string>
+
 #include "mpm_sdem/core/diagnostics.hpp"
 #include "mpm_sdem/core/world.hpp"
 
 namespace mpm_sdem::cases {
+
+// A rounded box block of outer size w x h (rounding a included), centred at center (m).
+BlockDef boxBlock(const std::string& name, const Vec2& center, Real w, Real h, Real a,
+                  BodyType type, Real density = 1000);
+// A disk of material filled at ppc x ppc points per cell (material 0).
+BodyDef diskBody(const Vec2& center, Real radius, int ppc);
 
 // Seed 000 sec. 5.1.1 (Table 1): an elastic disk of radius 2 cm at 2 m/s towards an equal free
 // rigid disk 4 mm away; no gravity; GIMP, APIC. Stiffnesses in N/m per metre (Table 1 read in
@@ -62,5 +70,10 @@ Real inclineAnalytic(Real mu);
 // block (restitution 1), 4 mm cells, 2 x 2 points per cell. Call dropDiskHeight(w) for its
 // centre's height above the release point's (m).
 WorldDef dropDisk(CouplingScheme scheme = CouplingScheme::kImp);
+
+// A 3 cm rounded box (a = 5 mm, 2500 kg/m^3, restitution 0.2) thrown at (3, -20) m/s into a
+// 30 x 8 cm granular bed (Drucker-Prager, rho = 1500 kg/m^3, E = 1 MPa, nu = 0.3, phi = 30 deg,
+// sticky floor), 5 mm cells; contact springs 1e7 and 5e6 N/m.
+WorldDef rockIntoBed(CouplingScheme scheme = CouplingScheme::kImp);
 
 }  // namespace mpm_sdem::cases
