@@ -27,6 +27,9 @@ CASES = [
     ("compression", "Seed 000 sec. 7: granular matrix compression", False),
     ("incline", "Seed 002 sec. 4.1: disk rolling on an incline", True),
     ("bar", "Seed 001: 1D reversibility and bar under a stress boundary condition", False),
+    ("stability", "Stability on hard cases (so far: 50 m/s impact, 1 kPa material under a heavy "
+                  "block; a fixed step above the bound is refused before the run, see "
+                  "test_free_fall)", True),
 ]
 
 

@@ -183,6 +183,58 @@ void incline(const Options& o, Results& r) {
   }
 }
 
+// Hard cases (issue 7): each must run to its end with finite state and no energy beyond its
+// inputs, or be refused before it starts. Reported: whether it ended finite (1) or how it was
+// stopped, the largest total energy over the initial one (kinetic, elastic, gravity, blocks
+// included; < 1 + small means nothing was created), and the mean step.
+void stability(const Options& o, Results& r) {
+  struct Hard {
+    const char* name;
+    WorldDef def;
+    Real end;
+  };
+  std::vector<Hard> cases;
+  {
+    WorldDef d = cases::rockIntoBed();
+    d.blocks[0].velocity = Vec2(0, -50);
+    cases.push_back({"50 m/s impact into a granular bed", d, 0.03});
+  }
+  {
+    WorldDef d = cases::rockIntoBed();
+    d.materials[0].model = MaterialModel::kLinearElastic;  // E = 1 kPa, nu = 0.3
+    d.materials[0].bulk_modulus = 1e3 / (3 * (1 - 2 * 0.3));
+    d.materials[0].shear_modulus = 1e3 / (2 * (1 + 0.3));
+    d.blocks[0].velocity = Vec2(0, 0);
+    d.blocks[0].density = 7800;  // steel on a 1 kPa jelly
+    // Released 0.5 mm above contact: the top points sit a quarter cell below the bed's top and
+    // the IMP reach is r_p = h / sqrt(2) below the block.
+    d.blocks[0].position.y() =
+        0.08 - 0.25 * d.cell_size + d.cell_size / std::sqrt(2.0) + 0.015 + 0.0005;
+    cases.push_back({"very soft material (E = 1 kPa) under a heavy block", d, o.fast ? 0.2 : 1.0});
+  }
+  for (Hard& c : cases) {
+    World w(c.def);
+    const auto t0 = std::chrono::steady_clock::now();
+    const Real e0 = measure(w).total();
+    Real peak = e0;
+    bool finite = true;
+    while (w.time() < c.end && finite) {
+      finite = w.step(stepTowards(w.chooseTimeStep().dt, c.end, w.time())).finite;
+      const Diagnostics d = measure(w);
+      finite = finite && d.finite;
+      peak = std::max(peak, d.total());
+    }
+    char settings[128];
+    std::snprintf(settings, sizeof settings, "%ld steps, mean dt %.3g s, %zu points", w.stepCount(),
+                  w.time() / std::max(1L, w.stepCount()), w.particles().size());
+    const double wall = seconds(t0);
+    r.add("stability", std::string(c.name) + ": finite at the end", finite ? 1 : 0, 1, "-",
+          "must run to its end", wall, settings);
+    r.add("stability", std::string(c.name) + ": peak energy / initial", peak / e0, 1, "-",
+          "no energy beyond the inputs", wall, settings);
+  }
+}
+
 // Seed 000 sec. 5.4, every coupling scheme: the change of sum m v^2 against the grid size, and
 // the wall time per step.
 void contactSchemes(const Options& o, Results& r) {
@@ -284,7 +336,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: %s [--out DIR] [--fast] [--cases "
-                   "collision,drop,forces,incline,contact_schemes,debris]\n",
+                   "collision,drop,forces,incline,contact_schemes,debris,stability]\n",
                    argv[0]);
       return 2;
     }
@@ -302,7 +354,8 @@ int main(int argc, char** argv) {
       {"forces", forces},
       {"incline", incline},
       {"contact_schemes", contactSchemes},
-      {"debris", debris}};
+      {"debris", debris},
+      {"stability", stability}};
   for (const auto& [name, run] : all) {
     if (!only.empty() && std::find(only.begin(), only.end(), name) == only.end()) continue;
     std::printf("%s (%s)\n", name, o.fast ? "fast" : "report resolution");
