@@ -1,7 +1,9 @@
 #include "cases.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -297,6 +299,22 @@ WorldDef rockIntoBed(CouplingScheme scheme) {
   def.coupling.normal_stiffness = 1e7;
   def.coupling.tangential_stiffness = 5e6;
   return def;
+}
+
+Rebound dropRebound(World& w) {
+  Rebound out;
+  out.release = out.peak = measure(w).center_of_mass.y();
+  Real peak_after = -std::numeric_limits<Real>::infinity(), prev_vy = 0;
+  while (w.time() < 0.25) {
+    w.step(w.chooseTimeStep().dt);
+    const Diagnostics d = measure(w);
+    const Real vy = d.momentum.y() / d.mass;
+    if (prev_vy < 0 && vy > 0) out.bounced = true;
+    if (out.bounced) peak_after = std::max(peak_after, d.center_of_mass.y());
+    prev_vy = vy;
+  }
+  out.peak = out.bounced ? peak_after : out.peak;
+  return out;
 }
 
 }  // namespace mpm_sdem::cases

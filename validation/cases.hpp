@@ -67,9 +67,15 @@ Real inclineAcceleration(Real mu, Real cell_size, CouplingScheme scheme = Coupli
 Real inclineAnalytic(Real mu);
 
 // Seed 000 sec. 5.1.2: the Table 1 hard elastic disk (R = 2 cm) dropped from 3 cm onto a static
-// block (restitution 1), 4 mm cells, 2 x 2 points per cell. Call dropDiskHeight(w) for its
-// centre's height above the release point's (m).
+// block (restitution 1), 4 mm cells, 2 x 2 points per cell.
 WorldDef dropDisk(CouplingScheme scheme = CouplingScheme::kImp);
+// Runs dropDisk's world for 0.25 s: the disk's centre height at release and the highest it rises
+// after its velocity turns upwards (m); bounced is false when it never turned.
+struct Rebound {
+  Real release = 0, peak = 0;
+  bool bounced = false;
+};
+Rebound dropRebound(World& w);
 
 // A 3 cm rounded box (a = 5 mm, 2500 kg/m^3, restitution 0.2) thrown at (3, -20) m/s into a
 // 30 x 8 cm granular bed (Drucker-Prager, rho = 1500 kg/m^3, E = 1 MPa, nu = 0.3, phi = 30 deg,

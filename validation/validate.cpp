@@ -142,22 +142,13 @@ void drop(const Options&, Results& r) {
   for (CouplingScheme s : kSchemes) {
     World w(cases::dropDisk(s));
     const auto t0 = std::chrono::steady_clock::now();
-    const Real start = measure(w).center_of_mass.y(), low = start - 0.03;
-    bool bounced = false;
-    Real peak = -1, prev_vy = 0;
-    while (w.time() < 0.25) {
-      w.step(w.chooseTimeStep().dt);
-      const Diagnostics d = measure(w);
-      const Real vy = d.momentum.y() / d.mass;
-      if (prev_vy < 0 && vy > 0) bounced = true;
-      if (bounced) peak = std::max(peak, d.center_of_mass.y());
-      prev_vy = vy;
-    }
+    const cases::Rebound rb = cases::dropRebound(w);
+    const Real low = rb.release - 0.03;  // the centre's height at touch-down
     char settings[96];
     std::snprintf(settings, sizeof settings, "%s, 4 mm cells, %zu points, %ld steps",
                   couplingSchemeName(s), w.particles().size(), w.stepCount());
     r.add("drop", std::string("rebound height / drop height, ") + couplingSchemeName(s),
-          bounced ? (peak - low) / (start - low) : 0, 1, "-",
+          rb.bounced ? (rb.peak - low) / (rb.release - low) : 0, 1, "-",
           "seed 000 sec. 5.1.2 (elastic bounce)", seconds(t0), settings);
   }
 }

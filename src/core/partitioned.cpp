@@ -80,8 +80,7 @@ void PartitionedCoupling::bucketSegments(const Grid& G) {
   cells_x_ = G.nx - 1;
   cells_y_ = G.ny - 1;
   cell_start_.assign(static_cast<std::size_t>(cells_x_) * cells_y_ + 1, 0);
-  std::vector<int>& cell_of = cell_segments_;  // reused: first the cells, then the order
-  std::vector<int> cells(segments_.size());
+  segment_cell_.resize(segments_.size());
   longest_ = 0;
   for (std::size_t k = 0; k < segments_.size(); ++k) {
     const Vec2 a = x_[segments_[k][0]], b = x_[segments_[k][1]];
@@ -89,14 +88,14 @@ void PartitionedCoupling::bucketSegments(const Grid& G) {
     const Vec2 mid = (0.5 * (a + b) - G.origin) * G.inv_h;
     const int i = std::clamp(static_cast<int>(mid.x()), 0, cells_x_ - 1);
     const int j = std::clamp(static_cast<int>(mid.y()), 0, cells_y_ - 1);
-    cells[k] = i + j * cells_x_;
-    ++cell_start_[cells[k] + 1];
+    segment_cell_[k] = i + j * cells_x_;
+    ++cell_start_[segment_cell_[k] + 1];
   }
   for (std::size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
-  cell_of.assign(segments_.size(), 0);
-  std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
+  cell_segments_.resize(segments_.size());
+  fill_.assign(cell_start_.begin(), cell_start_.end() - 1);
   for (std::size_t k = 0; k < segments_.size(); ++k)
-    cell_of[fill[cells[k]]++] = static_cast<int>(k);
+    cell_segments_[fill_[segment_cell_[k]]++] = static_cast<int>(k);
 }
 
 void PartitionedCoupling::contact(Blocks& B, int b, const Vec2& n, Real overlap, const Vec2& point,

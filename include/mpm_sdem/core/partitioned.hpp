@@ -46,7 +46,8 @@ class PartitionedCoupling final : public Coupling {
   Real h_;
   std::vector<Vec2> x_, v_, load_;
   std::vector<std::array<int, 2>> segments_;
-  std::vector<int> cell_start_, cell_segments_, stamp_;  // segments by the cell of their middle
+  // Segments by the cell of their middle (counting sort, buffers kept between steps).
+  std::vector<int> cell_start_, cell_segments_, segment_cell_, fill_, stamp_;
   int cells_x_ = 0, cells_y_ = 0;
   Real longest_ = 0;       // longest segment (m), for the search
   Real half_size_ = 0.25;  // of the points (cells), for GIMP weights
