@@ -317,4 +317,102 @@ Rebound dropRebound(World& w) {
   return out;
 }
 
+namespace {
+
+// A strip of copper along x (seed 001 Table 1) with nu = 0: a one-dimensional bar.
+WorldDef copperStrip(const Vec2& lo, const Vec2& hi, const Vec2& domain, Real h, int ppc) {
+  WorldDef def;
+  def.domain.max = domain;
+  def.cell_size = h;
+  def.solver.gravity = Vec2(0, 0);
+  MaterialDef m;
+  m.name = "copper";
+  m.density = 8790;
+  m.bulk_modulus = 128e9 / 3;  // E = 128 GPa, nu = 0: K = E / 3, G = E / 2
+  m.shear_modulus = 128e9 / 2;
+  def.materials.push_back(m);
+  BodyDef bar;
+  bar.name = "bar";
+  bar.shape.type = ShapeType::kRectangle;
+  bar.shape.min = lo;
+  bar.shape.max = hi;
+  bar.points_per_cell = ppc;
+  def.bodies.push_back(bar);
+  return def;
+}
+
+const Real kCopperWaveSpeed = std::sqrt(128e9 / 8790);  // m/s, sqrt(E / rho)
+
+}  // namespace
+
+Reversal reversal(TransferScheme transfer, StressUpdate update) {
+  const Real h = 0.01;
+  WorldDef def = copperStrip(Vec2(0, 0), Vec2(1, 0.02), Vec2(1, 0.02), h, 2);
+  def.domain.left.type = def.domain.right.type = WallType::kSticky;
+  def.solver.transfer = transfer;
+  def.solver.pic_fraction = 0;
+  def.solver.stress_update = update;
+  const Real c = kCopperWaveSpeed, dt = 0.1 * h / c;
+  World w(def);
+  Particles& P = w.particles();
+  std::vector<Real> v0(P.size());
+  const Real amp = 0.01 * c;
+  for (std::size_t p = 0; p < P.size(); ++p) v0[p] = P.vx[p] = amp * std::sin(10 * M_PI * P.x[p]);
+  const Real e0 = measure(w).total();
+  for (int n = 0; n < 500; ++n) w.step(dt);
+  w.reverseVelocities();
+  for (int n = 0; n < 500; ++n) w.step(dt);
+  Real worst = 0;
+  for (std::size_t p = 0; p < P.size(); ++p) worst = std::fmax(worst, std::abs(P.vx[p] + v0[p]));
+  return {worst / amp, measure(w).total() / e0};
+}
+
+BarStrain stressBar(Real h, int ppc, Real sigma, Real ramp_transits, Real hold_transits) {
+  const Real L = 1, width = h;  // one cell wide, as in the seed's 1D bar
+  WorldDef def = copperStrip(Vec2(4 * h, 2 * h), Vec2(4 * h + L, 2 * h + width),
+                             Vec2(L + 8 * h, width + 4 * h), h, ppc);
+  def.time_step.cfl = 0.1;  // seed 001 Table 1's Courant factor
+  World w(def);
+  const Particles& P = w.particles();
+  // The traction on each end is shared by the points of the end column (spacing h / ppc).
+  const Real spacing = h / ppc, share = sigma * spacing;
+  std::vector<int> left, right;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    if (P.x[p] < 4 * h + spacing) left.push_back(static_cast<int>(p));
+    if (P.x[p] > 4 * h + L - spacing) right.push_back(static_cast<int>(p));
+  }
+  const Real transit = L / kCopperWaveSpeed;
+  const Real ramp = ramp_transits * transit, end = ramp + hold_transits * transit;
+  // Gauge length between the end columns' centres, as an extensometer would read it.
+  auto gauge = [&P, &left, &right] {
+    Real l = 0, r = 0;
+    for (int p : left) l += P.x[p];
+    for (int p : right) r += P.x[p];
+    return r / right.size() - l / left.size();
+  };
+  const Real gauge0 = gauge();
+  auto meanStrain = [&] { return gauge() / gauge0 - 1; };
+  BarStrain out;
+  Real lo = std::numeric_limits<Real>::infinity(), hi = -lo, sum = 0, weight = 0;
+  while (w.time() < end) {
+    const Real load = share * std::min<Real>(1, w.time() / ramp);  // compressive: inwards
+    for (int p : left) w.setPointLoad(p, Vec2(load, 0), Vec2(-spacing / 2, 0));
+    for (int p : right) w.setPointLoad(p, Vec2(-load, 0), Vec2(spacing / 2, 0));
+    const Real dt = stepTowards(w.chooseTimeStep().dt, end, w.time());
+    w.step(dt);
+    if (w.time() > ramp) {
+      const Real e = meanStrain();
+      sum += e * dt;
+      weight += dt;
+      lo = std::min(lo, e);
+      hi = std::max(hi, e);
+    }
+  }
+  out.mean_strain = sum / weight;
+  out.swing = hi - lo;
+  out.steps = w.stepCount();
+  out.points = P.size();
+  return out;
+}
+
 }  // namespace mpm_sdem::cases

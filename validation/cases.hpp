@@ -82,4 +82,29 @@ Rebound dropRebound(World& w);
 // sticky floor), 5 mm cells; contact springs 1e7 and 5e6 N/m.
 WorldDef rockIntoBed(CouplingScheme scheme = CouplingScheme::kImp);
 
+// Seed 001 sec. 5.1 (Table 1, copper: rho = 8790 kg/m^3, E = 128 GPa; nu = 0 keeps the strip
+// one-dimensional): v = 0.01 c sin(10 pi x) on a 1 m bar between sticky walls, 1 cm cells, 2 x 2
+// points per cell, Courant factor 0.1; after 500 steps the velocities are reversed and 500 more
+// are taken. Returns the largest |v(x, end) + v(x, 0)| over the amplitude and the energy ratio.
+struct Reversal {
+  Real velocity_error = 0;
+  Real energy_ratio = 0;
+};
+Reversal reversal(TransferScheme transfer, StressUpdate update);
+
+// Seed 001 sec. 5.2: the copper bar (1 m, nu = 0, so that the plane-strain strip is a 1D bar)
+// free in space, its two ends loaded by a compressive traction sigma ramped linearly over
+// ramp_transits wave transits L/c and then held; Courant factor 0.1. The static strain is
+// -sigma / E (-7.8125e-6 for the seed's 1 MPa). The traction is carried by the end columns'
+// points and acts half a spacing out, on the bar's faces (World::setPointLoad). Measured over
+// hold_transits transits after the ramp: the strain of the gauge length between the end
+// columns, averaged in time over the ringing, and how far it swings.
+struct BarStrain {
+  Real mean_strain = 0, swing = 0;  // -
+  long steps = 0;
+  std::size_t points = 0;
+};
+BarStrain stressBar(Real cell_size, int points_per_cell, Real sigma, Real ramp_transits,
+                    Real hold_transits);
+
 }  // namespace mpm_sdem::cases

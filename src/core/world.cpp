@@ -264,6 +264,7 @@ StepInfo World::step(Real dt) {
     particleToGrid(true, false);
     gridVelocity(0, false);
     stressAndInternalForce(stress_lag_);
+    spreadPointLoads();
     stage(&Coupling::addGridForces);
     gridVelocity(kick, true);
     stage(&Coupling::correctGridVelocity);
@@ -272,6 +273,7 @@ StepInfo World::step(Real dt) {
     stress_lag_ = dt;
   } else {
     particleToGrid(true, true);
+    spreadPointLoads();
     stage(&Coupling::addGridForces);
     gridVelocity(0, false);
     gridVelocity(kick, true);
@@ -309,6 +311,34 @@ void World::couplingStage(Real dt, Real kick, void (Coupling::*stage)(CouplingSt
 void World::stepBlocks(Real dt) {
   StageTimer timer(profile_, Stage::kBlocks);
   blocks_->step(dt, blocks_->stableStep(def_.time_step.contact_factor));
+}
+
+void World::setPointLoad(int particle, const Vec2& force, const Vec2& offset) {
+  if (particle < 0 || static_cast<std::size_t>(particle) >= particles_.size() ||
+      !force.allFinite() || !offset.allFinite())
+    throw std::invalid_argument("setPointLoad: no such point, or a non-finite force or offset");
+  auto it = std::find_if(point_loads_.begin(), point_loads_.end(),
+                         [particle](const PointLoad& l) { return l.particle == particle; });
+  if (it == point_loads_.end()) {
+    if (force.isZero()) return;
+    point_loads_.push_back({particle, force, offset});
+  } else if (force.isZero()) {
+    point_loads_.erase(it);
+  } else {
+    *it = {particle, force, offset};
+  }
+}
+
+void World::spreadPointLoads() {
+  if (point_loads_.empty()) return;
+  StageTimer timer(profile_, Stage::kStress);
+  detail::withKernel(def_.solver.kernel, [&](auto k) {
+    const Particles& P = particles_;
+    for (const PointLoad& l : point_loads_) {
+      const Vec2 at = Vec2(P.x[l.particle], P.y[l.particle]) + l.offset;
+      detail::spreadPointLoad<decltype(k)>(grid_, at, P.half_size[l.particle], l.force);
+    }
+  });
 }
 
 void World::binParticles() {

@@ -95,6 +95,13 @@ class World {
   // Mirror the trajectory in time: negate velocities and affine matrices and the leapfrog
   // staggering, so that stepping again retraces the motion (seed 001 sec. 5.1 test).
   void reverseVelocities();
+  // An external force carried by one material point (N per metre of thickness), acting at the
+  // point's position plus offset (m); held until set again, zero removes it. A traction on a
+  // surface (seed 001 sec. 5.2, a stress boundary condition) enters as each surface point's
+  // share, offset half a point spacing outwards so that it acts on the surface itself (the
+  // f^ext term of seed 000 eq. 13 as a boundary integral). Spread onto the grid with the
+  // internal force; scenes without loads do no work for them.
+  void setPointLoad(int particle, const Vec2& force, const Vec2& offset = Vec2::Zero());
 
   // Blocks added and removed while running (obstacles commanded from outside). placementProblem
   // says why a block cannot be added where it is (empty when it can): bad core or rounding,
@@ -145,6 +152,7 @@ class World {
   void couplingStage(Real dt, Real kick, void (Coupling::*stage)(CouplingStep&));
   void stepBlocks(Real dt);
   void initCoupling();
+  void spreadPointLoads();
   bool hasBlocks() const { return blocks_ && blocks_->count() > 0; }
 
   WorldDef def_;
@@ -156,6 +164,12 @@ class World {
   std::unique_ptr<Blocks> blocks_;
   std::unique_ptr<Coupling> coupling_;
   Real lightest_point_ = 0;  // kg/m, for the contact term of the time step
+  struct PointLoad {
+    int particle;
+    Vec2 force;   // N/m
+    Vec2 offset;  // m, from the point
+  };
+  std::vector<PointLoad> point_loads_;  // few and rarely used: a list, not a column
   Real time_ = 0;
   long steps_ = 0;
   // Leapfrog bookkeeping (seed 000 eq. 17): positions live at time_, velocities at
