@@ -415,4 +415,105 @@ BarStrain stressBar(Real h, int ppc, Real sigma, Real ramp_transits, Real hold_t
   return out;
 }
 
+namespace {
+
+constexpr Real kSiloPlateTop = 0.25, kSiloLeft = 0.1, kSiloWidth = 0.2, kSiloFill = 0.2;
+constexpr Real kSandDensity = 1500, kSiloGravity = 10, kSiloContactRadius = 0.001;
+
+}  // namespace
+
+WorldDef silo(Real neck, Real h, int ppc) {
+  const Real a = 0.005, t = 0.02;  // rounding and plate thickness (m)
+  WorldDef def;
+  def.domain.min = Vec2(0, 0);
+  def.domain.max = Vec2(std::round(0.4 / h) * h, std::round(0.5 / h) * h);
+  def.cell_size = h;
+  def.solver.gravity = Vec2(0, -kSiloGravity);
+  def.solver.kernel = KernelType::kGimp;
+  def.solver.transfer = TransferScheme::kApic;
+  MaterialDef m;
+  m.name = "sand";
+  m.model = MaterialModel::kDruckerPrager;
+  m.density = kSandDensity;
+  m.bulk_modulus = 5e5;
+  m.shear_modulus = 3.2e5;
+  m.friction_angle = 35 * M_PI / 180;
+  m.dilation_angle = 25 * M_PI / 180;
+  // Sand's loosest packing takes about (1 + e_max) / (1 + e_min) = 1.9 / 1.5 = 1.27 times the
+  // volume of its densest: beyond that the jet's grains are apart.
+  m.separation_volume_ratio = 1.27;
+  def.materials.push_back(m);
+  const Real right = kSiloLeft + kSiloWidth, wall_top = kSiloPlateTop + 0.2;
+  auto add = [&def](const char* name, const Vec2& lo, const Vec2& hi) {
+    BlockDef b = boxBlock(name, 0.5 * (lo + hi), hi.x() - lo.x(), hi.y() - lo.y(), 0.005,
+                          BodyType::kStatic);
+    b.friction = 0.2;
+    def.blocks.push_back(b);
+  };
+  const Real mid = kSiloLeft + kSiloWidth / 2;
+  add("left_wall", Vec2(kSiloLeft - t, kSiloPlateTop - t), Vec2(kSiloLeft, wall_top));
+  add("right_wall", Vec2(right, kSiloPlateTop - t), Vec2(right + t, wall_top));
+  add("left_plate", Vec2(kSiloLeft - a, kSiloPlateTop - t), Vec2(mid - neck / 2, kSiloPlateTop));
+  add("right_plate", Vec2(mid + neck / 2, kSiloPlateTop - t), Vec2(right + a, kSiloPlateTop));
+  def.coupling.normal_stiffness = 1e6;
+  def.coupling.tangential_stiffness = 5e5;
+  def.coupling.contact_radius = kSiloContactRadius;
+  def.coupling.verlet_distance = 0.002;
+  // The fill starts r_p clear of the walls: no spring is loaded at the start.
+  const Real gap = kSiloContactRadius;
+  BodyDef sand;
+  sand.name = "sand";
+  sand.shape.type = ShapeType::kRectangle;
+  sand.shape.min = Vec2(kSiloLeft + gap, kSiloPlateTop + gap);
+  sand.shape.max = Vec2(right - gap, kSiloPlateTop + kSiloFill);
+  sand.points_per_cell = ppc;
+  def.bodies.push_back(sand);
+  return def;
+}
+
+SiloFlow siloFlow(World& w, Real t_max) {
+  SiloFlow out;
+  const Particles& P = w.particles();
+  Real total = 0;
+  for (std::size_t p = 0; p < P.size(); ++p) total += P.mass[p];
+  const Real below = kSiloPlateTop - 0.02;  // the plates' underside
+  auto discharged = [&] {
+    Real m = 0;
+    for (std::size_t p = 0; p < P.size(); ++p) m += P.y[p] < below ? P.mass[p] : 0;
+    return m;
+  };
+  Real next = 0;
+  while (w.time() < t_max) {
+    w.step(w.chooseTimeStep().dt);
+    if (w.time() < next) continue;
+    next += 0.01;
+    const Real m = discharged();
+    out.time.push_back(w.time());
+    out.discharged.push_back(m);
+    if (m > 0.3 * total) break;
+  }
+  // Least-squares line through the samples in the window.
+  Real n = 0, st = 0, sm = 0, stt = 0, stm = 0;
+  for (std::size_t i = 0; i < out.time.size(); ++i) {
+    const Real f = out.discharged[i] / total;
+    if (f < 0.1 || f > 0.3) continue;
+    if (n == 0) out.window_start = out.time[i];
+    out.window_end = out.time[i];
+    n += 1;
+    st += out.time[i];
+    sm += out.discharged[i];
+    stt += out.time[i] * out.time[i];
+    stm += out.time[i] * out.discharged[i];
+  }
+  out.rate = n >= 5 ? (n * stm - st * sm) / (n * stt - st * st)
+                    : std::numeric_limits<Real>::quiet_NaN();
+  return out;
+}
+
+Real beverloo(Real neck) {
+  const Real C = 0.58, kc = 2.2;
+  return C * kSandDensity * std::sqrt(kSiloGravity) *
+         std::pow(std::max<Real>(0, neck - kc * kSiloContactRadius), 1.5);
+}
+
 }  // namespace mpm_sdem::cases

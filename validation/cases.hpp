@@ -107,4 +107,26 @@ struct BarStrain {
 BarStrain stressBar(Real cell_size, int points_per_cell, Real sigma, Real ramp_transits,
                     Real hold_transits);
 
+// Seed 000 sec. 5.3 (Table 3 in SI, g = 10 m/s^2): dry sand (Drucker-Prager: rho = 1500 kg/m^3,
+// K = 500 kPa, G = 320 kPa, phi = 35 deg, psi = 25 deg, no cohesion or tension; grains apart
+// beyond J = 1.27, MaterialDef::separation_volume_ratio) filled 20 cm
+// high into a flat-bottomed silo 20 cm wide made of four static rounded blocks (a = 5 mm,
+// friction 0.2); the two bottom plates leave a neck of width `neck` between their rounded
+// ends, 25 cm above the floor that catches the flow. GIMP, APIC; r_p = 1 mm, V_d = 2 mm as in
+// Table 3; springs 1e6 and 5e5 N/m (stiff enough that the static load of the fill, 4 N/m per
+// point at the base, closes less than 4 um of r_p).
+WorldDef silo(Real neck, Real cell_size, int points_per_cell);
+// Runs a silo until 30% of its fill has passed below the plates or t_max: the discharged mass
+// in time and the rate fitted by least squares over the part from 10% to 30% (kg/s per metre;
+// the head is then still above the silo's width, where Beverloo's rate does not depend on it).
+struct SiloFlow {
+  std::vector<Real> time, discharged;  // s, kg/m
+  Real rate = 0;                       // kg/(s m); NaN when the window was not reached
+  Real window_start = 0, window_end = 0;
+};
+SiloFlow siloFlow(World& w, Real t_max);
+// The 2D Beverloo law in the seed's form: M = C rho g^0.5 (D0 - k_c r_p)^1.5, C = 0.58,
+// k_c = 2.2, with the silo's rho, g and r_p (kg/(s m)).
+Real beverloo(Real neck);
+
 }  // namespace mpm_sdem::cases

@@ -108,6 +108,7 @@ inline void updatePointStress(const MaterialParams& m, Particles& P, long p, Rea
   P.sxy[p] = s.xy;
   P.szz[p] = s.zz;
   P.J[p] *= (1 + dt * L.xx) * (1 + dt * L.yy) - dt * dt * L.xy * L.yx;
+  if (P.J[p] > m.separation) P.sxx[p] = P.syy[p] = P.sxy[p] = P.szz[p] = 0;
 }
 
 // The middle of a USF step (seed 000 sec. 2.2) in one sweep per point, coloured like P2G: the

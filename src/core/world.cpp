@@ -209,24 +209,28 @@ TimeStepChoice World::chooseTimeStep() {
 
 TimeStepChoice World::stepBound(Real cfl, Real kappa2) const {
   // Seed 000 eq. 51, first term: dt = kappa_1 h / max_p (c_p + |v_p|), with the P-wave speed
-  // c_p = sqrt((K + 4G/3) / rho_p) at the current density rho_p = rho_0 / J_p.
+  // c_p = sqrt((K + 4G/3) / rho_p) at the current density rho_p = rho_0 / J_p; none in a point
+  // whose grains have separated (MaterialDef::separation_volume_ratio).
   const Particles& P = particles_;
   const long n = static_cast<long>(P.size());
   Real fastest = 0;
   auto fastestWith = [&](auto modulusOverDensity) {
 #pragma omp parallel for simd schedule(static) reduction(max : fastest)
     for (long p = 0; p < n; ++p) {
-      const Real c2 = modulusOverDensity(p) * P.J[p];
+      const Real c2 = modulusOverDensity(p, P.J[p]);
       const Real v2 = P.vx[p] * P.vx[p] + P.vy[p] * P.vy[p];
       const Real s = std::sqrt(c2 > 0 ? c2 : Real(0)) + std::sqrt(v2);
       fastest = s > fastest ? s : fastest;  // a NaN speed is skipped, as fmax would
     }
   };
   if (params_.size() == 1) {  // one material: no lookup, so the loop vectorises
-    const Real k = params_[0].modulus_over_density;
-    fastestWith([k](long) { return k; });
+    const Real k = params_[0].modulus_over_density, loose = params_[0].separation;
+    fastestWith([k, loose](long, Real J) { return J > loose ? Real(0) : k * J; });
   } else {
-    fastestWith([this, &P](long p) { return params_[P.material[p]].modulus_over_density; });
+    fastestWith([this, &P](long p, Real J) {
+      const MaterialParams& m = params_[P.material[p]];
+      return J > m.separation ? Real(0) : m.modulus_over_density * J;
+    });
   }
   const Real cfl_dt = fastest > 0 ? cfl * grid_.h / fastest : std::numeric_limits<Real>::infinity();
   TimeStepChoice choice{def_.time_step.max, StepLimit::kMax};

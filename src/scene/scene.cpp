@@ -204,7 +204,8 @@ MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::st
   MapReader r(
       ctx, n, path,
       {"name", "model", "density", "youngs_modulus", "poisson_ratio", "bulk_modulus",
-       "shear_modulus", "friction_angle", "dilation_angle", "cohesion", "tensile_strength"});
+       "shear_modulus", "friction_angle", "dilation_angle", "cohesion", "tensile_strength",
+       "separation_volume_ratio"});
   MaterialDef m;
   m.name = r.text("name");
   m.model = r.choiceOf<MaterialModel>(r.node("model"), r.path("model"),
@@ -233,7 +234,8 @@ MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::st
     m.shear_modulus = r.number("shear_modulus", "Pa");
     r.require(m.shear_modulus > 0, "shear_modulus", "must be > 0 Pa, got " + num(m.shear_modulus));
   }
-  const char* plastic_keys[] = {"friction_angle", "dilation_angle", "cohesion", "tensile_strength"};
+  const char* plastic_keys[] = {"friction_angle", "dilation_angle", "cohesion", "tensile_strength",
+                                "separation_volume_ratio"};
   if (m.model == MaterialModel::kDruckerPrager) {
     const Real phi = r.number("friction_angle", "deg");
     r.require(phi >= 0 && phi < 90, "friction_angle", "must be in [0, 90) deg, got " + num(phi));
@@ -247,6 +249,11 @@ MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::st
     m.tensile_strength = r.number("tensile_strength", "Pa", 0);
     r.require(m.tensile_strength >= 0, "tensile_strength",
               "must be >= 0 Pa, got " + num(m.tensile_strength));
+    m.separation_volume_ratio = r.number("separation_volume_ratio", "(dimensionless)", 0);
+    r.require(m.separation_volume_ratio == 0 || m.separation_volume_ratio > 1,
+              "separation_volume_ratio",
+              "must be > 1 (a volume ratio V / V0 looser than the initial packing) or 0 for "
+              "off, got " + num(m.separation_volume_ratio));
   } else {
     for (const char* k : plastic_keys) {
       r.require(!r.has(k), k, "applies only to model: drucker_prager");

@@ -1,6 +1,7 @@
 // Materials: user-facing definitions and the derived constants the constitutive update reads.
 #pragma once
 
+#include <limits>
 #include <string>
 
 #include "mpm_sdem/core/types.hpp"
@@ -23,6 +24,11 @@ struct MaterialDef {
   Real dilation_angle = 0;    // rad, 0 <= psi <= phi
   Real cohesion = 0;          // Pa
   Real tensile_strength = 0;  // Pa, tension cut-off sigma^t (capped at the cone apex)
+  // Volume ratio J = V / V0 above which the grains have lost contact with each other: the
+  // point carries no stress and no elastic wave until it is packed again (the disconnected
+  // phase of a cohesionless granular continuum, Dunatunga and Kamrin 2015). Keeps a free-falling
+  // stream from bounding the step by the stiffness of a density it no longer has. 0: off.
+  Real separation_volume_ratio = 0;
 };
 
 // Derived constants, computed once. Kept small: the constitutive loop reads one per particle.
@@ -36,6 +42,7 @@ struct MaterialParams {
   // returns, and 1 / (G + K q_phi q_psi) (1/Pa).
   Real tau_corner = 0, alpha_p = 0, inv_return_modulus = 0;
   Real modulus_over_density = 0;  // (K + 4G/3) / rho0: squared P-wave speed at J = 1
+  Real separation = std::numeric_limits<Real>::infinity();  // J above which: no stress
 };
 
 MaterialParams makeMaterialParams(const MaterialDef& def);
