@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -445,8 +446,8 @@ WorldDef silo(Real neck, Real h, int ppc) {
   def.materials.push_back(m);
   const Real right = kSiloLeft + kSiloWidth, wall_top = kSiloPlateTop + 0.2;
   auto add = [&def](const char* name, const Vec2& lo, const Vec2& hi) {
-    BlockDef b = boxBlock(name, 0.5 * (lo + hi), hi.x() - lo.x(), hi.y() - lo.y(), 0.005,
-                          BodyType::kStatic);
+    BlockDef b =
+        boxBlock(name, 0.5 * (lo + hi), hi.x() - lo.x(), hi.y() - lo.y(), 0.005, BodyType::kStatic);
     b.friction = 0.2;
     def.blocks.push_back(b);
   };
@@ -505,8 +506,8 @@ SiloFlow siloFlow(World& w, Real t_max) {
     stt += out.time[i] * out.time[i];
     stm += out.time[i] * out.discharged[i];
   }
-  out.rate = n >= 5 ? (n * stm - st * sm) / (n * stt - st * st)
-                    : std::numeric_limits<Real>::quiet_NaN();
+  out.rate =
+      n >= 5 ? (n * stm - st * sm) / (n * stt - st * st) : std::numeric_limits<Real>::quiet_NaN();
   return out;
 }
 
@@ -514,6 +515,139 @@ Real beverloo(Real neck) {
   const Real C = 0.58, kc = 2.2;
   return C * kSandDensity * std::sqrt(kSiloGravity) *
          std::pow(std::max<Real>(0, neck - kc * kSiloContactRadius), 1.5);
+}
+
+WorldDef granularMatrix(Real fines_content, bool fine, unsigned seed, int& plate) {
+  const Real W = 0.3, wall = 0.02, a_wall = 0.005, h = fine ? 0.005 : 0.01;
+  const Real x0 = 0.05, y0 = 0.05;  // inner bottom-left corner of the container
+  WorldDef def;
+  def.domain.min = Vec2(0, 0);
+  def.domain.max = Vec2(0.4, 0.5);
+  def.cell_size = h;
+  def.solver.kernel = KernelType::kGimp;
+  MaterialDef m;
+  m.name = "fines";
+  m.model = MaterialModel::kDruckerPrager;
+  m.density = 1500;
+  m.bulk_modulus = 5e5;
+  m.shear_modulus = 3.2e5;
+  m.friction_angle = 35 * M_PI / 180;
+  m.dilation_angle = 25 * M_PI / 180;
+  m.separation_volume_ratio = 1.27;  // as in the silo: fines falling into the voids
+  def.materials.push_back(m);
+  auto wallBlock = [&](const char* name, const Vec2& lo, const Vec2& hi, BodyType type) {
+    BlockDef b = boxBlock(name, 0.5 * (lo + hi), hi.x() - lo.x(), hi.y() - lo.y(), a_wall, type);
+    b.friction = 0.2;
+    def.blocks.push_back(b);
+  };
+  wallBlock("floor", Vec2(x0 - wall, y0 - wall), Vec2(x0 + W + wall, y0), BodyType::kStatic);
+  wallBlock("left", Vec2(x0 - wall, y0), Vec2(x0, y0 + 0.4), BodyType::kStatic);
+  wallBlock("right", Vec2(x0 + W, y0), Vec2(x0 + W + wall, y0 + 0.4), BodyType::kStatic);
+  // The pentagons on a jittered lattice of 6 cm pitch.
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<Real> u(0, 1);
+  const Real a = 0.003, pitch = W / 5;
+  Real solids = 0, top = y0;
+  for (int j = 0; j < 5; ++j) {
+    for (int i = 0; i < 5; ++i) {
+      const Real R = 0.020 + 0.008 * u(rng);
+      BlockDef b;
+      b.name = "pentagon" + std::to_string(5 * j + i);
+      const Real turn = 2 * M_PI * u(rng);
+      for (int k = 0; k < 5; ++k) {
+        const Real th = turn + 2 * M_PI * (k + 0.3 * (u(rng) - 0.5)) / 5;
+        b.core.push_back((R - a) * Vec2(std::cos(th), std::sin(th)));
+      }
+      b.rounding = a;
+      const Real slack = 0.5 * pitch - R - 0.001;
+      b.position = Vec2(x0 + (i + 0.5) * pitch + slack * (2 * u(rng) - 1),
+                        y0 + (j + 0.5) * pitch + slack * (2 * u(rng) - 1));
+      b.density = 2200;
+      b.friction = 0.2;
+      solids += spheropolygonMass(b.core, a, b.density).mass;
+      top = std::max(top, b.position.y() + R);
+      def.blocks.push_back(b);
+    }
+  }
+  // Fines: the point lattice's squares (side s = h / 2, one point each) clear of every
+  // pentagon's reach (rounding plus r_p) and of the walls, picked in random order until their
+  // mass is fines_content of the solids'.
+  const Real rp = 0.001, s = h / 2, fines_mass = fines_content / (1 - fines_content) * solids;
+  std::vector<Vec2> cells;
+  for (Real cy = std::ceil((y0 + rp) / s) * s; cy + s <= y0 + W; cy += s) {
+    for (Real cx = std::ceil((x0 + rp) / s) * s; cx + s <= x0 + W - rp; cx += s) {
+      bool clear = true;
+      for (std::size_t k = 3; k < def.blocks.size() && clear; ++k) {
+        const BlockDef& b = def.blocks[k];
+        const std::vector<Vec2> core = placedCore(b);
+        const Vec2 cell[4] = {Vec2(cx, cy), Vec2(cx + s, cy), Vec2(cx + s, cy + s),
+                              Vec2(cx, cy + s)};
+        clear = roundedGap(core.data(), static_cast<int>(core.size()), b.rounding, cell, 4, 0) > rp;
+      }
+      if (clear) cells.emplace_back(cx, cy);
+    }
+  }
+  std::shuffle(cells.begin(), cells.end(), rng);
+  Real filled = 0;
+  for (const Vec2& c : cells) {
+    if (filled >= fines_mass) break;
+    BodyDef body;
+    body.name = "fines";
+    body.shape.type = ShapeType::kRectangle;
+    body.shape.min = c;
+    body.shape.max = c + Vec2(s, s);
+    body.points_per_cell = 2;
+    def.bodies.push_back(body);
+    filled += m.density * s * s;
+  }
+  BlockDef p = boxBlock("plate", Vec2(x0 + W / 2, top + 0.01 + 0.01), W - 0.004, 0.02, a_wall,
+                        BodyType::kKinematic);
+  p.friction = 0.2;
+  plate = static_cast<int>(def.blocks.size());
+  def.blocks.push_back(p);
+  def.coupling.normal_stiffness = 1e7;  // the default scene's: the plate loads reach 10 kN/m
+  def.coupling.tangential_stiffness = 5e6;
+  def.coupling.contact_radius = rp;  // Table 3
+  def.coupling.verlet_distance = 0.002;
+  return def;
+}
+
+Compression compressMatrix(World& w, int plate, Real speed, Real max_settlement) {
+  Compression out;
+  Blocks& B = *w.blocks();
+  for (int i = 0; i < B.count(); ++i)
+    if (B.def(i).type == BodyType::kDynamic) out.solids_mass += B.massProperties(i).mass;
+  out.fines_mass = measure(w).mass;
+  out.solids_mass += out.fines_mass;
+  const Real settle = 0.6;
+  while (w.time() < settle) w.step(stepTowards(w.chooseTimeStep().dt, settle, w.time()));
+  // The plate brought down to 5 mm above the settled sample, then driven into it.
+  Real top = 0;
+  for (int i = 0; i < B.count(); ++i) {
+    if (B.def(i).type != BodyType::kDynamic) continue;
+    for (int k = 0; k < B.vertexCount(i); ++k)
+      top = std::max(top, B.vertices(i)[k].y() + B.def(i).rounding);
+  }
+  const Particles& P = w.particles();
+  for (std::size_t p = 0; p < P.size(); ++p) top = std::max(top, P.y[p]);
+  const Real half = 0.5 * (B.vertices(plate)[2].y() - B.vertices(plate)[0].y());
+  B.setPose(plate, Vec2(B.origin(plate).x(), top + 0.005 + half + B.def(plate).rounding), 0);
+  B.setVelocity(plate, Vec2(0, -speed), 0);
+  const Real weight = 9.81 * out.solids_mass;
+  Real contact_y = std::numeric_limits<Real>::quiet_NaN(), next = 0;
+  const Real give_up = w.time() + (0.01 + max_settlement) / speed;
+  while (w.time() < give_up) {
+    w.step(w.chooseTimeStep().dt);
+    const Real y = B.state(plate).position.y();
+    const Real f = B.coupling()[plate].force.y() + B.blockContactForce(plate).y();
+    if (std::isnan(contact_y) && f > 0.01 * weight) contact_y = y;
+    if (std::isnan(contact_y) || contact_y - y < next) continue;
+    next += max_settlement / 100;
+    out.settlement.push_back(contact_y - y);
+    out.force.push_back(f);
+    if (contact_y - y >= max_settlement) break;
+  }
+  return out;
 }
 
 }  // namespace mpm_sdem::cases

@@ -129,4 +129,23 @@ SiloFlow siloFlow(World& w, Real t_max);
 // k_c = 2.2, with the silo's rho, g and r_p (kg/(s m)).
 Real beverloo(Real neck);
 
+// Seed 000 sec. 7, scaled to a 30 x 30 cm container (the seed's is 61 cm): 25 random convex
+// pentagons (outer radius 2.0-2.8 cm, a = 3 mm, 2200 kg/m^3, friction 0.2) on a jittered 5 x 5
+// lattice, and Drucker-Prager fines of Table 3 (separation at J = 1.27 as in the silo) put
+// point by point into randomly picked lattice squares clear of every pentagon until the fines
+// are `fines_content` of the solids' mass. Static walls, a kinematic plate on top; 1 cm cells
+// (5 mm when fine), GIMP, APIC; r_p = 1 mm (Table 3), springs 1e7 and 5e6 N/m. seed: the
+// random draw (std::mt19937).
+// plate is set to the plate's block index.
+WorldDef granularMatrix(Real fines_content, bool fine, unsigned seed, int& plate);
+// Lets the sample settle for 0.6 s, puts the plate 5 mm above it and drives it down at speed
+// (m/s) until the settlement reaches max_settlement: the plate force (material and blocks, N/m)
+// against the settlement counted from the plate's first contact (force above 1% of the
+// sample's weight).
+struct Compression {
+  std::vector<Real> settlement, force;   // m, N/m
+  Real solids_mass = 0, fines_mass = 0;  // kg/m
+};
+Compression compressMatrix(World& w, int plate, Real speed, Real max_settlement);
+
 }  // namespace mpm_sdem::cases

@@ -162,6 +162,7 @@ int Blocks::add(const BlockDef& def) {
   state_.emplace_back();
   world_vertices_.resize(defs_.size() * kMaxBlockVertices);
   force_.emplace_back(0, 0);
+  block_force_.emplace_back(0, 0);
   torque_.push_back(0);
   coupling_.emplace_back();
   refresh();
@@ -178,6 +179,7 @@ void Blocks::remove(int i) {
   state_.erase(state_.begin() + i);
   world_vertices_.resize(defs_.size() * kMaxBlockVertices);
   force_.erase(force_.begin() + i);
+  block_force_.erase(block_force_.begin() + i);
   torque_.erase(torque_.begin() + i);
   coupling_.erase(coupling_.begin() + i);
   // The block-block spring histories are keyed by index: the indices after i have shifted.
@@ -337,12 +339,17 @@ int Blocks::step(Real dt, Real max_substep) {
   const Real h = dt / substeps;
   held_force_ = force_;
   held_torque_ = torque_;
+  for (Vec2& f : block_force_) f.setZero();
   for (int s = 0; s < substeps; ++s) {
     for (std::size_t i = 0; i < defs_.size(); ++i) {
       force_[i] = held_force_[i];
       torque_[i] = held_torque_[i];
     }
-    if (contact_.model == BlockContactModel::kPenalty) penaltyContacts(h);
+    if (contact_.model == BlockContactModel::kPenalty) {
+      penaltyContacts(h);
+      for (std::size_t i = 0; i < defs_.size(); ++i)
+        block_force_[i] += (force_[i] - held_force_[i]) / substeps;
+    }
     for (std::size_t i = 0; i < defs_.size(); ++i) {
       b2Body* body = b2_->bodies[i];
       if (defs_[i].type == BodyType::kDynamic) {

@@ -201,11 +201,10 @@ void parseTime(const Context& ctx, const MapReader& top, Scene& s) {
 }
 
 MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::string& path) {
-  MapReader r(
-      ctx, n, path,
-      {"name", "model", "density", "youngs_modulus", "poisson_ratio", "bulk_modulus",
-       "shear_modulus", "friction_angle", "dilation_angle", "cohesion", "tensile_strength",
-       "separation_volume_ratio"});
+  MapReader r(ctx, n, path,
+              {"name", "model", "density", "youngs_modulus", "poisson_ratio", "bulk_modulus",
+               "shear_modulus", "friction_angle", "dilation_angle", "cohesion", "tensile_strength",
+               "separation_volume_ratio"});
   MaterialDef m;
   m.name = r.text("name");
   m.model = r.choiceOf<MaterialModel>(r.node("model"), r.path("model"),
@@ -253,7 +252,8 @@ MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::st
     r.require(m.separation_volume_ratio == 0 || m.separation_volume_ratio > 1,
               "separation_volume_ratio",
               "must be > 1 (a volume ratio V / V0 looser than the initial packing) or 0 for "
-              "off, got " + num(m.separation_volume_ratio));
+              "off, got " +
+                  num(m.separation_volume_ratio));
   } else {
     for (const char* k : plastic_keys) {
       r.require(!r.has(k), k, "applies only to model: drucker_prager");

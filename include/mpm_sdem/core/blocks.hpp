@@ -106,6 +106,10 @@ class Blocks {
   };
   std::vector<Coupling>& coupling() { return coupling_; }
   const std::vector<Coupling>& coupling() const { return coupling_; }
+  // The force of the other blocks' springs on block i, averaged over the last step's substeps
+  // (N/m; penalty model only, zero with Box2D's contacts). With coupling()[i].force, the load a
+  // kinematic block such as a loading plate carries.
+  const Vec2& blockContactForce(int i) const { return block_force_[i]; }
 
  private:
   static void checkDef(const BlockDef& def);
@@ -121,6 +125,7 @@ class Blocks {
   std::vector<BlockState> state_;
   std::vector<Vec2> world_vertices_;
   std::vector<Vec2> force_;
+  std::vector<Vec2> block_force_;  // mean penalty force from the other blocks, last step
   std::vector<Real> torque_;
   std::vector<Vec2> held_force_;  // the material's forces, held through the substeps
   std::vector<Real> held_torque_;
