@@ -421,6 +421,23 @@ namespace {
 constexpr Real kSiloPlateTop = 0.25, kSiloLeft = 0.1, kSiloWidth = 0.2, kSiloFill = 0.2;
 constexpr Real kSandDensity = 1500, kSiloGravity = 10, kSiloContactRadius = 0.001;
 
+// Seed 000 Table 3's dry sand (Drucker-Prager, no cohesion or tension).
+MaterialDef tableThreeSand(const char* name) {
+  MaterialDef m;
+  m.name = name;
+  m.model = MaterialModel::kDruckerPrager;
+  m.density = kSandDensity;
+  m.bulk_modulus = 5e5;
+  m.shear_modulus = 3.2e5;
+  m.friction_angle = 35 * M_PI / 180;
+  m.dilation_angle = 25 * M_PI / 180;
+  // Sand's loosest packing takes about (1 + e_max) / (1 + e_min) = 1.9 / 1.5 = 1.27 times the
+  // volume of its densest: beyond that the grains (a falling jet, fines dropping into voids)
+  // are apart.
+  m.separation_volume_ratio = 1.27;
+  return m;
+}
+
 }  // namespace
 
 WorldDef silo(Real neck, Real h, int ppc) {
@@ -432,18 +449,7 @@ WorldDef silo(Real neck, Real h, int ppc) {
   def.solver.gravity = Vec2(0, -kSiloGravity);
   def.solver.kernel = KernelType::kGimp;
   def.solver.transfer = TransferScheme::kApic;
-  MaterialDef m;
-  m.name = "sand";
-  m.model = MaterialModel::kDruckerPrager;
-  m.density = kSandDensity;
-  m.bulk_modulus = 5e5;
-  m.shear_modulus = 3.2e5;
-  m.friction_angle = 35 * M_PI / 180;
-  m.dilation_angle = 25 * M_PI / 180;
-  // Sand's loosest packing takes about (1 + e_max) / (1 + e_min) = 1.9 / 1.5 = 1.27 times the
-  // volume of its densest: beyond that the jet's grains are apart.
-  m.separation_volume_ratio = 1.27;
-  def.materials.push_back(m);
+  def.materials.push_back(tableThreeSand("sand"));
   const Real right = kSiloLeft + kSiloWidth, wall_top = kSiloPlateTop + 0.2;
   auto add = [&def](const char* name, const Vec2& lo, const Vec2& hi) {
     BlockDef b =
@@ -525,15 +531,7 @@ WorldDef granularMatrix(Real fines_content, bool fine, unsigned seed, int& plate
   def.domain.max = Vec2(0.4, 0.5);
   def.cell_size = h;
   def.solver.kernel = KernelType::kGimp;
-  MaterialDef m;
-  m.name = "fines";
-  m.model = MaterialModel::kDruckerPrager;
-  m.density = 1500;
-  m.bulk_modulus = 5e5;
-  m.shear_modulus = 3.2e5;
-  m.friction_angle = 35 * M_PI / 180;
-  m.dilation_angle = 25 * M_PI / 180;
-  m.separation_volume_ratio = 1.27;  // as in the silo: fines falling into the voids
+  const MaterialDef m = tableThreeSand("fines");
   def.materials.push_back(m);
   auto wallBlock = [&](const char* name, const Vec2& lo, const Vec2& hi, BodyType type) {
     BlockDef b = boxBlock(name, 0.5 * (lo + hi), hi.x() - lo.x(), hi.y() - lo.y(), a_wall, type);
