@@ -208,7 +208,7 @@ Real inclineAnalytic(Real mu) {
   return std::tan(th) > 3 * mu ? g * (std::sin(th) - mu * std::cos(th)) : g * std::sin(th) * 2 / 3;
 }
 
-Real inclineAcceleration(Real mu, Real h, CouplingScheme scheme) {
+Real inclineAcceleration(Real mu, Real h, CouplingScheme scheme, Real segment) {
   const Real th = M_PI / 4, R = 0.05, a = 0.005;
   WorldDef def;
   def.domain.min = Vec2(0, 0);
@@ -227,7 +227,20 @@ Real inclineAcceleration(Real mu, Real h, CouplingScheme scheme) {
       boxBlock("incline", top0 + 0.5 * t - 0.025 * n, 1.2, 0.05, a, BodyType::kStatic);
   incline.angle = -th;
   incline.friction = mu;
-  def.blocks.push_back(incline);
+  if (segment <= 0) {
+    def.blocks.push_back(incline);
+  } else {
+    // Segments swept by the same disk a, end to end along the line a below the surface: their
+    // union is the same flat face, now with a joint every `segment`.
+    const int count = static_cast<int>(std::round(1.2 / segment));
+    for (int k = 0; k < count; ++k) {
+      BlockDef piece = incline;
+      piece.name = "incline" + std::to_string(k);
+      piece.core = {Vec2(-segment / 2, 0), Vec2(segment / 2, 0)};
+      piece.position = top0 + (-0.1 + (k + 0.5) * segment) * t - a * n;
+      def.blocks.push_back(piece);
+    }
+  }
   def.coupling.scheme = scheme;
   def.coupling.normal_stiffness = 1e7;
   def.coupling.tangential_stiffness = 5e6;

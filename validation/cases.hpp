@@ -62,7 +62,11 @@ RestingForces restingSquareForces(World& w, Real slide_speed);
 // 1e7 and 5e6 N/m. Returns the acceleration of the disk's centre along the incline fitted to
 // x = x0 + v0 t + a t^2 / 2 over t in [0.05, 0.3] s (after the landing). Analytic (eq. 55 for a
 // cylinder): g (sin - mu cos) when tan > 3 mu (slides), 2/3 g sin otherwise (rolls).
-Real inclineAcceleration(Real mu, Real cell_size, CouplingScheme scheme = CouplingScheme::kImp);
+// segment > 0 builds the incline's surface from collinear static segment blocks of that length
+// (m) instead of one box: seed 002 Table 1 varies R = element size / cell size from 1 to 8, and
+// our analogue of a surface element is a block.
+Real inclineAcceleration(Real mu, Real cell_size, CouplingScheme scheme = CouplingScheme::kImp,
+                         Real segment = 0);
 // The analytic acceleration of inclineAcceleration's disk (m/s^2).
 Real inclineAnalytic(Real mu);
 

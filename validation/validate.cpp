@@ -2,7 +2,8 @@
 // measured for the report (scripts/validate turns it into docs/validation/REPORT.md):
 //   <out>/results.csv   one row per quantity: case, quantity, value, reference, unit, source,
 //                       error (relative to the reference, or absolute when the reference is 0),
-//                       wall time of the run, settings;
+//                       wall time of the run, settings, and the run's points and steps
+//                       (0 when not counted) for its particle-steps per second;
 //   <out>/<case>_*.csv  time series and sweeps for the plots.
 // --fast runs every case at CI resolution (seconds); without it, at the seeds' resolution.
 // Exit status 3 when a measured quantity is not a finite number (an unstable run).
@@ -34,7 +35,9 @@ struct Options {
 class Results {
  public:
   explicit Results(const std::string& path) : f_(std::fopen(path.c_str(), "w")) {
-    if (f_) std::fprintf(f_, "case,quantity,value,reference,unit,source,error,wall_s,settings\n");
+    if (f_)
+      std::fprintf(
+          f_, "case,quantity,value,reference,unit,source,error,wall_s,settings,points,steps\n");
   }
   ~Results() {
     if (f_) std::fclose(f_);
@@ -43,13 +46,13 @@ class Results {
   int nonFinite() const { return non_finite_; }
   void add(const std::string& c, const std::string& quantity, double value, double reference,
            const std::string& unit, const std::string& source, double wall,
-           const std::string& settings) {
+           const std::string& settings, long points = 0, long steps = 0) {
     const double error =
         reference != 0 ? std::abs(value - reference) / std::abs(reference) : std::abs(value);
     if (!std::isfinite(value)) ++non_finite_;
-    std::fprintf(f_, "%s,\"%s\",%.8g,%.8g,%s,\"%s\",%.6g,%.4g,\"%s\"\n", c.c_str(),
+    std::fprintf(f_, "%s,\"%s\",%.8g,%.8g,%s,\"%s\",%.6g,%.4g,\"%s\",%ld,%ld\n", c.c_str(),
                  quantity.c_str(), value, reference, unit.c_str(), source.c_str(), error, wall,
-                 settings.c_str());
+                 settings.c_str(), points, steps);
     std::fflush(f_);
     std::printf("  %-36s %12.6g  (reference %.6g %s, error %.3g)\n", quantity.c_str(), value,
                 reference, unit.c_str(), error);
@@ -156,19 +159,32 @@ void drop(const Options&, Results& r) {
 }
 
 // Seed 002 sec. 4.1 in 2D: the disk on a 45 deg incline, sliding (mu = 0.2) and rolling
-// (mu = 0.4); acceleration against eq. 55 for a cylinder.
+// (mu = 0.4); acceleration against eq. 55 for a cylinder. First the incline as one box at three
+// cell sizes, then (Table 1) built from blocks R = 1, 2, 4, 8 cells long at h = 1 cm.
 void incline(const Options& o, Results& r) {
-  const std::vector<Real> sizes =
-      o.fast ? std::vector<Real>{0.01} : std::vector<Real>{0.02, 0.01, 0.005};
+  struct Run {
+    Real h;
+    int ratio;  // R = segment length / cell size; 0: one box
+  };
+  std::vector<Run> runs;
+  for (Real h : o.fast ? std::vector<Real>{0.01} : std::vector<Real>{0.02, 0.01, 0.005})
+    runs.push_back({h, 0});
+  for (int ratio : o.fast ? std::vector<int>{1} : std::vector<int>{1, 2, 4, 8})
+    runs.push_back({0.01, ratio});
   for (CouplingScheme s : kSchemes) {
     for (Real mu : {0.2, 0.4}) {
-      for (Real h : sizes) {
+      for (const Run& run : runs) {
+        if (o.fast && run.ratio > 0 && s != CouplingScheme::kImp) continue;
         const auto t0 = std::chrono::steady_clock::now();
-        const Real a = cases::inclineAcceleration(mu, h, s);
-        char q[96], settings[96];
-        std::snprintf(q, sizeof q, "acceleration, %s, mu %.1f (%s), h %.1f cm",
-                      couplingSchemeName(s), mu, mu < 0.3 ? "slides" : "rolls", 100 * h);
-        std::snprintf(settings, sizeof settings, "disk R = 5 cm: %.1f cells per radius", 0.05 / h);
+        const Real a = cases::inclineAcceleration(mu, run.h, s, run.ratio * run.h);
+        char q[112], settings[112];
+        std::snprintf(q, sizeof q, "acceleration mu %.1f (%s), %s, h %.1f cm", mu,
+                      mu < 0.3 ? "slides" : "rolls", couplingSchemeName(s), 100 * run.h);
+        if (run.ratio > 0)
+          std::snprintf(q + std::strlen(q), sizeof q - std::strlen(q), ", R = %d", run.ratio);
+        std::snprintf(settings, sizeof settings, "disk R = 5 cm: %.1f cells per radius; %s",
+                      0.05 / run.h,
+                      run.ratio > 0 ? "incline of segment blocks" : "one incline box");
         r.add("incline", q, a, cases::inclineAnalytic(mu), "m/s^2", "seed 002 eq. 55 (2D)",
               seconds(t0), settings);
       }
@@ -507,53 +523,189 @@ void contactSchemes(const Options& o, Results& r) {
   std::fclose(sweep);
 }
 
-// Seed 000 sec. 6 / seed 003: the default scene; final left faces against the measured 34.6 cm
-// (block 2) and 40.1 cm (block 1), first motion against about 0.25 s, block 2's angle in time.
+// Seed 000 sec. 6 / seed 003: one run of the wooden-block scene and what it is compared on.
+struct DebrisRun {
+  Real left2 = 0, left1 = 0;  // final left faces of blocks 2 and 1 (m)
+  Real first_impact = -1;     // s: the material first pushes on a block with 1% of its weight
+  Real first_motion = -1;     // s: block 1 or 2 first moves faster than 1 cm/s
+  Real landing2 = -1, landing1 = -1;  // s: the block's lowest point first within 1 mm of the floor
+  double wall = 0;
+  long steps = 0, points = 0;
+};
+
+// The snapshot times: seed 003 Fig. 10 and 12 and seed 000 Fig. 20 (flow reaches the blocks at
+// 0.25 s, block 2 lands at 0.36-0.40 s, block 1 at 0.38-0.45 s), then the end.
+const Real kSnapshotTimes[] = {0.0, 0.25, 0.30, 0.35, 0.40, 0.45, 1.0};
+
+DebrisRun runDebris(const WorldDef& def, Real end, FILE* series, FILE* snapshots) {
+  World w(def);
+  const Blocks& B = *w.blocks();
+  const int b1 = B.find("block1"), b2 = B.find("block2"), b3 = B.find("block3");
+  const Real weight = B.massProperties(b2).mass * def.solver.gravity.norm();
+  auto lowest = [&](int b) {
+    Real y = std::numeric_limits<Real>::infinity();
+    for (int k = 0; k < B.vertexCount(b); ++k) y = std::min(y, B.vertices(b)[k].y());
+    return y - B.def(b).rounding;  // the floor's top is y = 0
+  };
+  auto snapshot = [&] {
+    const Particles& P = w.particles();
+    for (std::size_t p = 0; p < P.size(); ++p)
+      std::fprintf(snapshots, "%.4f,point,%zu,%.5f,%.5f\n", w.time(), p, P.x[p], P.y[p]);
+    for (int b = 0; b < B.count(); ++b)
+      for (int k = 0; k < B.vertexCount(b); ++k)
+        std::fprintf(snapshots, "%.4f,%s,%g,%.5f,%.5f\n", w.time(), B.def(b).name.c_str(),
+                     B.def(b).rounding, B.vertices(b)[k].x(), B.vertices(b)[k].y());
+  };
+  DebrisRun run;
+  std::size_t next_snapshot = 0;
+  Real next_sample = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  while (true) {
+    if (snapshots && next_snapshot < std::size(kSnapshotTimes) &&
+        w.time() >= std::min(kSnapshotTimes[next_snapshot], end) - 1e-9) {
+      snapshot();
+      ++next_snapshot;
+    }
+    if (series && w.time() >= next_sample) {
+      std::fprintf(series, "%.5g,%.5g,%.5g\n", w.time(), B.state(b2).angle * 180 / M_PI,
+                   B.state(b1).angle * 180 / M_PI);
+      next_sample += 0.01;
+    }
+    if (w.time() >= end) break;
+    w.step(stepTowards(w.chooseTimeStep().dt, end, w.time()));
+    const Real t = w.time();
+    if (run.first_impact < 0)
+      for (int b : {b1, b2, b3})
+        if (B.coupling()[b].force.norm() > 0.01 * weight) run.first_impact = t;
+    if (run.first_motion < 0 &&
+        (B.state(b1).velocity.norm() > 0.01 || B.state(b2).velocity.norm() > 0.01))
+      run.first_motion = t;
+    if (run.landing2 < 0 && lowest(b2) < 0.001) run.landing2 = t;
+    if (run.landing1 < 0 && lowest(b1) < 0.001) run.landing1 = t;
+  }
+  run.wall = seconds(t0);
+  // Left face of a 2 x 1.8 cm block at its pose.
+  auto left = [&](int b) {
+    const BlockState& st = B.state(b);
+    return st.position.x() -
+           (std::abs(std::cos(st.angle)) * 0.01 + std::abs(std::sin(st.angle)) * 0.009);
+  };
+  run.left2 = left(b2);
+  run.left1 = left(b1);
+  run.steps = w.stepCount();
+  run.points = static_cast<long>(w.particles().size());
+  return run;
+}
+
+std::string debrisScenePath(bool fast) {
+  return std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/" +
+         (fast ? "debris_impact.yaml" : "debris_impact_fine.yaml");
+}
+
+// Seed 000 sec. 6 / seed 003, every coupling scheme on the shipped scene: final left faces
+// against the measured 34.6 cm (block 2) and 40.1 cm (block 1), first impact against about
+// 0.25 s (both seeds), the landings against seed 003's simulation, block 2's angle in time and
+// (IMP) snapshots at the seeds' times.
 void debris(const Options& o, Results& r) {
-  const std::string file = std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/" +
-                           (o.fast ? "debris_impact.yaml" : "debris_impact_fine.yaml");
-  const Scene scene = loadScene(file);
+  const Scene scene = loadScene(debrisScenePath(o.fast));
+  const std::string file = o.fast ? "debris_impact.yaml" : "debris_impact_fine.yaml";
   for (CouplingScheme s : kSchemes) {
     WorldDef def = scene.world;
     def.coupling.scheme = s;
-    World w(def);
-    const Blocks& B = *w.blocks();
-    const int b1 = B.find("block1"), b2 = B.find("block2");
     const std::string name = couplingSchemeName(s);
     FILE* series = std::fopen((o.out + "/debris_" + name + ".csv").c_str(), "w");
     std::fprintf(series, "time,block2_angle_deg,block1_angle_deg\n");
-    Real first_motion = -1, next_sample = 0;
-    const auto t0 = std::chrono::steady_clock::now();
-    while (w.time() < scene.end_time) {
-      w.step(stepTowards(w.chooseTimeStep().dt, scene.end_time, w.time()));
-      if (first_motion < 0 &&
-          (B.state(b1).velocity.norm() > 0.01 || B.state(b2).velocity.norm() > 0.01))
-        first_motion = w.time();
-      if (w.time() >= next_sample) {
-        std::fprintf(series, "%.5g,%.5g,%.5g\n", w.time(), B.state(b2).angle * 180 / M_PI,
-                     B.state(b1).angle * 180 / M_PI);
-        next_sample += 0.01;
-      }
+    FILE* snapshots = nullptr;
+    if (s == CouplingScheme::kImp) {
+      snapshots = std::fopen((o.out + "/debris_snapshots.csv").c_str(), "w");
+      std::fprintf(snapshots, "time,what,id,x,y\n");
     }
+    const DebrisRun run = runDebris(def, scene.end_time, series, snapshots);
     std::fclose(series);
-    const double wall = seconds(t0);
-    // Left face of a 2 x 1.8 cm block at its pose.
-    auto left = [&](int b) {
-      const BlockState& st = B.state(b);
-      return st.position.x() -
-             (std::abs(std::cos(st.angle)) * 0.01 + std::abs(std::sin(st.angle)) * 0.009);
-    };
+    if (snapshots) std::fclose(snapshots);
     char settings[160];
-    std::snprintf(settings, sizeof settings, "%s, %s, h %g m, %zu points, %ld steps",
-                  o.fast ? "debris_impact.yaml" : "debris_impact_fine.yaml", name.c_str(),
-                  def.cell_size, w.particles().size(), w.stepCount());
-    r.add("debris", "block 2 left face, " + name, 100 * left(b2), 34.6, "cm",
-          "seed 003 (experiment)", wall, settings);
-    r.add("debris", "block 1 left face, " + name, 100 * left(b1), 40.1, "cm",
-          "seed 003 (experiment)", wall, settings);
-    r.add("debris", "first block motion, " + name, first_motion, 0.25, "s",
-          "seed 000 sec. 6 (experiment, about)", wall, settings);
+    std::snprintf(settings, sizeof settings, "%s, %s, h %g m, %ld points, %ld steps", file.c_str(),
+                  name.c_str(), def.cell_size, run.points, run.steps);
+    auto add = [&](const std::string& q, Real value, Real reference, const char* unit,
+                   const char* source) {
+      r.add("debris", q + ", " + name, value, reference, unit, source, run.wall, settings,
+            run.points, run.steps);
+    };
+    add("block 2 left face", 100 * run.left2, 34.6, "cm", "seed 003 (experiment)");
+    add("block 1 left face", 100 * run.left1, 40.1, "cm", "seed 003 (experiment)");
+    add("first impact", run.first_impact, 0.25, "s", "seeds 000 sec. 6, 003 (experiment)");
+    add("first block motion", run.first_motion, 0.25, "s", "seed 000 sec. 6 (experiment, about)");
+    add("block 2 lands", run.landing2, 0.365, "s", "seed 003 sec. 4.3 (its simulation, 0.36-0.37)");
+    add("block 1 lands", run.landing1, 0.385, "s", "seed 003 sec. 4.3 (its simulation, 0.38-0.39)");
   }
+}
+
+// Speed against error on the wooden-block scene (IMP): the cell size, points per cell, the two
+// step factors and the contact radius r_p swept one at a time around the shipped scenes. The
+// column is refilled at each resolution with the same size (10 x 20 cm: only lattices whose
+// spacing divides it) and its first row of points at least one spacing above the floor.
+void debrisSweep(const Options& o, Results& r) {
+  const Scene scene = loadScene(debrisScenePath(true));
+  struct Knobs {
+    Real h;
+    int ppc;
+    Real cfl = 0.3, kappa2 = 0.1, rp_factor = 1;  // r_p = rp_factor h / sqrt(ppc)
+  };
+  std::vector<Knobs> runs;
+  if (o.fast) {
+    runs = {{0.01, 2}, {0.01, 2, 0.3, 0.1, 0.5}};
+  } else {
+    for (auto [h, ppc] : std::vector<std::pair<Real, int>>{{0.01, 2},
+                                                           {0.01, 3},
+                                                           {0.01, 4},
+                                                           {0.0075, 3},
+                                                           {0.006, 3},
+                                                           {0.005, 2},
+                                                           {0.005, 3},
+                                                           {0.005, 4},
+                                                           {0.003, 3},
+                                                           {0.0025, 2}})
+      runs.push_back({h, ppc});
+    for (Real h : {0.01, 0.005}) {
+      for (Real cfl : {0.15, 0.6}) runs.push_back({h, 2, cfl});
+      for (Real kappa2 : {0.05, 0.2}) runs.push_back({h, 2, 0.3, kappa2});
+      for (Real f : {0.5, 1.5}) runs.push_back({h, 2, 0.3, 0.1, f});
+    }
+  }
+  FILE* table = std::fopen((o.out + "/debris_sweep.csv").c_str(), "w");
+  std::fprintf(
+      table,
+      "cell_size_m,points_per_cell,cfl,contact_factor,contact_radius_m,points,steps,wall_s,"
+      "block2_left_cm,block1_left_cm,error\n");
+  for (const Knobs& k : runs) {
+    WorldDef def = scene.world;
+    def.cell_size = k.h;
+    BodyDef& column = def.bodies[0];
+    column.points_per_cell = k.ppc;
+    const Real s = k.h / k.ppc, y_min = def.domain.min.y();
+    const Real first = y_min + (std::ceil((s - y_min) / s - 0.5) + 0.5) * s;  // >= s above y = 0
+    column.shape.min.y() = first - s / 2;
+    column.shape.max.y() = column.shape.min.y() + 0.2;
+    def.time_step.cfl = k.cfl;
+    def.time_step.contact_factor = k.kappa2;
+    def.coupling.contact_radius = k.rp_factor * k.h / std::sqrt(Real(k.ppc));
+    const DebrisRun run = runDebris(def, scene.end_time, nullptr, nullptr);
+    const Real e2 = std::abs(100 * run.left2 - 34.6) / 34.6;
+    const Real e1 = std::abs(100 * run.left1 - 40.1) / 40.1;
+    std::fprintf(table, "%g,%d,%g,%g,%g,%ld,%ld,%.4g,%.4f,%.4f,%.5g\n", k.h, k.ppc, k.cfl, k.kappa2,
+                 def.coupling.contact_radius, run.points, run.steps, run.wall, 100 * run.left2,
+                 100 * run.left1, std::max(e1, e2));
+    std::fflush(table);
+    char settings[160];
+    std::snprintf(settings, sizeof settings,
+                  "h %g cm, %d x %d points per cell, cfl %g, kappa_2 %g, r_p %.2g mm; %ld points, "
+                  "%ld steps",
+                  100 * k.h, k.ppc, k.ppc, k.cfl, k.kappa2, 1000 * def.coupling.contact_radius,
+                  run.points, run.steps);
+    r.add("debris_sweep", "worse left-face error of blocks 1 and 2", std::max(e1, e2), 0, "-",
+          "seed 003 (experiment: 34.6, 40.1 cm)", run.wall, settings, run.points, run.steps);
+  }
+  std::fclose(table);
 }
 
 }  // namespace
@@ -578,7 +730,8 @@ int main(int argc, char** argv) {
       std::fprintf(
           stderr,
           "usage: %s [--out DIR] [--fast] [--cases "
-          "collision,drop,forces,incline,contact_schemes,debris,bar,silo,compression,stability]\n",
+          "collision,drop,forces,incline,contact_schemes,debris,debris_sweep,bar,silo,compression,"
+          "stability]\n",
           argv[0]);
       return 2;
     }
@@ -597,6 +750,7 @@ int main(int argc, char** argv) {
       {"incline", incline},
       {"contact_schemes", contactSchemes},
       {"debris", debris},
+      {"debris_sweep", debrisSweep},
       {"bar", bar},
       {"silo", siloDischarge},
       {"compression", compression},
