@@ -525,8 +525,19 @@ SiloFlow siloFlow(World& w, Real t_max) {
     stt += out.time[i] * out.time[i];
     stm += out.time[i] * out.discharged[i];
   }
-  out.rate =
-      n >= 5 ? (n * stm - st * sm) / (n * stt - st * st) : std::numeric_limits<Real>::quiet_NaN();
+  if (n >= 5) {
+    out.rate = (n * stm - st * sm) / (n * stt - st * st);
+    return out;
+  }
+  out.window_reached = false;
+  const std::size_t last = out.time.size() - 1;
+  std::size_t first = last;
+  while (first > 0 && out.time[last] - out.time[first - 1] <= 1.0 + 1e-9) --first;
+  out.window_start = out.time[first];
+  out.window_end = out.time[last];
+  out.rate = last > first ? (out.discharged[last] - out.discharged[first]) /
+                                (out.time[last] - out.time[first])
+                          : 0;
   return out;
 }
 

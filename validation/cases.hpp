@@ -125,8 +125,11 @@ WorldDef silo(Real neck, Real cell_size, int points_per_cell);
 // the head is then still above the silo's width, where Beverloo's rate does not depend on it).
 struct SiloFlow {
   std::vector<Real> time, discharged;  // s, kg/m
-  Real rate = 0;                       // kg/(s m); NaN when the window was not reached
+  // kg/(s m). When less than 10% had passed by t_max (a neck of a few cells can arch and hold
+  // the fill), the mean rate over the last second instead, and window_reached is false.
+  Real rate = 0;
   Real window_start = 0, window_end = 0;
+  bool window_reached = true;
 };
 SiloFlow siloFlow(World& w, Real t_max);
 // The 2D Beverloo law in the seed's form: M = C rho g^0.5 (D0 - k_c r_p)^1.5, C = 0.58,
