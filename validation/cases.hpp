@@ -70,6 +70,36 @@ Real inclineAcceleration(Real mu, Real cell_size, CouplingScheme scheme = Coupli
 // The analytic acceleration of inclineAcceleration's disk (m/s^2).
 Real inclineAnalytic(Real mu);
 
+// Rotation under friction: the incline's elastic disk (R = 5 cm, 10 MPa, nu = 0.3, GIMP) thrown
+// along a static floor block at v0 without spin. While it slides, friction mu g decelerates its
+// centre and spins it up at 2 mu g / R (I = M R^2 / 2); it rolls from t = v0 / (3 mu g) at
+// 2/3 v0. offset moves the disk and the floor against the point lattice (fraction of a cell,
+// both axes). With spin = true the disk starts rolling (omega = -v0 / R) and mu is large: it
+// must then roll on at v0 with its energy kept.
+struct ThrownDisk {
+  Real cell_size = 0.005;  // m (10 cells per radius)
+  Real offset = 0;         // cells
+  Real mu = 0.1;
+  Real v0 = 2;     // m/s
+  Real t_end = 1;  // s
+  bool spin = false;
+  TransferScheme transfer = TransferScheme::kApic;
+  CouplingScheme scheme = CouplingScheme::kImp;
+};
+WorldDef thrownDisk(const ThrownDisk& c);
+// Runs thrownDisk's world to t_end, sampling every millisecond the centre's velocity, the
+// disk's rigid-body spin (the least-squares fit of the points' velocities about the centre)
+// and the total energy (material, J/m).
+struct Rolling {
+  Real spin_up = 0;        // rad/s^2, fitted to the spin over [0.05, 0.6] s (sliding)
+  Real deceleration = 0;   // m/s^2, fitted to the centre's speed over the same window
+  Real roll_speed = 0;     // m/s, mean over the last 0.15 s
+  Real roll_start = 0;     // s, where the fitted sliding speed meets roll_speed
+  Real roll_ratio = 0;     // -omega R / v over the last 0.15 s (1: rolling without slip)
+  Real energy_change = 0;  // (E(t_end) - E(0)) / E(0)
+};
+Rolling rollDisk(World& w, const ThrownDisk& c);
+
 // Seed 000 sec. 5.1.2: the Table 1 hard elastic disk (R = 2 cm) dropped from 3 cm onto a static
 // block (restitution 1), 4 mm cells, 2 x 2 points per cell.
 WorldDef dropDisk(CouplingScheme scheme = CouplingScheme::kImp);

@@ -24,7 +24,12 @@ void ImpCoupling::beforeStep(CouplingStep& s) {
     const BlockDef& bd = B.def(b);
     const Vec2 x(P.x[p], P.y[p]);
     const CoreDistance d = closestOnCore(B.vertices(b), B.vertexCount(b), x);
-    const Real xi = bd.rounding + rp - d.distance;  // eq. 44
+    // Eq. 44 with the point's radius r_p capped at its depth below the body's outline: the
+    // points of the outermost layer then reach exactly to the true surface. With r_p alone a
+    // body's lattice staircase touches a flat block along a whole row of points, a flat face
+    // that friction cannot tip (a disk of 10 cells per radius slid without spinning at
+    // mu < 0.2), and it floats r_p - h/(2 ppc) above the block.
+    const Real xi = bd.rounding + impReach(P, p, rp) - d.distance;
     if (xi <= 0) {
       c.history.setZero();
       c.force.setZero();
@@ -32,7 +37,15 @@ void ImpCoupling::beforeStep(CouplingStep& s) {
     }
     // Contact point: the middle of the overlap along the normal (eq. 41 for a disk).
     c.point = d.point + (bd.rounding - xi / 2) * d.normal;
-    const Vec2 v = Vec2(P.vx[p], P.vy[p]) - B.velocityAt(b, c.point);
+    // The material's velocity at the contact point, not at the point's centre: v_p + L_p d
+    // with the velocity gradient of the last transfer. A spinning body's centre moves slower
+    // than its surface by omega times the depth, and a contact that read v_p saw a rolling
+    // disk still slipping (it stopped slipping at omega (R - depth) = v, 5% too fast a spin at
+    // 10 cells per radius).
+    const Vec2 d_p = c.point - x;
+    const Vec2 v_material(P.vx[p] + P.lxx[p] * d_p.x() + P.lxy[p] * d_p.y(),
+                          P.vy[p] + P.lyx[p] * d_p.x() + P.lyy[p] * d_p.y());
+    const Vec2 v = v_material - B.velocityAt(b, c.point);
     const Real vn = v.dot(d.normal);
     const Real mp = P.mass[p];
     const Real m = bd.type == BodyType::kDynamic
@@ -65,8 +78,10 @@ void ImpCoupling::addGridForces(CouplingStep& s) {
       // Fig. 17B: the nodes around the contact point that carry material; eq. 48 otherwise
       // (f_I += S_Ip f_p), also when no node around the contact point has mass.
       if (!at_point ||
-          !detail::spreadPointLoad<K>(s.grid, c.point, P.half_size[c.particle], c.force))
-        detail::spreadParticleForce<K>(s.grid, P, c.particle, c.force);
+          !detail::spreadPointLoad<K>(s.grid, c.point, P.half_size[c.particle], c.force)) {
+        const Vec2 x(P.x[c.particle], P.y[c.particle]);
+        detail::spreadParticleForce<K>(s.grid, P, c.particle, c.force, c.point - x);
+      }
     }
   });
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mpm_sdem {
 
@@ -87,6 +88,29 @@ void bounds(const ShapeDef& shape, Vec2& lo, Vec2& hi) {
       }
       return;
   }
+}
+
+Real outlineDistance(const ShapeDef& shape, const Vec2& p) {
+  auto toSegment = [&p](const Vec2& a, const Vec2& b) {
+    const Vec2 e = b - a;
+    const Real t = std::clamp((p - a).dot(e) / e.squaredNorm(), Real(0), Real(1));
+    return (a + t * e - p).norm();
+  };
+  switch (shape.type) {
+    case ShapeType::kRectangle:
+      return std::min({p.x() - shape.min.x(), shape.max.x() - p.x(), p.y() - shape.min.y(),
+                       shape.max.y() - p.y()});
+    case ShapeType::kDisk:
+      return shape.radius - (p - shape.center).norm();
+    case ShapeType::kPolygon: {
+      Real d = std::numeric_limits<Real>::infinity();
+      const auto& v = shape.vertices;
+      for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++)
+        d = std::min(d, toSegment(v[j], v[i]));
+      return d;
+    }
+  }
+  return 0;
 }
 
 std::vector<Vec2> fillPoints(const ShapeDef& shape, const Vec2& domain_min, Real cell_size,

@@ -249,18 +249,24 @@ void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& cla
   if (bad) finite = false;
 }
 
-// Eq. 47: the contact force of each IMP goes to the grid like an external point load.
-// f_I += S_Ip f for a force f on particle p (seed 000 eq. 48).
+// Eq. 47: the contact force of each IMP goes to the grid like an external point load,
+// f_I += S_Ip f for a force f on particle p (seed 000 eq. 48). With an offset d, the force acts
+// at x_p + d: f_I += (S_Ip + d . grad S_Ip) f, the first-order shift of the weights, on the
+// point's own nodes (which all carry its mass). The sum over I stays f (sum grad S_Ip = 0) and
+// the moment becomes (x_p + d) x f (sum x_I grad S_Ip^T = identity), so a contact force and its
+// reaction on a block act at the same point and conserve angular momentum.
 template <class K>
-void spreadParticleForce(Grid& G, const Particles& P, int p, const Vec2& f) {
+void spreadParticleForce(Grid& G, const Particles& P, int p, const Vec2& f,
+                         const Vec2& offset = Vec2(0, 0)) {
   constexpr int S = K::kSupport;
   Real xg, yg;
   Stencil1D sx, sy;
   stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+  const Real ox = offset.x() * G.inv_h, oy = offset.y() * G.inv_h;  // dw is per grid unit
   for (int j = 0; j < S; ++j) {
     const int row = (sy.base + j) * G.nx + sx.base;
     for (int i = 0; i < S; ++i) {
-      const Real w = sx.w[i] * sy.w[j];
+      const Real w = sx.w[i] * sy.w[j] + ox * sx.dw[i] * sy.w[j] + oy * sx.w[i] * sy.dw[j];
       G.force_x[row + i] += w * f.x();
       G.force_y[row + i] += w * f.y();
     }

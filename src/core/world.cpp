@@ -70,6 +70,7 @@ World::World(const WorldDef& def) : def_(def) {
       particles_.volume0[p] = spacing * spacing;
       particles_.mass[p] = mat.density * spacing * spacing;
       particles_.half_size[p] = Real(0.5) / body.points_per_cell;
+      particles_.depth[p] = std::max(outlineDistance(body.shape, x), Real(0));
       particles_.material[p] = static_cast<std::uint16_t>(body.material);
       particles_.body[p] = static_cast<std::uint16_t>(b);
       ++p;

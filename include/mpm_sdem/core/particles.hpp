@@ -21,8 +21,12 @@ struct Particles {
   std::vector<Real> volume0;             // initial area (m^2 per metre of thickness)
   std::vector<Real> J;                   // volume ratio V / V0
   std::vector<Real> half_size;           // GIMP half size l_p (grid units)
-  std::vector<std::uint16_t> material;   // index into the world's materials
-  std::vector<std::uint16_t> body;       // index of the body the point was filled from
+  // Distance from the point to its body's outline when it was filled (m): how far the material
+  // it stands for reaches. It lets a contact see the body's true surface instead of the
+  // lattice's staircase (IMP reach, ImpCoupling).
+  std::vector<Real> depth;
+  std::vector<std::uint16_t> material;  // index into the world's materials
+  std::vector<std::uint16_t> body;      // index of the body the point was filled from
 
   std::size_t size() const { return x.size(); }
   void resize(std::size_t n);
@@ -32,8 +36,8 @@ struct Particles {
   // reordering and the memory report share.
   template <class F>
   void forEachColumn(F&& f) {
-    for (auto* c : {&x,   &y,   &vx,  &vy,  &bxx, &bxy, &byx,  &byy,     &sxx, &syy,
-                    &sxy, &szz, &lxx, &lxy, &lyx, &lyy, &mass, &volume0, &J,   &half_size})
+    for (auto* c : {&x,   &y,   &vx,  &vy,  &bxx, &bxy,  &byx,     &byy, &sxx,       &syy,  &sxy,
+                    &szz, &lxx, &lxy, &lyx, &lyy, &mass, &volume0, &J,   &half_size, &depth})
       f(*c);
     f(material);
     f(body);

@@ -34,6 +34,9 @@ Real signedArea(const std::vector<Vec2>& polygon);
 // True when two non-adjacent edges of the closed polygon cross or touch.
 bool selfIntersects(const std::vector<Vec2>& polygon);
 
+// Distance from p to the outline of the shape (m), for p inside it.
+Real outlineDistance(const ShapeDef& shape, const Vec2& p);
+
 // The points a body is filled with: the centres of the sub-cells of a lattice of spacing
 // cell_size / points_per_cell anchored at the domain corner, kept where they lie inside the shape.
 std::vector<Vec2> fillPoints(const ShapeDef& shape, const Vec2& domain_min, Real cell_size,

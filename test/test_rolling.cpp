@@ -1,0 +1,76 @@
+// Rotation under friction (issue 15): an elastic disk of 10 cells per radius thrown without
+// spin along a static floor block (cases::thrownDisk, IMP). Rigid-body mechanics of a solid
+// cylinder: while it slides, friction mu g decelerates the centre and spins the disk up at
+// 2 mu g / R; it rolls from t = v0 / (3 mu g) at 2/3 v0. The disk's elastic contact flattening
+// (Hertz half-width 0.7 mm against R = 50 mm) changes none of these by more than 0.1%.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "cases.hpp"
+
+using namespace mpm_sdem;
+
+namespace {
+
+constexpr Real kG = 9.81, kR = 0.05;
+
+cases::Rolling roll(const cases::ThrownDisk& c) {
+  World w(cases::thrownDisk(c));
+  const cases::Rolling r = cases::rollDisk(w, c);
+  std::printf(
+      "offset %.1f: deceleration / (mu g) %.4f, spin-up / (2 mu g / R) %.4f, roll speed / (2/3 "
+      "v0) %.4f (v0 for a rolling start), roll start / (v0 / 3 mu g) %.4f, -omega R / v %.4f, "
+      "energy change %.2e\n",
+      c.offset, r.deceleration / (c.mu * kG), r.spin_up / (2 * c.mu * kG / kR),
+      r.roll_speed / (c.spin ? c.v0 : 2 * c.v0 / 3), r.roll_start / (c.v0 / (3 * c.mu * kG)),
+      r.roll_ratio, r.energy_change);
+  return r;
+}
+
+}  // namespace
+
+// Tolerances: the issue's 3% on the rolling speed and the spin-up, 5% on the time rolling
+// starts. Before the fix (force and slip read at the point's centre, contact on the lattice's
+// flat row) the disk did not spin at all on this floor (0% of the rate) and ended 38% slow.
+TEST(Rolling, ThrownDiskSpinsUpThenRollsAtTwoThirdsOfItsSpeed) {
+  const cases::ThrownDisk c;
+  const cases::Rolling r = roll(c);
+  EXPECT_NEAR(r.deceleration / (c.mu * kG), 1.0, 0.01);
+  EXPECT_NEAR(r.spin_up / (2 * c.mu * kG / kR), 1.0, 0.03);
+  EXPECT_NEAR(r.roll_speed / (2 * c.v0 / 3), 1.0, 0.03);
+  EXPECT_NEAR(r.roll_start / (c.v0 / (3 * c.mu * kG)), 1.0, 0.05);
+  EXPECT_NEAR(r.roll_ratio, 1.0, 0.02) << "rolls without slip at the end";
+}
+
+// The lattice must not decide the physics: the disk and floor moved by fractions of a cell.
+TEST(Rolling, SameAtFiveLatticeOffsets) {
+  std::vector<Real> spin, speed;
+  for (Real offset : {0.0, 0.2, 0.4, 0.6, 0.8}) {
+    cases::ThrownDisk c;
+    c.offset = offset;
+    const cases::Rolling r = roll(c);
+    spin.push_back(r.spin_up);
+    speed.push_back(r.roll_speed);
+  }
+  auto spread = [](const std::vector<Real>& v) {
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    return (*hi - *lo) / *hi;
+  };
+  EXPECT_LT(spread(speed), 0.01);
+  EXPECT_LT(spread(spin), 0.02);
+}
+
+// A disk rolling without slip on a flat floor keeps its energy: the contact's damping acts only
+// on the normal motion, and rolling has none but the lattice's (issue: within 1% over 1 s).
+TEST(Rolling, RollingDiskKeepsItsEnergy) {
+  cases::ThrownDisk c;
+  c.spin = true;
+  c.mu = 0.5;
+  c.v0 = 1;
+  const cases::Rolling r = roll(c);
+  EXPECT_NEAR(r.energy_change, 0.0, 0.01);
+  EXPECT_NEAR(r.roll_speed / c.v0, 1.0, 0.01);
+  EXPECT_NEAR(r.roll_ratio, 1.0, 0.02);
+}
