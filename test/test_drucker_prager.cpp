@@ -116,3 +116,25 @@ TEST(DruckerPrager, PlasticVolumeChangeFollowsDilationAngle) {
     EXPECT_NEAR(s.xy / trial.xy, kx, 1e-12);
   }
 }
+
+// Plane-strain simple shear at constant volume under 100 kPa without dilation: the flowing point
+// settles at the in-plane friction angle asin(q_phi) (Mohr circle radius over centre), which the
+// scene reference gives for each friction angle; at the 60 deg limit it is 50.8 deg, and the
+// cone's ceiling q_phi = sqrt(3)/2 would be 60 deg (why steeper angles are refused). The
+// returns are exact to round-off, so 1e-3 rad allows for the steady state's last oscillation.
+TEST(DruckerPrager, PlaneStrainFlowHoldsTheFlowingFrictionAngle) {
+  for (Real phi : {30.0, 45.0, 60.0}) {
+    const MaterialParams m = params(phi, 0, 0, 0);
+    Stress s{-1e5, -1e5, 0, -1e5};
+    const VelocityGradient L{0, 1, 0, 0};  // dv_x/dy = 1/s
+    for (int i = 0; i < 20000; ++i) {
+      s = jaumannElasticUpdate(m, s, L, 1e-5);
+      druckerPragerReturn(m, s);
+    }
+    const Real centre = 0.5 * (s.xx + s.yy);
+    const Real radius = std::sqrt(0.25 * (s.xx - s.yy) * (s.xx - s.yy) + s.xy * s.xy);
+    EXPECT_NEAR(std::asin(radius / -centre), flowingFrictionAngle(phi * M_PI / 180), 1e-3)
+        << "phi " << phi;
+  }
+  EXPECT_NEAR(flowingFrictionAngle(kMaxFrictionAngle) * 180 / M_PI, 50.77, 0.01);
+}

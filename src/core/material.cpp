@@ -13,6 +13,10 @@ Real coneSlope(Real angle) {
 }
 }  // namespace
 
+Real flowingFrictionAngle(Real friction_angle) {
+  return std::asin(coneSlope(friction_angle));
+}
+
 MaterialParams makeMaterialParams(const MaterialDef& def) {
   MaterialParams p;
   p.model = def.model;

@@ -237,7 +237,10 @@ MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::st
                                 "separation_volume_ratio"};
   if (m.model == MaterialModel::kDruckerPrager) {
     const Real phi = r.number("friction_angle", "deg");
-    r.require(phi >= 0 && phi < 90, "friction_angle", "must be in [0, 90) deg, got " + num(phi));
+    r.require(phi >= 0 && phi <= kMaxFrictionAngle / kDeg, "friction_angle",
+              "must be in [0, " + num(kMaxFrictionAngle / kDeg) + "] deg, got " + num(phi) +
+                  ": the plane-strain Drucker-Prager cone (seed 000 eq. 35) holds no flowing "
+                  "slope steeper than 60 deg (docs/scene_reference.md)");
     const Real psi = r.number("dilation_angle", "deg", 0);
     r.require(psi >= 0 && psi <= phi, "dilation_angle",
               "must be in [0, friction_angle] deg, got " + num(psi));

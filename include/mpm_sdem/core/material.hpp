@@ -1,6 +1,7 @@
 // Materials: user-facing definitions and the derived constants the constitutive update reads.
 #pragma once
 
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -30,6 +31,17 @@ struct MaterialDef {
   // stream from bounding the step by the stiffness of a density it no longer has. 0: off.
   Real separation_volume_ratio = 0;
 };
+
+// The steepest friction angle a Drucker-Prager material may ask for (rad). Eq. 35's cone matches
+// Mohr-Coulomb in plane strain only when the plastic flow is associated; with less dilation the
+// out-of-plane stress settles where the plastic flow has no out-of-plane part, and the in-plane
+// angle the flowing material holds is asin(q_phi) (flowingFrictionAngle). q_phi never exceeds
+// sqrt(3)/2, so no material flows at an angle above 60 deg: friction_angle 80 deg flowed like
+// 58.9 deg. Angles up to this limit are accepted and their flowing angle documented.
+constexpr Real kMaxFrictionAngle = M_PI / 3;
+// The in-plane friction angle of the flowing material without dilation: asin(q_phi(phi)), e.g.
+// 28.7 deg for 30, 40.9 for 45, 50.8 for 60 (rad in, rad out).
+Real flowingFrictionAngle(Real friction_angle);
 
 // Derived constants, computed once. Kept small: the constitutive loop reads one per particle.
 struct MaterialParams {
