@@ -18,7 +18,7 @@ void ImpCoupling::beforeStep(CouplingStep& s) {
   B.clearCoupling();
   active_ = 0;
   on_material_.setZero();
-  const Real kn = def_.normal_stiffness, kt = def_.tangential_stiffness, rp = def_.contact_radius;
+  const Real rp = def_.contact_radius;
   for (ContactPair& c : search_.pairs()) {
     const int b = c.block, p = c.particle;
     const BlockDef& bd = B.def(b);
@@ -47,6 +47,8 @@ void ImpCoupling::beforeStep(CouplingStep& s) {
                           P.vy[p] + P.lyx[p] * d_p.x() + P.lyy[p] * d_p.y());
     const Vec2 v = v_material - B.velocityAt(b, c.point);
     const Real vn = v.dot(d.normal);
+    const Real scale = impSpringScale(def_.stiffness_per, P, p);
+    const Real kn = scale * def_.normal_stiffness, kt = scale * def_.tangential_stiffness;
     const Real mp = P.mass[p];
     const Real m = bd.type == BodyType::kDynamic
                        ? mp * B.massProperties(b).mass / (mp + B.massProperties(b).mass)

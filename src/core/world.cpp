@@ -7,6 +7,7 @@
 #include <type_traits>
 
 #include "mpm_sdem/core/constitutive.hpp"
+#include "mpm_sdem/core/imp_coupling.hpp"
 #include "transfer.hpp"
 
 namespace mpm_sdem {
@@ -80,7 +81,13 @@ World::World(const WorldDef& def) : def_(def) {
   tiles_.bin(particles_, grid_);
   particles_.permute(tiles_.order);
   lightest_point_ = std::numeric_limits<Real>::infinity();
-  for (Real m : particles_.mass) lightest_point_ = std::fmin(lightest_point_, m);
+  largest_spring_scale_ = 0;
+  for (std::size_t q = 0; q < particles_.size(); ++q) {
+    const Real scale = impSpringScale(def.coupling.stiffness_per, particles_, q);
+    lightest_point_ = std::fmin(lightest_point_, particles_.mass[q] / scale);
+    largest_spring_scale_ = std::fmax(largest_spring_scale_, scale);
+  }
+  if (!(largest_spring_scale_ > 0)) largest_spring_scale_ = 1;
 
   if (!def.blocks.empty()) {
     blocks_ = std::make_unique<Blocks>(def.blocks, def.block_contact, def.solver.gravity);
@@ -241,7 +248,7 @@ TimeStepChoice World::stepBound(Real cfl, Real kappa2) const {
     // springs do not bound this step: the blocks take substeps within their own bound.
     const Real zeta = blocks_->maxDampingRatio();  // the most damped contact bounds the step
     const Real block = blocks_->lightestDynamicMass();
-    const Real dt = contactTimeStep(std::fmin(lightest_point_, block),
+    const Real dt = contactTimeStep(std::fmin(lightest_point_, block / largest_spring_scale_),
                                     coupling_->def().normal_stiffness, zeta, 1, kappa2);
     if (dt < choice.dt) choice = {dt, StepLimit::kContact};
   }

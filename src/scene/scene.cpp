@@ -496,8 +496,8 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
   }
   if (top.has("coupling")) {
     MapReader r(ctx, top.node("coupling"), "coupling",
-                {"scheme", "normal_stiffness", "tangential_stiffness", "contact_radius",
-                 "verlet_distance", "block_points_per_cell", "boundary_inset"});
+                {"scheme", "normal_stiffness", "tangential_stiffness", "stiffness_per",
+                 "contact_radius", "verlet_distance", "block_points_per_cell", "boundary_inset"});
     CouplingDef& c = s.world.coupling;
     c.scheme = r.choice<CouplingScheme>("scheme",
                                         {{"imp", CouplingScheme::kImp},
@@ -507,6 +507,12 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
                                          {"partitioned", CouplingScheme::kPartitioned}},
                                         c.scheme);
     readSprings(r, c.normal_stiffness, c.tangential_stiffness);
+    c.stiffness_per = r.choice<SpringBasis>(
+        "stiffness_per", {{"point", SpringBasis::kPerPoint}, {"length", SpringBasis::kPerLength}},
+        c.stiffness_per);
+    r.require(c.stiffness_per == SpringBasis::kPerPoint || c.scheme == CouplingScheme::kImp ||
+                  c.scheme == CouplingScheme::kImpGrid,
+              "stiffness_per", "'length' applies to the imp and imp_grid schemes only");
     c.block_points_per_cell = r.integer("block_points_per_cell", c.block_points_per_cell);
     r.require(c.block_points_per_cell >= 1 && c.block_points_per_cell <= 8, "block_points_per_cell",
               "must be 1 to 8 points per cell side, got " + num(c.block_points_per_cell));

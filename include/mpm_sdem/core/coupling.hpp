@@ -32,13 +32,22 @@ enum class CouplingScheme {
 };
 const char* couplingSchemeName(CouplingScheme s);
 
+// What the IMP spring constants are given for.
+enum class SpringBasis {
+  kPerPoint,   // seed 000: one spring k per IMP (N/m per metre of thickness); a face's
+               // stiffness grows with the number of points along it
+  kPerLength,  // k per metre of contact length (Pa): each IMP's spring is k times its point
+               // spacing, so a face is as stiff at every resolution
+};
+
 struct CouplingDef {
   CouplingScheme scheme = CouplingScheme::kImp;
   // Spring schemes (kImp, kImpGrid, kPartitioned).
   Real normal_stiffness = 1e6;      // k_n of one contact (N/m per metre of thickness)
   Real tangential_stiffness = 5e5;  // k_t (N/m per metre)
-  Real contact_radius = 0;          // r_p (m); 0: h / sqrt(points per cell), inside eq. 45
-  Real verlet_distance = 0;         // V_d (m); 0: half a cell
+  SpringBasis stiffness_per = SpringBasis::kPerPoint;  // kImp and kImpGrid
+  Real contact_radius = 0;   // r_p (m); 0: h / sqrt(points per cell), inside eq. 45
+  Real verlet_distance = 0;  // V_d (m); 0: half a cell
   // kMultiVelocity: the block's points per cell side (its nodal mass and normal, eq. 23).
   int block_points_per_cell = 2;
   // kPartitioned: how far inside each body's initial outline the boundary particles start (m);

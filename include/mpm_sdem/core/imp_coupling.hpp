@@ -8,6 +8,7 @@
 // point instead.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include "mpm_sdem/core/contact_search.hpp"
@@ -19,6 +20,12 @@ namespace mpm_sdem {
 // body's outline so that the outermost points reach the body's true surface and no further.
 inline Real impReach(const Particles& P, std::size_t p, Real rp) {
   return P.depth[p] < rp ? P.depth[p] : rp;
+}
+
+// What point p's springs are k_n and k_t times: 1, or its initial spacing sqrt(V0) (m) when the
+// stiffness is per length of contact.
+inline Real impSpringScale(SpringBasis basis, const Particles& P, std::size_t p) {
+  return basis == SpringBasis::kPerLength ? std::sqrt(P.volume0[p]) : Real(1);
 }
 
 class ImpCoupling final : public Coupling {

@@ -163,7 +163,10 @@ class World {
   Profile profile_;
   std::unique_ptr<Blocks> blocks_;
   std::unique_ptr<Coupling> coupling_;
-  Real lightest_point_ = 0;  // kg/m, for the contact term of the time step
+  // For the contact term of the time step: the smallest mass per spring scale of a point
+  // (kg/m; impSpringScale) and the largest scale.
+  Real lightest_point_ = 0;
+  Real largest_spring_scale_ = 1;
   struct PointLoad {
     int particle;
     Vec2 force;   // N/m
