@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -543,8 +544,20 @@ struct DebrisRun {
 // 0.25 s, block 2 lands at 0.36-0.40 s, block 1 at 0.38-0.45 s), then the end.
 const Real kSnapshotTimes[] = {0.0, 0.25, 0.30, 0.35, 0.40, 0.45, 1.0};
 
-DebrisRun runDebris(const WorldDef& def, Real end, FILE* series, FILE* snapshots) {
+// jitter > 0: every point moved by up to jitter (m) in each direction, drawn from seed (the
+// ensemble's perturbation of the initial state).
+DebrisRun runDebris(const WorldDef& def, Real end, FILE* series, FILE* snapshots, Real jitter = 0,
+                    unsigned seed = 0) {
   World w(def);
+  if (jitter > 0) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<Real> u(-jitter, jitter);
+    Particles& P = w.particles();
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      P.x[p] += u(rng);
+      P.y[p] += u(rng);
+    }
+  }
   const Blocks& B = *w.blocks();
   const int b1 = B.find("block1"), b2 = B.find("block2"), b3 = B.find("block3");
   const Real weight = B.massProperties(b2).mass * def.solver.gravity.norm();
@@ -649,7 +662,7 @@ void debris(const Options& o, Results& r) {
 // Speed against error on the wooden-block scene (IMP): the cell size, points per cell, the two
 // step factors and the contact radius r_p swept one at a time around the shipped scenes. The
 // column is refilled at each resolution with the same size (10 x 20 cm: only lattices whose
-// spacing divides it) and its first row of points at least one spacing above the floor.
+// spacing divides it), standing on the floor.
 void debrisSweep(const Options& o, Results& r) {
   const Scene scene = loadScene(debrisScenePath(true));
   struct Knobs {
@@ -688,10 +701,9 @@ void debrisSweep(const Options& o, Results& r) {
     def.cell_size = k.h;
     BodyDef& column = def.bodies[0];
     column.points_per_cell = k.ppc;
-    const Real s = k.h / k.ppc, y_min = def.domain.min.y();
-    const Real first = y_min + (std::ceil((s - y_min) / s - 0.5) + 0.5) * s;  // >= s above y = 0
-    column.shape.min.y() = first - s / 2;
-    column.shape.max.y() = column.shape.min.y() + 0.2;
+    // Standing on the floor (every swept lattice divides the 2 cm below y = 0).
+    column.shape.min.y() = 0;
+    column.shape.max.y() = 0.2;
     def.time_step.cfl = k.cfl;
     def.time_step.contact_factor = k.kappa2;
     def.coupling.contact_radius = k.rp_factor * k.h / std::sqrt(Real(k.ppc));
@@ -712,6 +724,123 @@ void debrisSweep(const Options& o, Results& r) {
           "seed 003 (experiment: 34.6, 40.1 cm)", run.wall, settings, run.points, run.steps);
   }
   std::fclose(table);
+}
+
+// Convergence of the wooden-block scene, stated as ensembles (issue 15): toppling blocks amplify
+// any difference, so one run per resolution shows nothing. At each cell size (2 x 2 points per
+// cell), `members` runs whose points start moved by up to 1e-4 of a cell (uniform, seeds 1..n),
+// with the IMP springs per point (the scene's 2e5 N/m) and per length of contact (4e7 Pa, the
+// same spring at 1 cm). The column stands on the floor (its outline at y = 0 to 0.2 m).
+void debrisEnsemble(const Options& o, Results& r) {
+  const Scene scene = loadScene(debrisScenePath(true));
+  const std::vector<Real> sizes =
+      o.fast ? std::vector<Real>{0.01} : std::vector<Real>{0.01, 0.005, 0.01 / 3, 0.0025};
+  const int members = o.fast ? 2 : 8;
+  FILE* table = std::fopen((o.out + "/debris_ensemble.csv").c_str(), "w");
+  std::fprintf(table,
+               "stiffness_per,cell_size_m,member,points,steps,wall_s,block2_left_cm,block1_left_"
+               "cm\n");
+  for (const SpringBasis basis : {SpringBasis::kPerPoint, SpringBasis::kPerLength}) {
+    const char* basis_name = basis == SpringBasis::kPerPoint ? "point" : "length";
+    for (Real h : sizes) {
+      WorldDef def = scene.world;
+      def.cell_size = h;
+      def.bodies[0].points_per_cell = 2;
+      def.bodies[0].shape.min.y() = 0;
+      def.bodies[0].shape.max.y() = 0.2;
+      def.coupling.contact_radius = 0;  // the default at this cell size
+      def.coupling.stiffness_per = basis;
+      if (basis == SpringBasis::kPerLength) {
+        def.coupling.normal_stiffness = 4e7;
+        def.coupling.tangential_stiffness = 2e7;
+      }
+      std::vector<Real> l2, l1;
+      double wall = 0;
+      long points = 0, steps = 0;
+      for (int m = 0; m < members; ++m) {
+        const DebrisRun run = runDebris(def, scene.end_time, nullptr, nullptr, 1e-4 * h,
+                                        static_cast<unsigned>(m + 1));
+        std::fprintf(table, "%s,%g,%d,%ld,%ld,%.4g,%.4f,%.4f\n", basis_name, h, m, run.points,
+                     run.steps, run.wall, 100 * run.left2, 100 * run.left1);
+        std::fflush(table);
+        l2.push_back(100 * run.left2);
+        l1.push_back(100 * run.left1);
+        wall += run.wall;
+        points = run.points;
+        steps = run.steps;
+      }
+      auto meanAndSpread = [](const std::vector<Real>& v) {
+        Real mean = 0, var = 0;
+        for (Real x : v) mean += x / v.size();
+        for (Real x : v) var += (x - mean) * (x - mean) / (v.size() > 1 ? v.size() - 1 : 1);
+        return std::pair<Real, Real>(mean, std::sqrt(var));
+      };
+      const auto [m2, s2] = meanAndSpread(l2);
+      const auto [m1, s1] = meanAndSpread(l1);
+      char settings[160];
+      std::snprintf(settings, sizeof settings,
+                    "springs per %s, h %.3g cm, %d members, %ld points, %ld steps each", basis_name,
+                    100 * h, members, points, steps);
+      const std::string tag = std::string(", per ") + basis_name + ", h " +
+                              std::to_string(100 * h).substr(0, 4) + " cm";
+      const char* source = "seed 003 (experiment)";
+      r.add("debris_ensemble", "block 2 left face, mean" + tag, m2, 34.6, "cm", source, wall,
+            settings, points, steps);
+      r.add("debris_ensemble", "block 2 left face, standard deviation" + tag, s2, 0, "cm", source,
+            wall, settings, points, steps);
+      r.add("debris_ensemble", "block 1 left face, mean" + tag, m1, 40.1, "cm", source, wall,
+            settings, points, steps);
+      r.add("debris_ensemble", "block 1 left face, standard deviation" + tag, s1, 0, "cm", source,
+            wall, settings, points, steps);
+    }
+  }
+  std::fclose(table);
+}
+
+// Rotation under friction (issue 15): the thrown disk of cases::thrownDisk for every coupling
+// scheme and, with IMP, every transfer scheme; spin-up rate, rolling speed and the time rolling
+// starts against the rigid cylinder's 2 mu g / R, 2/3 v0 and v0 / (3 mu g).
+void rolling(const Options& o, Results& r) {
+  const Real g = 9.81, R = 0.05;
+  auto run = [&](const cases::ThrownDisk& c, const std::string& name) {
+    World w(cases::thrownDisk(c));
+    const auto t0 = std::chrono::steady_clock::now();
+    const cases::Rolling k = cases::rollDisk(w, c);
+    const double wall = seconds(t0);
+    char settings[120];
+    std::snprintf(settings, sizeof settings, "h %g cm (%g cells per radius), offset %g cells",
+                  100 * c.cell_size, R / c.cell_size, c.offset);
+    const long points = static_cast<long>(w.particles().size()), steps = w.stepCount();
+    const char* source = "rigid cylinder";
+    r.add("rolling", "spin-up rate / (2 mu g / R), " + name, k.spin_up / (2 * c.mu * g / R), 1, "-",
+          source, wall, settings, points, steps);
+    r.add("rolling", "rolling speed / (2/3 v0), " + name, k.roll_speed / (2 * c.v0 / 3), 1, "-",
+          source, wall, settings, points, steps);
+    r.add("rolling", "rolling starts / (v0 / 3 mu g), " + name,
+          k.roll_start / (c.v0 / (3 * c.mu * g)), 1, "-", source, wall, settings, points, steps);
+  };
+  for (CouplingScheme s : kSchemes) {
+    cases::ThrownDisk c;
+    c.scheme = s;
+    run(c, couplingSchemeName(s));
+  }
+  const std::pair<TransferScheme, const char*> transfers[] = {
+      {TransferScheme::kFlip, "imp, FLIP (PIC fraction 0.01)"}, {TransferScheme::kPic, "imp, PIC"}};
+  for (const auto& [t, name] : transfers) {
+    cases::ThrownDisk c;
+    c.transfer = t;
+    run(c, name);
+  }
+  if (!o.fast) {
+    for (Real offset : {0.2, 0.4, 0.6, 0.8}) {
+      cases::ThrownDisk c;
+      c.offset = offset;
+      run(c, "imp, offset " + std::to_string(offset).substr(0, 3));
+    }
+    cases::ThrownDisk fine;
+    fine.cell_size = 0.0025;
+    run(fine, "imp, h 0.25 cm");
+  }
 }
 
 }  // namespace
@@ -736,8 +865,8 @@ int main(int argc, char** argv) {
       std::fprintf(
           stderr,
           "usage: %s [--out DIR] [--fast] [--cases "
-          "collision,drop,forces,incline,contact_schemes,debris,debris_sweep,bar,silo,compression,"
-          "stability]\n",
+          "collision,drop,forces,incline,contact_schemes,debris,debris_sweep,debris_ensemble,"
+          "rolling,bar,silo,compression,stability]\n",
           argv[0]);
       return 2;
     }
@@ -757,6 +886,8 @@ int main(int argc, char** argv) {
       {"contact_schemes", contactSchemes},
       {"debris", debris},
       {"debris_sweep", debrisSweep},
+      {"debris_ensemble", debrisEnsemble},
+      {"rolling", rolling},
       {"bar", bar},
       {"silo", siloDischarge},
       {"compression", compression},
