@@ -250,11 +250,12 @@ void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& cla
 }
 
 // Eq. 47: the contact force of each IMP goes to the grid like an external point load,
-// f_I += S_Ip f for a force f on particle p (seed 000 eq. 48). With an offset d, the force acts
-// at x_p + d: f_I += (S_Ip + d . grad S_Ip) f, the first-order shift of the weights, on the
-// point's own nodes (which all carry its mass). The sum over I stays f (sum grad S_Ip = 0) and
-// the moment becomes (x_p + d) x f (sum x_I grad S_Ip^T = identity), so a contact force and its
-// reaction on a block act at the same point and conserve angular momentum.
+// f_I += S_Ip f for a force f on particle p (seed 000 eq. 48). With an offset d the force acts
+// at x_p + d: the same f_I plus the couple d x f on the same nodes, as forces S_Ip (d x f) r_I^perp
+// / D_p with r_I = x_I - x_p and D_p = sum S_Ip |r_I|^2. They sum to zero (sum S_Ip r_I = 0) and
+// their moment about x_p is d x f, so a contact force and its reaction on a block act at one
+// point and keep angular momentum. Every part is weighted by S_Ip, so no node gets more than a
+// few times f S_Ip / m_I, whatever its mass.
 template <class K>
 void spreadParticleForce(Grid& G, const Particles& P, int p, const Vec2& f,
                          const Vec2& offset = Vec2(0, 0)) {
@@ -262,13 +263,24 @@ void spreadParticleForce(Grid& G, const Particles& P, int p, const Vec2& f,
   Real xg, yg;
   Stencil1D sx, sy;
   stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
-  const Real ox = offset.x() * G.inv_h, oy = offset.y() * G.inv_h;  // dw is per grid unit
+  Real second = 0;  // D_p / h^2
+  for (int j = 0; j < S; ++j) {
+    const Real ry = (sy.base + j) - yg;
+    for (int i = 0; i < S; ++i) {
+      const Real rx = (sx.base + i) - xg;
+      second += sx.w[i] * sy.w[j] * (rx * rx + ry * ry);
+    }
+  }
+  // (d x f) / D_p in grid units: the couple's force per unit S_Ip r_I^perp (r in cells).
+  const Real c = second > 0 ? (offset.x() * f.y() - offset.y() * f.x()) * G.inv_h / second : 0;
   for (int j = 0; j < S; ++j) {
     const int row = (sy.base + j) * G.nx + sx.base;
+    const Real ry = (sy.base + j) - yg;
     for (int i = 0; i < S; ++i) {
-      const Real w = sx.w[i] * sy.w[j] + ox * sx.dw[i] * sy.w[j] + oy * sx.w[i] * sy.dw[j];
-      G.force_x[row + i] += w * f.x();
-      G.force_y[row + i] += w * f.y();
+      const Real rx = (sx.base + i) - xg;
+      const Real w = sx.w[i] * sy.w[j];
+      G.force_x[row + i] += w * (f.x() - c * ry);
+      G.force_y[row + i] += w * (f.y() + c * rx);
     }
   }
 }
