@@ -7,6 +7,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "contact_impulse.hpp"
+
 namespace mpm_sdem {
 
 namespace {
@@ -59,17 +61,6 @@ Real roundedGap(const Vec2* a, int na, Real ra, const Vec2* b, int nb, Real rb) 
   return gap - ra - rb;
 }
 
-Real restitutionDampingRatio(Real e) {
-  if (e >= 1) return 0;
-  if (e <= 0) return 1;
-  return -std::log(e) / std::sqrt(M_PI * M_PI + std::log(e) * std::log(e));
-}
-
-Real contactTimeStep(Real m, Real k, Real zeta, int n, Real kappa2) {
-  const Real w = std::sqrt(n * k / m), z = std::sqrt(static_cast<Real>(n)) * zeta;
-  return M_PI * kappa2 * 2 / w * (std::sqrt(1 + z * z) - z);
-}
-
 struct Blocks::Box2D {
   explicit Box2D(const b2Vec2& g) : world(g) {}
   b2World world;
@@ -103,6 +94,10 @@ void Blocks::checkDef(const BlockDef& d) {
   if (!problem.empty()) throw std::invalid_argument("block '" + d.name + "': " + problem);
   if (!(d.rounding > 0))
     throw std::invalid_argument("block '" + d.name + "': rounding must be > 0");
+  // A dashpot gives any restitution above 0 (restitutionDampingRatio); 0 would need an
+  // infinite one.
+  if (!(d.restitution > 0 && d.restitution <= 1))
+    throw std::invalid_argument("block '" + d.name + "': restitution must be in (0, 1]");
 }
 
 int Blocks::add(const BlockDef& def) {
@@ -157,7 +152,7 @@ int Blocks::add(const BlockDef& def) {
   b2_->bodies.push_back(body);
   defs_.push_back(std::move(d));
   mass_.push_back(m);
-  zeta_.push_back(restitutionDampingRatio(def.restitution));
+  zeta_.push_back(restitutionDampingRatio(d.restitution));
   max_zeta_ = std::max(max_zeta_, zeta_.back());
   state_.emplace_back();
   world_vertices_.resize(defs_.size() * kMaxBlockVertices);
@@ -269,53 +264,69 @@ void Blocks::penaltyContacts(Real dt) {
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j < n; ++j) {
       if (defs_[i].type != BodyType::kDynamic && defs_[j].type != BodyType::kDynamic) continue;
-      // Seed 000 eq. 39: vertices of i against the edges of j, then vertices of j against i.
+      // Seed 000 eq. 38 and 41: the overlapping vertex-edge pairs, vertices of i against the
+      // edges of j, then vertices of j against i.
+      springs_.clear();
       for (int side = 0; side < 2; ++side) {
         const int a = side == 0 ? i : j, b = side == 0 ? j : i;
         const int nb = vertexCount(b);
         // A disk has no edges: its centre meets the other's edges in the other pass.
         if (nb == 1 && (vertexCount(a) > 1 || side == 1)) continue;
         const Real reach = defs_[a].rounding + defs_[b].rounding;
-        const Real ma = defs_[a].type == BodyType::kDynamic ? mass_[a].mass
-                                                            : std::numeric_limits<Real>::infinity();
-        const Real mb = defs_[b].type == BodyType::kDynamic ? mass_[b].mass
-                                                            : std::numeric_limits<Real>::infinity();
-        const Real m_red = std::isinf(ma) ? mb : std::isinf(mb) ? ma : ma * mb / (ma + mb);
-        // The less elastic side sets the damping (the smaller restitution, the larger ratio).
-        const Real gamma =
-            2 * std::max(zeta_[a], zeta_[b]) * std::sqrt(contact_.normal_stiffness * m_red);
-        const Real mu = std::min(defs_[a].friction, defs_[b].friction);
         for (int k = 0; k < vertexCount(a); ++k) {
           const Vec2 X = vertices(a)[k];
           const CoreDistance c = closestOnCore(vertices(b), nb, X);
           const Real xi = reach - c.distance;  // eq. 38
           if (xi <= 0) continue;
-          // Eq. 41: the middle of the overlap along the normal.
-          const Vec2 p = X - (defs_[a].rounding - xi / 2) * c.normal;
-          const Vec2 v = velocityAt(a, p) - velocityAt(b, p);
-          const Real vn = v.dot(c.normal);
-          const Real fn = std::fmax(contact_.normal_stiffness * xi - gamma * vn, Real(0));
-          const unsigned long long key = (static_cast<unsigned long long>(i) << 40) |
-                                         (static_cast<unsigned long long>(j) << 16) |
-                                         (static_cast<unsigned long long>(k) << 1) | side;
-          Vec2 delta(0, 0);
-          const auto it =
-              std::lower_bound(history_.begin(), history_.end(), std::make_pair(key, Vec2(0, 0)),
-                               [](const auto& x, const auto& y) { return x.first < y.first; });
-          if (it != history_.end() && it->first == key) delta = it->second;
-          // Eq. 43: tangential spring on the accumulated sliding, capped by Coulomb.
-          delta += (v - vn * c.normal) * dt;
-          delta -= delta.dot(c.normal) * c.normal;
-          Vec2 ft = -contact_.tangential_stiffness * delta;
-          if (ft.norm() > mu * fn) {
-            ft *= mu * fn / ft.norm();
-            delta = -ft / contact_.tangential_stiffness;
-          }
-          next_history_.emplace_back(key, delta);
-          const Vec2 f = fn * c.normal + ft;
-          addForce(a, f, p);
-          addForce(b, -f, p);
+          // Eq. 41: the middle of the overlap along the normal (which points from b to a).
+          springs_.push_back({X - (defs_[a].rounding - xi / 2) * c.normal, c.normal, xi, k, side});
         }
+      }
+      if (springs_.empty()) continue;
+      // Two convex outlines touch in one place: the pair's springs are one contact (a face
+      // gives two or four, eq. 39). Its dashpot is sized for the restitution on the pair's
+      // effective normal mass at the contact's centre (1/m = sum over the dynamic sides of
+      // 1/M + (r x n)^2 / I), so that the springs together, n k_n on m, rebound with e; each
+      // takes an equal share. Normals are counted from j towards i.
+      Vec2 centre(0, 0), normal(0, 0);
+      for (const Spring& s : springs_) {
+        centre += s.point / static_cast<Real>(springs_.size());
+        normal += s.side == 0 ? s.normal : Vec2(-s.normal);
+      }
+      normal = normal.norm() > 0 ? Vec2(normal.normalized()) : springs_[0].normal;
+      const Real inverse_mass = normal.dot((detail::blockInverseMass(*this, i, centre) +
+                                            detail::blockInverseMass(*this, j, centre)) *
+                                           normal);
+      const Real count = static_cast<Real>(springs_.size());
+      // The less elastic side sets the damping (the smaller restitution, the larger ratio).
+      const Real gamma = 2 * std::max(zeta_[i], zeta_[j]) *
+                         std::sqrt(count * contact_.normal_stiffness / inverse_mass) / count;
+      const Real mu = std::min(defs_[i].friction, defs_[j].friction);
+      for (const Spring& s : springs_) {
+        const int a = s.side == 0 ? i : j, b = s.side == 0 ? j : i;
+        const Vec2 v = velocityAt(a, s.point) - velocityAt(b, s.point);
+        const Real vn = v.dot(s.normal);
+        const Real fn = std::fmax(contact_.normal_stiffness * s.xi - gamma * vn, Real(0));
+        const unsigned long long key = (static_cast<unsigned long long>(i) << 40) |
+                                       (static_cast<unsigned long long>(j) << 16) |
+                                       (static_cast<unsigned long long>(s.vertex) << 1) | s.side;
+        Vec2 delta(0, 0);
+        const auto it =
+            std::lower_bound(history_.begin(), history_.end(), std::make_pair(key, Vec2(0, 0)),
+                             [](const auto& x, const auto& y) { return x.first < y.first; });
+        if (it != history_.end() && it->first == key) delta = it->second;
+        // Eq. 43: tangential spring on the accumulated sliding, capped by Coulomb.
+        delta += (v - vn * s.normal) * dt;
+        delta -= delta.dot(s.normal) * s.normal;
+        Vec2 ft = -contact_.tangential_stiffness * delta;
+        if (ft.norm() > mu * fn) {
+          ft *= mu * fn / ft.norm();
+          delta = -ft / contact_.tangential_stiffness;
+        }
+        next_history_.emplace_back(key, delta);
+        const Vec2 f = fn * s.normal + ft;
+        addForce(a, f, s.point);
+        addForce(b, -f, s.point);
       }
     }
   }
@@ -325,10 +336,29 @@ void Blocks::penaltyContacts(Real dt) {
 }
 
 Real Blocks::stableStep(Real kappa2) const {
-  const Real block = lightestDynamicMass();
-  if (contact_.model != BlockContactModel::kPenalty || !std::isfinite(block) || count() < 2)
+  if (contact_.model != BlockContactModel::kPenalty || count() < 2)
     return std::numeric_limits<Real>::infinity();  // no block-block spring can form
-  return contactTimeStep(0.5 * block, contact_.normal_stiffness, max_zeta_, 4, kappa2);
+  // The fastest motion a contact's springs drive. For kinetic energy E, a block's normal
+  // velocity at a contact point, v_n + w (r x n), squared is at most 2 E (1/M + (r x n)^2 / I)
+  // <= 2 E / m_c (Cauchy-Schwarz), |r x n| being at most the distance to the farthest core vertex
+  // (the contact point lies off the core only along n). So n springs between blocks a and b
+  // vibrate at w^2 <= n k_n (1/m_c,a + 1/m_c,b). Their dashpots are in proportion to the
+  // springs (penaltyContacts: c / k_n = 2 zeta / w_c, w_c the contact's own frequency, at least
+  // that of the blocks translating), so a mode w has the damping ratio zeta w / w_c, at most
+  // zeta sqrt(rho) with rho = M / m_c. The bound: four springs (a face, eq. 39) between two of
+  // the blocks with the smallest m_c, with the largest rho and damping ratio.
+  Real m_c = std::numeric_limits<Real>::infinity(), rho = 1;
+  for (int b = 0; b < count(); ++b) {
+    if (defs_[b].type != BodyType::kDynamic) continue;
+    const MassProperties& m = mass_[b];
+    Real r2 = 0;
+    for (const Vec2& v : defs_[b].core) r2 = std::fmax(r2, (v - m.centroid).squaredNorm());
+    m_c = std::fmin(m_c, 1 / (1 / m.mass + r2 / m.inertia));
+    rho = std::fmax(rho, 1 + m.mass * r2 / m.inertia);
+  }
+  if (!std::isfinite(m_c)) return std::numeric_limits<Real>::infinity();
+  return contactTimeStep(0.5 * m_c, contact_.normal_stiffness, max_zeta_ * std::sqrt(rho), 4,
+                         kappa2);
 }
 
 int Blocks::step(Real dt, Real max_substep) {
