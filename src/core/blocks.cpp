@@ -23,14 +23,16 @@ Vec2 fromB2(const b2Vec2& v, Real s) {
   return Vec2(v.x / s, v.y / s);
 }
 
-// The core with every edge pushed out by a: Box2D cannot round a polygon, so its contact solver
-// sees this polygon (exact along the edges, sharp instead of round at the corners).
-std::vector<Vec2> grownCore(const std::vector<Vec2>& core, Real a) {
+// The core with every edge pushed out by g (in by -g): Box2D cannot round a polygon, so its
+// contact solver sees this polygon (exact along the edges, sharp instead of round at the
+// corners). A segment becomes the rectangle g around it.
+std::vector<Vec2> grownCore(const std::vector<Vec2>& core, Real g) {
   const int n = static_cast<int>(core.size());
   if (n == 2) {
     const Vec2 e = (core[1] - core[0]).normalized();
     const Vec2 nrm(e.y(), -e.x());
-    return {core[0] + a * nrm, core[1] + a * nrm, core[1] - a * nrm, core[0] - a * nrm};
+    const Vec2 p = core[0] - g * e, q = core[1] + g * e;
+    return {p + g * nrm, q + g * nrm, q - g * nrm, p - g * nrm};
   }
   std::vector<Vec2> out(n);
   for (int i = 0; i < n; ++i) {
@@ -39,10 +41,60 @@ std::vector<Vec2> grownCore(const std::vector<Vec2>& core, Real a) {
     const Vec2& q = core[(i + 1) % n];
     const Vec2 e1 = (v - p).normalized(), e2 = (q - v).normalized();
     const Vec2 n1(e1.y(), -e1.x()), n2(e2.y(), -e2.x());
-    out[i] = v + a * (n1 + n2) / (1 + n1.dot(n2));
+    out[i] = v + g * (n1 + n2) / (1 + n1.dot(n2));
   }
   return out;
 }
+
+// How far each Box2D shape reaches past its block's rounded outline (m). Box2D's contact
+// solver leaves two shapes at rest overlapping by anything from 0 (an approach is stopped as
+// soon as they touch) to b2_linearSlop (its position solver corrects only deeper overlaps, so
+// a harder landing ends there), in Box2D units (1/scale m). A quarter slop each makes the rounded
+// outlines touch in the middle of that band, half a slop off at worst.
+Real box2dReach(Real scale) {
+  return 0.25 * b2_linearSlop / scale;
+}
+
+// The Box2D polygon of a block's rounded outline: Box2D puts a skin of b2_polygonRadius around
+// it, so the core is grown by g = a + reach - skin, inward when the rounding is below 1.75
+// slops. Throws when the core cannot shrink that far: an edge would turn round or come below a
+// slop long (Box2D would weld its ends), or a segment's rectangle would have no width.
+std::vector<b2Vec2> box2dPolygon(const BlockDef& d, Real scale) {
+  const Real g = d.rounding + box2dReach(scale) - b2_polygonRadius / scale;
+  const std::vector<Vec2> grown = grownCore(d.core, g);
+  const int n = static_cast<int>(grown.size());
+  bool valid = d.core.size() > 2 || g > 0;
+  for (int i = 0; i < n; ++i) {
+    const Vec2 edge = grown[(i + 1) % n] - grown[i];
+    valid = valid && edge.norm() * scale >= b2_linearSlop;
+    if (d.core.size() > 2) valid = valid && edge.dot(d.core[(i + 1) % n] - d.core[i]) > 0;
+  }
+  if (!valid) {
+    const std::string skin = std::to_string(b2_polygonRadius / scale - box2dReach(scale));
+    throw std::invalid_argument("block '" + d.name + "': with block_contact box2d its rounding (" +
+                                std::to_string(d.rounding) + " m) is below Box2D's skin (" + skin +
+                                " m at this scene's length scale) by more than its core " +
+                                "can shrink; give it a larger rounding or core, or use the " +
+                                "penalty model");
+  }
+  std::vector<b2Vec2> pts;
+  for (const Vec2& v : grown) pts.push_back(toB2(v, scale));
+  return pts;
+}
+
+// The scene's combination rule (scene_reference.md): a contact takes the smaller friction and
+// the smaller restitution of its two blocks, not Box2D's sqrt(mu1 mu2) and max(e1, e2). Box2D
+// mixes them once when a contact is created; PreSolve runs before every solve of a touching
+// contact, the time-of-impact ones included.
+class SmallerOfTwo : public b2ContactListener {
+ public:
+  void PreSolve(b2Contact* contact, const b2Manifold*) override {
+    const b2Fixture* a = contact->GetFixtureA();
+    const b2Fixture* b = contact->GetFixtureB();
+    contact->SetFriction(std::min(a->GetFriction(), b->GetFriction()));
+    contact->SetRestitution(std::min(a->GetRestitution(), b->GetRestitution()));
+  }
+};
 
 }  // namespace
 
@@ -62,7 +114,8 @@ Real roundedGap(const Vec2* a, int na, Real ra, const Vec2* b, int nb, Real rb) 
 }
 
 struct Blocks::Box2D {
-  explicit Box2D(const b2Vec2& g) : world(g) {}
+  explicit Box2D(const b2Vec2& g) : world(g) { world.SetContactListener(&rule); }
+  SmallerOfTwo rule;  // declared before the world, so destroyed after it
   b2World world;
   std::vector<b2Body*> bodies;
 };
@@ -73,17 +126,27 @@ Blocks::Blocks(const std::vector<BlockDef>& defs, const BlockContactDef& contact
   // Length scale: the median block size (square root of its area) becomes one Box2D unit; with
   // no block yet, the caller's typical length does.
   std::vector<Real> sizes;
+  Real rounding = std::numeric_limits<Real>::infinity(), moving = 0;
   for (const BlockDef& d : defs) {
     checkDef(d);
     std::vector<Vec2> core = d.core;
     makeCounterClockwise(core);
     sizes.push_back(std::sqrt(spheropolygonMass(core, d.rounding, 1).area));
+    rounding = std::fmin(rounding, d.rounding);
+    if (d.type != BodyType::kStatic) moving = std::fmax(moving, sizes.back());
   }
   if (!sizes.empty()) {
     std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
     scale_ = 1 / sizes[sizes.size() / 2];
   } else if (length_hint > 0) {
     scale_ = 1 / length_hint;
+  }
+  // Box2D's contacts rest up to half a slop off touching (box2dReach): a finer scale makes that
+  // 0.5% of the smallest rounding, as far as Box2D's tuning allows (moving bodies up to 10
+  // units; b2_maxTranslation, 2 units, caps a step's travel).
+  if (contact.model == BlockContactModel::kBox2D && std::isfinite(rounding)) {
+    const Real fine = 0.5 * b2_linearSlop / (0.005 * rounding);
+    scale_ = std::fmax(scale_, moving > 0 ? std::fmin(fine, 10 / moving) : fine);
   }
   b2_ = std::make_unique<Box2D>(toB2(gravity, scale_));
   for (const BlockDef& d : defs) add(d);
@@ -105,6 +168,10 @@ int Blocks::add(const BlockDef& def) {
   BlockDef d = def;
   makeCounterClockwise(d.core);
   const MassProperties m = spheropolygonMass(d.core, d.rounding, d.density);
+  // The Box2D outline first: it may refuse the block, before anything is created.
+  const bool box2d = contact_.model == BlockContactModel::kBox2D;
+  const std::vector<b2Vec2> outline =
+      box2d && d.core.size() > 1 ? box2dPolygon(d, scale_) : std::vector<b2Vec2>();
   b2BodyDef bd;
   bd.type = d.type == BodyType::kStatic      ? b2_staticBody
             : d.type == BodyType::kKinematic ? b2_kinematicBody
@@ -112,9 +179,9 @@ int Blocks::add(const BlockDef& def) {
   bd.position = toB2(d.position, scale_);
   bd.angle = static_cast<float>(d.angle);
   bd.allowSleep = false;  // a sleeping body ignores the coupling forces
-  bd.bullet = d.type == BodyType::kDynamic && contact_.model == BlockContactModel::kBox2D;
+  bd.bullet = d.type == BodyType::kDynamic && box2d;
   b2Body* body = b2_->world.CreateBody(&bd);
-  if (contact_.model == BlockContactModel::kBox2D) {
+  if (box2d) {
     b2FixtureDef fd;
     fd.friction = static_cast<float>(d.friction);
     fd.restitution = static_cast<float>(d.restitution);
@@ -125,13 +192,12 @@ int Blocks::add(const BlockDef& def) {
     b2CircleShape circle;
     b2PolygonShape polygon;
     if (d.core.size() == 1) {
+      // A circle has no skin: its radius reaches past the outline like a polygon's skin.
       circle.m_p = toB2(d.core[0], scale_);
-      circle.m_radius = static_cast<float>(d.rounding * scale_);
+      circle.m_radius = static_cast<float>((d.rounding + box2dReach(scale_)) * scale_);
       fd.shape = &circle;
     } else {
-      std::vector<b2Vec2> pts;
-      for (const Vec2& v : grownCore(d.core, d.rounding)) pts.push_back(toB2(v, scale_));
-      polygon.Set(pts.data(), static_cast<int32>(pts.size()));
+      polygon.Set(outline.data(), static_cast<int32>(outline.size()));
       fd.shape = &polygon;
     }
     body->CreateFixture(&fd);
