@@ -134,6 +134,14 @@ class Blocks {
   std::vector<Real> zeta_;
   Real max_zeta_ = 0;
   std::vector<BlockState> state_;
+  // The pose and twist of kinematic blocks in double precision (centre of mass, world frame).
+  struct Kinematic {
+    Vec2 centre;
+    Real angle;
+    Vec2 velocity;
+    Real angular_velocity;
+  };
+  std::vector<Kinematic> kinematic_;
   std::vector<Vec2> world_vertices_;
   std::vector<Vec2> force_;
   std::vector<Vec2> block_force_;  // mean penalty force from the other blocks, last step
