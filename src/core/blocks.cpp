@@ -1,100 +1,25 @@
 #include "mpm_sdem/core/blocks.hpp"
 
-#include <box2d/box2d.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
+#include "box2d_shapes.hpp"
 #include "contact_impulse.hpp"
 
 namespace mpm_sdem {
+
+using detail::box2dPolygon;
+using detail::box2dReach;
+using detail::fromB2;
+using detail::toB2;
 
 namespace {
 
 Real cross(const Vec2& a, const Vec2& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
-b2Vec2 toB2(const Vec2& v, Real s) {
-  return b2Vec2(static_cast<float>(v.x() * s), static_cast<float>(v.y() * s));
-}
-Vec2 fromB2(const b2Vec2& v, Real s) {
-  return Vec2(v.x / s, v.y / s);
-}
-
-// The core with every edge pushed out by g (in by -g): Box2D cannot round a polygon, so its
-// contact solver sees this polygon (exact along the edges, sharp instead of round at the
-// corners). A segment becomes the rectangle g around it.
-std::vector<Vec2> grownCore(const std::vector<Vec2>& core, Real g) {
-  const int n = static_cast<int>(core.size());
-  if (n == 2) {
-    const Vec2 e = (core[1] - core[0]).normalized();
-    const Vec2 nrm(e.y(), -e.x());
-    const Vec2 p = core[0] - g * e, q = core[1] + g * e;
-    return {p + g * nrm, q + g * nrm, q - g * nrm, p - g * nrm};
-  }
-  std::vector<Vec2> out(n);
-  for (int i = 0; i < n; ++i) {
-    const Vec2& p = core[(i + n - 1) % n];
-    const Vec2& v = core[i];
-    const Vec2& q = core[(i + 1) % n];
-    const Vec2 e1 = (v - p).normalized(), e2 = (q - v).normalized();
-    const Vec2 n1(e1.y(), -e1.x()), n2(e2.y(), -e2.x());
-    out[i] = v + g * (n1 + n2) / (1 + n1.dot(n2));
-  }
-  return out;
-}
-
-// How far each Box2D shape reaches past its block's rounded outline (m). Box2D's contact
-// solver leaves two shapes at rest overlapping by anything from 0 (an approach is stopped as
-// soon as they touch) to b2_linearSlop (its position solver corrects only deeper overlaps, so
-// a harder landing ends there), in Box2D units (1/scale m). A quarter slop each makes the rounded
-// outlines touch in the middle of that band, half a slop off at worst.
-Real box2dReach(Real scale) {
-  return 0.25 * b2_linearSlop / scale;
-}
-
-// The Box2D polygon of a block's rounded outline: Box2D puts a skin of b2_polygonRadius around
-// it, so the core is grown by g = a + reach - skin, inward when the rounding is below 1.75
-// slops. Throws when the core cannot shrink that far: an edge would turn round or come below a
-// slop long (Box2D would weld its ends), or a segment's rectangle would have no width.
-std::vector<b2Vec2> box2dPolygon(const BlockDef& d, Real scale) {
-  const Real g = d.rounding + box2dReach(scale) - b2_polygonRadius / scale;
-  const std::vector<Vec2> grown = grownCore(d.core, g);
-  const int n = static_cast<int>(grown.size());
-  bool valid = d.core.size() > 2 || g > 0;
-  for (int i = 0; i < n; ++i) {
-    const Vec2 edge = grown[(i + 1) % n] - grown[i];
-    valid = valid && edge.norm() * scale >= b2_linearSlop;
-    if (d.core.size() > 2) valid = valid && edge.dot(d.core[(i + 1) % n] - d.core[i]) > 0;
-  }
-  if (!valid) {
-    const std::string skin = std::to_string(b2_polygonRadius / scale - box2dReach(scale));
-    throw std::invalid_argument("block '" + d.name + "': with block_contact box2d its rounding (" +
-                                std::to_string(d.rounding) + " m) is below Box2D's skin (" + skin +
-                                " m at this scene's length scale) by more than its core " +
-                                "can shrink; give it a larger rounding or core, or use the " +
-                                "penalty model");
-  }
-  std::vector<b2Vec2> pts;
-  for (const Vec2& v : grown) pts.push_back(toB2(v, scale));
-  return pts;
-}
-
-// The scene's combination rule (scene_reference.md): a contact takes the smaller friction and
-// the smaller restitution of its two blocks, not Box2D's sqrt(mu1 mu2) and max(e1, e2). Box2D
-// mixes them once when a contact is created; PreSolve runs before every solve of a touching
-// contact, the time-of-impact ones included.
-class SmallerOfTwo : public b2ContactListener {
- public:
-  void PreSolve(b2Contact* contact, const b2Manifold*) override {
-    const b2Fixture* a = contact->GetFixtureA();
-    const b2Fixture* b = contact->GetFixtureB();
-    contact->SetFriction(std::min(a->GetFriction(), b->GetFriction()));
-    contact->SetRestitution(std::min(a->GetRestitution(), b->GetRestitution()));
-  }
-};
 
 }  // namespace
 
@@ -115,7 +40,7 @@ Real roundedGap(const Vec2* a, int na, Real ra, const Vec2* b, int nb, Real rb) 
 
 struct Blocks::Box2D {
   explicit Box2D(const b2Vec2& g) : world(g) { world.SetContactListener(&rule); }
-  SmallerOfTwo rule;  // declared before the world, so destroyed after it
+  detail::SmallerOfTwo rule;  // declared before the world, so destroyed after it
   b2World world;
   std::vector<b2Body*> bodies;
 };
