@@ -1,6 +1,6 @@
 // Rigid blocks on their own: spheropolygon mass properties against closed forms, refusal of bad
-// cores, and a stack of three blocks that must come to rest under both contact models, with
-// momentum conserved in a free collision.
+// cores, a stack of three blocks that must come to rest under both contact models, momentum
+// conserved in a free collision, and blocks added, moved and removed while running.
 #include <gtest/gtest.h>
 
 #include "block_helpers.hpp"
@@ -195,4 +195,20 @@ TEST(RuntimeBlocks, AddedToASceneWithoutBlocksFallsAndIsRemoved) {
   EXPECT_EQ(world.blocks()->count(), 0);
   EXPECT_EQ(world.chooseTimeStep().limit, StepLimit::kCfl);
   EXPECT_TRUE(world.step(world.chooseTimeStep().dt).finite);
+}
+
+// A kinematic block moves with its twist exactly: its pose is summed in double and handed to
+// Box2D, whose own single-precision sum of these 10,000 steps drifts by 93 um and 2e-5 rad
+// (measured). Left: one rounding of the pose to single precision, 6e-8 of 7 Box2D units (25
+// units per metre here): 2e-8 m.
+TEST(RuntimeBlocks, KinematicBlockFollowsItsTwist) {
+  BlockDef blade = test::boxBlock("blade", Vec2(0.2, 0.1), 0.02, 0.02, 0.002, BodyType::kKinematic);
+  blade.velocity = Vec2(0.05, -0.01);
+  blade.angular_velocity = 0.3;
+  Blocks blocks({blade, test::boxBlock("b", Vec2(0, 0), 0.04, 0.04, 0.002, BodyType::kDynamic)},
+                BlockContactDef(), Vec2(0, 0));
+  for (int n = 0; n < 10000; ++n) blocks.step(1.37e-4);
+  const Real t = 1.37;
+  EXPECT_NEAR((blocks.state(0).position - Vec2(0.2 + 0.05 * t, 0.1 - 0.01 * t)).norm(), 0, 5e-8);
+  EXPECT_NEAR(blocks.state(0).angle, 0.3 * t, 1e-6);
 }

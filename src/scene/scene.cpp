@@ -430,8 +430,8 @@ BlockDef parseBlock(const Context& ctx, const YAML::Node& n, const std::string& 
   b.friction = r.number("friction", "(dimensionless)", b.friction);
   r.require(b.friction >= 0, "friction", "must be >= 0, got " + num(b.friction));
   b.restitution = r.number("restitution", "(dimensionless)", b.restitution);
-  r.require(b.restitution >= 0 && b.restitution <= 1, "restitution",
-            "must be in [0, 1], got " + num(b.restitution));
+  r.require(b.restitution > 0 && b.restitution <= 1, "restitution",
+            "must be in (0, 1] (0 would need an infinite damper), got " + num(b.restitution));
   if (b.type == BodyType::kStatic) {
     r.require(!r.has("velocity") && !r.has("angular_velocity"), "velocity",
               "a static block does not move; make it kinematic to give it a velocity");

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "mpm_sdem/core/restitution.hpp"
 #include "mpm_sdem/core/spheropolygon.hpp"
 #include "mpm_sdem/core/types.hpp"
 
@@ -30,7 +31,7 @@ struct BlockDef {
   BodyType type = BodyType::kDynamic;
   Real density = 1000;     // kg/m^3
   Real friction = 0.5;     // Coulomb coefficient with blocks, walls and material
-  Real restitution = 0.5;  // normal coefficient of restitution of its penalty contacts
+  Real restitution = 0.5;  // normal, in (0, 1]; a block pair takes the smaller
 };
 
 struct BlockContactDef {
@@ -90,8 +91,9 @@ class Blocks {
   // A force from the material: added for the next step and to coupling()[i] (one contact).
   void addMaterialForce(int i, const Vec2& force, const Vec2& point);
   void clearCoupling();
-  // Stable step of the block-block penalty springs (contactTimeStep with the reduced mass of two
-  // of the lightest blocks and four springs, eq. 39); infinite when no spring can form.
+  // Stable step of the block-block penalty springs (contactTimeStep for four springs, eq. 39,
+  // between two of the blocks with the smallest effective mass at a contact point, rotation
+  // included); infinite when no spring can form.
   Real stableStep(Real kappa2) const;
   // Advance by dt in substeps no longer than max_substep: in each, block-block contact forces
   // (penalty model) and one Box2D step. The forces added before the call (the material's) act
@@ -116,6 +118,15 @@ class Blocks {
   void penaltyContacts(Real dt);
   void refresh();
 
+  // An overlapping vertex-edge pair of the penalty model (seed 000 eq. 38-41).
+  struct Spring {
+    Vec2 point;   // contact point, eq. 41 (m)
+    Vec2 normal;  // from the edge's block towards the vertex's
+    Real xi;      // overlap (m)
+    int vertex;   // index of the vertex in its block
+    int side;     // 0: a vertex of the lower-index block
+  };
+
   struct Box2D;
   std::unique_ptr<Box2D> b2_;
   std::vector<BlockDef> defs_;
@@ -123,6 +134,14 @@ class Blocks {
   std::vector<Real> zeta_;
   Real max_zeta_ = 0;
   std::vector<BlockState> state_;
+  // The pose and twist of kinematic blocks in double precision (centre of mass, world frame).
+  struct Kinematic {
+    Vec2 centre;
+    Real angle;
+    Vec2 velocity;
+    Real angular_velocity;
+  };
+  std::vector<Kinematic> kinematic_;
   std::vector<Vec2> world_vertices_;
   std::vector<Vec2> force_;
   std::vector<Vec2> block_force_;  // mean penalty force from the other blocks, last step
@@ -134,6 +153,7 @@ class Blocks {
   Real scale_ = 1;
   // Tangential spring history of the penalty contacts, by (block i, block j, vertex, side).
   std::vector<std::pair<unsigned long long, Vec2>> history_, next_history_;
+  std::vector<Spring> springs_;  // one block pair's, reused
 };
 
 // The core vertices of a block definition at its pose (m, world frame).
@@ -141,15 +161,5 @@ std::vector<Vec2> placedCore(const BlockDef& def);
 // Smallest gap between two rounded outlines given by their world-frame cores and roundings
 // (negative: they overlap), from the vertex-edge distances both ways.
 Real roundedGap(const Vec2* a, int na, Real rounding_a, const Vec2* b, int nb, Real rounding_b);
-
-// Damping ratio of a linear spring contact that gives the normal restitution coefficient e
-// (e = 1: none); the damping coefficient is 2 ratio sqrt(k m) for reduced mass m.
-Real restitutionDampingRatio(Real e);
-
-// Stable explicit step for n equal damped springs k acting in parallel on a reduced mass m:
-// pi * kappa_2 times the critical step (2 / w) (sqrt(1 + z^2) - z), w = sqrt(n k / m) and
-// z = sqrt(n) zeta. With n = 1 and no damping it is seed 000 eq. 51's 2 pi kappa_2 sqrt(m / k);
-// the damping and the four springs of a face-to-face spheropolygon contact (eq. 39) shorten it.
-Real contactTimeStep(Real m, Real k, Real zeta, int n, Real kappa2);
 
 }  // namespace mpm_sdem

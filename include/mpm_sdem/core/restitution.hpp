@@ -1,0 +1,28 @@
+// Damping of the linear spring contacts (block-block penalty springs, IMP springs) from the
+// restitution a scene asks for, and the explicit time step such a contact allows.
+#pragma once
+
+#include "mpm_sdem/core/types.hpp"
+
+namespace mpm_sdem {
+
+// Normal restitution of a linear spring-dashpot contact that cannot pull (the force
+// max(k x + c x', 0) of seed 000 eq. 43 with a dashpot c = 2 zeta sqrt(k m)): the ratio of the
+// speeds at which the force ends and at which the overlap began, in closed form for any
+// zeta >= 0. It falls from 1 at zeta = 0 through exp(-2) = 0.135 at zeta = 1 towards 0 as zeta
+// grows (about 1 / (4 zeta^2)).
+Real clippedRestitution(Real zeta);
+
+// The inverse of clippedRestitution: the damping ratio that gives restitution e, for e in (0, 1]
+// (throws std::invalid_argument outside). The dashpot is 2 ratio sqrt(k m) for the effective
+// mass m of the contact.
+Real restitutionDampingRatio(Real e);
+
+// Stable explicit step for n equal springs k acting in parallel on a mass m and damped together
+// with ratio zeta (their dashpots add up to 2 zeta sqrt(n k m)): pi * kappa_2 times the critical
+// step (2 / w) (sqrt(1 + zeta^2) - zeta), w = sqrt(n k / m), of symplectic Euler with the
+// damping force taken explicitly. With n = 1 and no damping it is seed 000 eq. 51's
+// 2 pi kappa_2 sqrt(m / k).
+Real contactTimeStep(Real m, Real k, Real zeta, int n, Real kappa2);
+
+}  // namespace mpm_sdem
