@@ -17,7 +17,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 SCHEMES = ["imp", "imp_grid", "multi_velocity", "particle_surface", "partitioned"]
 
-# The cases issue 7 lists, and which of them this report reproduces so far.
+# The cases issues 7 and 15 list, and which of them this report reproduces so far.
 CASES = [
     ("collision", "Seed 000 sec. 5.1: collision energy transfer (5.1.1)", True),
     ("drop", "Seed 000 sec. 5.1: drop and bounce energy", True),
@@ -27,6 +27,12 @@ CASES = [
     ("debris", "Seed 000 sec. 6 / seed 003: granular flow hitting three wooden blocks", True),
     ("debris_sweep", "Seed 000 sec. 6 / seed 003: resolution sweep of the wooden-block scene (IMP)",
      True),
+    ("debris_ensemble", "Seed 000 sec. 6 / seed 003: ensembles of the wooden-block scene at four "
+                        "resolutions (IMP; 8 runs each, points perturbed by 1e-4 of a cell; springs"
+                        " per point and per length of contact)", True),
+    ("rolling", "Rotation under friction: a disk thrown without spin on a floor block, every "
+                "coupling and transfer scheme (rigid cylinder: spin-up 2 mu g / R, rolls at 2/3 v0"
+                " from v0 / (3 mu g))", True),
     ("compression", "Seed 000 sec. 7: granular matrix compression", True),
     ("incline", "Seed 002 sec. 4.1: disk rolling on an incline", True),
     ("bar", "Seed 001: 1D reversibility and bar under a stress boundary condition", True),
