@@ -150,7 +150,7 @@ TEST(ImpCases, BlockComesToRestOnGranularBed) {
   def.domain.bottom.type = WallType::kSticky;
   def.materials.push_back(test::druckerPrager(1500, 1e6, 0.3, 30, 0));
   def.bodies.push_back(test::rectangle(Vec2(0, 0), Vec2(0.2, 0.06), 2));
-  // Just touching: the top row's contact disks reach the bed's outline at y = 6 cm (impReach).
+  // Just touching: the top row's contact disks reach the bed's outline at y = 6 cm (materialReach).
   const Real rp = h / std::sqrt(2.0);
   BlockDef block =
       test::boxBlock("block", Vec2(0.1, 0.06 + H / 2), 0.04, H, a, BodyType::kDynamic, 2000);
@@ -179,7 +179,7 @@ TEST(ImpCases, BlockComesToRestOnGranularBed) {
   for (const ContactPair& c : imp.contacts()) {
     if (c.force.isZero()) continue;
     const Vec2 x(w.particles().x[c.particle], w.particles().y[c.particle]);
-    deepest = std::max(deepest, a + impReach(w.particles(), c.particle, rp) -
+    deepest = std::max(deepest, a + materialReach(w.particles(), c.particle, rp) -
                                     closestOnCore(w.blocks()->vertices(0), 4, x).distance);
   }
   EXPECT_LE(deepest, 2 * weight / (n * def.coupling.normal_stiffness));

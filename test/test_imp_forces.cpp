@@ -91,7 +91,7 @@ TEST(ImpForces, StiffnessPerLengthGivesTheSameOverlapAtEveryResolution) {
     for (const ContactPair& c : imp.contacts()) {
       if (c.force.isZero()) continue;
       const Vec2 x(w.particles().x[c.particle], w.particles().y[c.particle]);
-      sum += a + impReach(w.particles(), c.particle, rp) -
+      sum += a + materialReach(w.particles(), c.particle, rp) -
              closestOnCore(w.blocks()->vertices(0), 4, x).distance;
       ++n;
     }

@@ -188,6 +188,16 @@ RestingForces restingSquareForces(World& w, Real slide_speed) {
 
 namespace {
 
+// The incline's and the thrown disk's material: rho = 1000 kg/m^3, E = 10 MPa, nu = 0.3.
+MaterialDef elasticDisk() {
+  MaterialDef m;
+  m.name = "disk";
+  m.density = 1000;
+  m.bulk_modulus = 1e7 / (3 * (1 - 2 * 0.3));
+  m.shear_modulus = 1e7 / (2 * (1 + 0.3));
+  return m;
+}
+
 // Least-squares acceleration of x(t) = x0 + v0 t + a t^2 / 2 over the samples with t >= t0.
 Real fittedAcceleration(const std::vector<Real>& t, const std::vector<Real>& x, Real t0) {
   Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
@@ -215,12 +225,7 @@ Real inclineAcceleration(Real mu, Real h, CouplingScheme scheme, Real segment) {
   def.domain.max = Vec2::Constant(std::round(0.8 / h) * h);
   def.cell_size = h;
   def.solver.kernel = KernelType::kGimp;
-  MaterialDef m;
-  m.name = "disk";
-  m.density = 1000;
-  m.bulk_modulus = 1e7 / (3 * (1 - 2 * 0.3));  // E = 10 MPa, nu = 0.3
-  m.shear_modulus = 1e7 / (2 * (1 + 0.3));
-  def.materials.push_back(m);
+  def.materials.push_back(elasticDisk());
   const Vec2 t(std::cos(th), -std::sin(th)), n(std::sin(th), std::cos(th));
   const Vec2 top0(0.05, 0.75);  // a point of the incline's surface
   BlockDef incline =
@@ -267,12 +272,7 @@ WorldDef thrownDisk(const ThrownDisk& c) {
   def.cell_size = h;
   def.solver.kernel = KernelType::kGimp;
   def.solver.transfer = c.transfer;
-  MaterialDef m;
-  m.name = "disk";
-  m.density = 1000;
-  m.bulk_modulus = 1e7 / (3 * (1 - 2 * 0.3));  // E = 10 MPa, nu = 0.3
-  m.shear_modulus = 1e7 / (2 * (1 + 0.3));
-  def.materials.push_back(m);
+  def.materials.push_back(elasticDisk());
   const Real top = 0.05 + c.offset * h;
   BlockDef floor = boxBlock("floor", Vec2(0.5 * def.domain.max.x(), top - 0.025),
                             def.domain.max.x() - 2 * h, 0.05, a, BodyType::kStatic);

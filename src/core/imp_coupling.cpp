@@ -29,7 +29,7 @@ void ImpCoupling::beforeStep(CouplingStep& s) {
     // body's lattice staircase touches a flat block along a whole row of points, a flat face
     // that friction cannot tip (a disk of 10 cells per radius slid without spinning at
     // mu < 0.2), and it floats r_p - h/(2 ppc) above the block.
-    const Real xi = bd.rounding + impReach(P, p, rp) - d.distance;
+    const Real xi = bd.rounding + materialReach(P, p, rp) - d.distance;
     if (xi <= 0) {
       c.history.setZero();
       c.force.setZero();

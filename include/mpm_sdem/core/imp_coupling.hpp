@@ -1,11 +1,10 @@
 // Identified material points (seed 000 sec. 4): material points within the Verlet distance of a
 // block are pairs; those whose contact disk (radius r_p, at most the point's depth below its
-// body's outline: impReach) overlaps the block's rounded outline exchange a DEM contact force
-// with it (eq. 44-46), which acts on the material at the contact point, so on the grid around
-// the point (eq. 47-48 shifted to the contact point), and, opposite, on the block at the same
-// point (eq. 49-50). The MPM-GRID
-// variant (seed 000 sec. 5.4, Fig. 17B) puts the same force on the nodes around the contact
-// point instead.
+// body's outline: materialReach in particles.hpp) overlaps the block's rounded outline exchange a
+// DEM contact force with it (eq. 44-46), which acts on the material at the contact point, so on the
+// grid around the point (eq. 47-48 shifted to the contact point), and, opposite, on the block at
+// the same point (eq. 49-50). The MPM-GRID variant (seed 000 sec. 5.4, Fig. 17B) puts the same
+// force on the nodes around the contact point instead.
 #pragma once
 
 #include <cmath>
@@ -15,12 +14,6 @@
 #include "mpm_sdem/core/coupling.hpp"
 
 namespace mpm_sdem {
-
-// The radius of point p's contact disk in eq. 44: r_p, capped at the point's depth below its
-// body's outline so that the outermost points reach the body's true surface and no further.
-inline Real impReach(const Particles& P, std::size_t p, Real rp) {
-  return P.depth[p] < rp ? P.depth[p] : rp;
-}
 
 // What point p's springs are k_n and k_t times: 1, or its initial spacing sqrt(V0) (m) when the
 // stiffness is per length of contact.

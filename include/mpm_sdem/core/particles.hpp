@@ -48,4 +48,12 @@ struct Particles {
   }
 };
 
+// How far point p's material reaches beyond its centre towards a contact: its depth below its
+// body's outline, at most cap (r_p: IMP's eq. 44 and the particle-to-surface gap). The outermost
+// points then reach the body's true surface and no further, and points that reach the surface later
+// (a flow) reach cap.
+inline Real materialReach(const Particles& P, std::size_t p, Real cap) {
+  return P.depth[p] < cap ? P.depth[p] : cap;
+}
+
 }  // namespace mpm_sdem
