@@ -345,13 +345,6 @@ Rolling rollDisk(World& w, const ThrownDisk& c) {
     const Real b = (n * sty - st * sy) / (n * stt - st * st);
     return std::pair<Real, Real>((sy - b * st) / n, b);  // intercept, slope
   };
-  if (!c.spin) {
-    r.spin_up = -slope(ws).second;
-    const auto [v_at_0, dv] = slope(vs);
-    r.deceleration = -dv;
-    r.roll_start = 0;  // set below, once roll_speed is known
-    r.roll_speed = v_at_0;
-  }
   Real v_sum = 0, w_sum = 0, n = 0;
   for (std::size_t i = 0; i < ts.size(); ++i) {
     if (ts[i] < c.t_end - 0.15) continue;
@@ -359,10 +352,14 @@ Rolling rollDisk(World& w, const ThrownDisk& c) {
     w_sum += ws[i];
     n += 1;
   }
-  const Real v_end = v_sum / n;
-  if (!c.spin) r.roll_start = (r.roll_speed - v_end) / r.deceleration;
-  r.roll_speed = v_end;
-  r.roll_ratio = -(w_sum / n) * 0.05 / v_end;
+  r.roll_speed = v_sum / n;
+  r.roll_ratio = -(w_sum / n) * 0.05 / r.roll_speed;
+  if (!c.spin) {
+    r.spin_up = -slope(ws).second;
+    const auto [v_at_0, dv] = slope(vs);
+    r.deceleration = -dv;
+    r.roll_start = (v_at_0 - r.roll_speed) / r.deceleration;
+  }
   r.energy_change = (measure(w).total() - e0) / e0;
   return r;
 }
