@@ -647,10 +647,14 @@ SiloFlow siloFlow(World& w, Real t_max) {
   return out;
 }
 
+Real beverlooWidth(Real neck) {
+  const Real kc = 2.2;
+  return std::max<Real>(0, neck - kc * kSiloContactRadius);
+}
+
 Real beverloo(Real neck) {
-  const Real C = 0.58, kc = 2.2;
-  return C * kSandDensity * std::sqrt(kSiloGravity) *
-         std::pow(std::max<Real>(0, neck - kc * kSiloContactRadius), 1.5);
+  const Real C = 0.58;
+  return C * kSandDensity * std::sqrt(kSiloGravity) * std::pow(beverlooWidth(neck), 1.5);
 }
 
 WorldDef granularMatrix(Real fines_content, bool fine, unsigned seed, int& plate) {

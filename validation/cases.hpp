@@ -165,6 +165,8 @@ SiloFlow siloFlow(World& w, Real t_max);
 // The 2D Beverloo law in the seed's form: M = C rho g^0.5 (D0 - k_c r_p)^1.5, C = 0.58,
 // k_c = 2.2, with the silo's rho, g and r_p (kg/(s m)).
 Real beverloo(Real neck);
+// The law's effective width D0 - k_c r_p (m).
+Real beverlooWidth(Real neck);
 
 // Seed 000 sec. 7, scaled to a 30 x 30 cm container (the seed's is 61 cm): 25 random convex
 // pentagons (outer radius 2.0-2.8 cm, a = 3 mm, 2200 kg/m^3, friction 0.2) on a jittered 5 x 5

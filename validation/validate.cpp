@@ -69,6 +69,19 @@ double seconds(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Least-squares line y = a + b x through the points added.
+struct LineFit {
+  Real n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  void add(Real x, Real y) {
+    n += 1;
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+  }
+  Real slope() const { return (n * sxy - sx * sy) / (n * sxx - sx * sx); }
+};
+
 // Seed 000 sec. 5.1.1: the block's share of the kinetic energy after the collision (seed: 99.2%
 // hard, 92.16% soft), with the energy curves.
 void collision(const Options& o, Results& r) {
@@ -364,10 +377,7 @@ void siloDischarge(const Options& o, Results& r) {
                "neck_m,cell_size_m,points_per_cell,points,separation,rate_kg_s_m,beverloo_kg_s_m,"
                "wall_s\n");
   // log(rate) against log(D0 - k_c r_p) per (density, separation): the fitted exponent.
-  struct Fit {
-    Real n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
-  };
-  std::vector<std::pair<std::pair<int, Real>, Fit>> fits;
+  std::vector<std::pair<std::pair<int, Real>, LineFit>> fits;
   for (const Run& run : runs) {
     const Real h = run.h;
     WorldDef def = cases::silo(run.neck, h, run.ppc);
@@ -396,14 +406,8 @@ void siloDischarge(const Options& o, Results& r) {
     auto it = std::find_if(fits.begin(), fits.end(), [&](const auto& e) {
       return e.first.first == run.ppc && e.first.second == run.separation;
     });
-    if (it == fits.end()) it = fits.insert(fits.end(), {{run.ppc, run.separation}, Fit{}});
-    const Real x = std::log(run.neck - 2.2 * 0.001), y = std::log(f.rate);
-    Fit& fit = it->second;
-    fit.n += 1;
-    fit.sx += x;
-    fit.sy += y;
-    fit.sxx += x * x;
-    fit.sxy += x * y;
+    if (it == fits.end()) it = fits.insert(fits.end(), {{run.ppc, run.separation}, LineFit{}});
+    it->second.add(std::log(cases::beverlooWidth(run.neck)), std::log(f.rate));
   }
   std::fclose(table);
   for (const auto& [key, fit] : fits) {
@@ -414,8 +418,76 @@ void siloDischarge(const Options& o, Results& r) {
     char settings[96];
     std::snprintf(settings, sizeof settings,
                   "least squares over the %.0f necks that discharged 10%%", fit.n);
-    r.add("silo", q, (fit.n * fit.sxy - fit.sx * fit.sy) / (fit.n * fit.sxx - fit.sx * fit.sx), 1.5,
-          "-", "2D Beverloo law", 0, settings);
+    r.add("silo", q, fit.slope(), 1.5, "-", "2D Beverloo law", 0, settings);
+  }
+}
+
+// Issue 15: the silo's flow rate under refinement, per neck, at 7, 5, 3.5 and 2.5 mm cells
+// (2 x 2 points per cell, J_sep 1.27 as in siloDischarge), and the Beverloo exponent fitted at
+// each cell size over the necks that are at least six cells wide. Per neck, the observed order
+// p of the rate's convergence from the three finest sizes (h ratio 1.4 each) and the
+// Richardson-extrapolated rate q_h + (q_h - q_2h) / (1.4^p - 1) when the differences shrink.
+void siloConvergence(const Options& o, Results& r) {
+  const std::vector<Real> necks =
+      o.fast ? std::vector<Real>{0.05} : std::vector<Real>{0.02, 0.03, 0.04, 0.05, 0.06};
+  const std::vector<Real> sizes =
+      o.fast ? std::vector<Real>{0.01, 0.007} : std::vector<Real>{0.007, 0.005, 0.0035, 0.0025};
+  FILE* table = std::fopen((o.out + "/silo_convergence.csv").c_str(), "w");
+  std::fprintf(table,
+               "neck_m,cell_size_m,points,steps,rate_kg_s_m,beverloo_kg_s_m,window,wall_s\n");
+  std::vector<std::vector<Real>> rate(necks.size(), std::vector<Real>(sizes.size(), 0));
+  std::vector<LineFit> fits(sizes.size());
+  for (std::size_t k = 0; k < sizes.size(); ++k) {
+    for (std::size_t n = 0; n < necks.size(); ++n) {
+      const Real h = sizes[k], neck = necks[n];
+      WorldDef def = cases::silo(neck, h, 2);
+      def.materials[0].separation_volume_ratio = 1.27;
+      World w(def);
+      const auto t0 = std::chrono::steady_clock::now();
+      const cases::SiloFlow f = cases::siloFlow(w, o.fast ? 1.2 : 4.0);
+      const double wall = seconds(t0);
+      rate[n][k] = f.window_reached ? f.rate : std::numeric_limits<Real>::quiet_NaN();
+      std::fprintf(table, "%g,%g,%zu,%ld,%.6g,%.6g,%d,%.4g\n", neck, h, w.particles().size(),
+                   w.stepCount(), f.rate, cases::beverloo(neck), f.window_reached ? 1 : 0, wall);
+      std::fflush(table);
+      char q[96], settings[160];
+      std::snprintf(q, sizeof q, "mass flow rate, D0 %.0f cm, h %.1f mm (%.1f cells)", 100 * neck,
+                    1000 * h, neck / h);
+      std::snprintf(settings, sizeof settings, "%s t = %.2f-%.2f s",
+                    f.window_reached ? "fitted over" : "under 10% discharged: mean over",
+                    f.window_start, f.window_end);
+      r.add("silo_convergence", q, f.rate, cases::beverloo(neck), "kg/(s m)",
+            "seed 000 Fig. 16 (2D Beverloo, C 0.58, k_c 2.2)", wall, settings,
+            static_cast<long>(w.particles().size()), w.stepCount());
+      if (f.window_reached && neck >= 6 * h - 1e-9)
+        fits[k].add(std::log(cases::beverlooWidth(neck)), std::log(f.rate));
+    }
+  }
+  std::fclose(table);
+  for (std::size_t k = 0; k < sizes.size(); ++k) {
+    if (fits[k].n < 3) continue;
+    char q[96], settings[96];
+    std::snprintf(q, sizeof q, "fitted exponent, h %.1f mm, necks of at least 6 cells",
+                  1000 * sizes[k]);
+    std::snprintf(settings, sizeof settings, "least squares over %.0f necks", fits[k].n);
+    r.add("silo_convergence", q, fits[k].slope(), 1.5, "-", "2D Beverloo law", 0, settings);
+  }
+  if (sizes.size() < 3) return;
+  const std::size_t f = sizes.size() - 1;  // the finest
+  std::vector<Real> extrapolated;
+  for (std::size_t n = 0; n < necks.size(); ++n) {
+    const Real d1 = rate[n][f - 1] - rate[n][f - 2], d2 = rate[n][f] - rate[n][f - 1];
+    const Real ratio = sizes[f - 1] / sizes[f];
+    char q[96];
+    std::snprintf(q, sizeof q, "rate change, finest two / coarser two, D0 %.0f cm", 100 * necks[n]);
+    r.add("silo_convergence", q, d2 / d1, 0, "-", "below 1: converging", 0,
+          "differences of the three finest cell sizes");
+    if (!(d1 * d2 > 0 && std::abs(d2) < std::abs(d1))) continue;  // not in the asymptotic range
+    const Real p = std::log(d1 / d2) / std::log(ratio);
+    const Real q_inf = rate[n][f] + d2 / (std::pow(ratio, p) - 1);
+    std::snprintf(q, sizeof q, "extrapolated rate (order %.2f), D0 %.0f cm", p, 100 * necks[n]);
+    r.add("silo_convergence", q, q_inf, cases::beverloo(necks[n]), "kg/(s m)",
+          "Richardson from the three finest cell sizes", 0, "");
   }
 }
 
@@ -866,7 +938,7 @@ int main(int argc, char** argv) {
           stderr,
           "usage: %s [--out DIR] [--fast] [--cases "
           "collision,drop,forces,incline,contact_schemes,debris,debris_sweep,debris_ensemble,"
-          "rolling,bar,silo,compression,stability]\n",
+          "rolling,bar,silo,silo_convergence,compression,stability]\n",
           argv[0]);
       return 2;
     }
@@ -890,6 +962,7 @@ int main(int argc, char** argv) {
       {"rolling", rolling},
       {"bar", bar},
       {"silo", siloDischarge},
+      {"silo_convergence", siloConvergence},
       {"compression", compression},
       {"stability", stability}};
   for (const auto& [name, run] : all) {

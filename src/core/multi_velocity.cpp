@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "contact_impulse.hpp"
 #include "transfer.hpp"
@@ -39,6 +40,8 @@ void MultiVelocityCoupling::sample(const Blocks& B) {
 void MultiVelocityCoupling::correctGridVelocity(CouplingStep& s) {
   Blocks& B = s.blocks;
   Grid& G = s.grid;
+  const Particles& P = s.particles;
+  constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
   if (static_cast<int>(samples_.size()) != B.count()) sample(B);
   B.clearCoupling();
   active_ = 0;
@@ -84,6 +87,42 @@ void MultiVelocityCoupling::correctGridVelocity(CouplingStep& s) {
           }
         }
       }
+      // The material's gap to the block at each node (seed 002 sec. 2.4.1 adds a distance check
+      // to eq. 22, after Ma et al.: without one, bodies touch wherever their kernels overlap, up
+      // to two cells apart). Here: the least gap, to the block's rounded outline, of the points
+      // that map to the node and lie within half a cell of it along the surface; a point's gap
+      // is its distance less its reach. The contact then sits at the nodes beside the true
+      // contact point. Without the check a disk rested on a patch some three cells wide that
+      // friction could not tip (the normal impulses moved mu R ahead of the centre and
+      // cancelled the friction's torque: a thrown disk did not spin) and floated a cell high.
+      patch_gap_.assign(patch_mass_.size(), std::numeric_limits<Real>::infinity());
+      const Vec2 near_lo = G.origin + Vec2(i0 - 1, j0 - 1) * G.h;
+      const Vec2 near_hi = G.origin + Vec2(i1 + 1, j1 + 1) * G.h;
+      const Vec2* core = B.vertices(b);
+      const int nv = B.vertexCount(b);
+      const Real a = B.def(b).rounding;
+      for (std::size_t p = 0; p < P.size(); ++p) {
+        const Vec2 x(P.x[p], P.y[p]);
+        if (x.x() < near_lo.x() || x.y() < near_lo.y() || x.x() > near_hi.x() ||
+            x.y() > near_hi.y())
+          continue;
+        const Real lp = P.half_size[p];
+        const Real gap = closestOnCore(core, nv, x).distance - a - materialReach(P, p, lp * G.h);
+        Real xg, yg;
+        Stencil1D sx, sy;
+        detail::stencils<K>(G, x.x(), x.y(), lp, xg, yg, sx, sy);
+        for (int j = 0; j < S; ++j) {
+          for (int i = 0; i < S; ++i) {
+            const int pi = sx.base + i - i0, pj = sy.base + j - j0;
+            if (pi < 0 || pi >= w || pj < 0 || pj > j1 - j0 || !(sx.w[i] * sy.w[j] > 0)) continue;
+            const std::size_t q = static_cast<std::size_t>(pi + pj * w);
+            const Vec2 along = x - (G.origin + Vec2(i0 + pi, j0 + pj) * G.h);
+            const Vec2& nq = patch_normal_[q];
+            if (std::abs(along.x() * nq.y() - along.y() * nq.x()) > 0.5 * G.h * nq.norm()) continue;
+            patch_gap_[q] = std::min(patch_gap_[q], gap);
+          }
+        }
+      }
       // Trial block velocity, updated after each node's exchange (Gauss-Seidel), so that the
       // nodes of one contact share the block's momentum.
       const bool dynamic = B.def(b).type == BodyType::kDynamic;
@@ -96,15 +135,19 @@ void MultiVelocityCoupling::correctGridVelocity(CouplingStep& s) {
           const int node = G.index(i0 + pi, j0 + pj);
           const Real ms = G.mass[node];
           const Real nn = patch_normal_[q].norm();
-          if (!(patch_mass_[q] > 0 && ms > 0 && nn > 0)) continue;  // not a shared node
+          if (!(patch_mass_[q] > 0 && ms > 0 && nn > 0 && patch_gap_[q] < kInfinity))
+            continue;  // not a shared node
           const Vec2 n = patch_normal_[q] / nn;
           const Vec2 xI = G.origin + Vec2(i0 + pi, j0 + pj) * G.h;
           const Vec2 r = xI - st.position;
           const Vec2 u = Vec2(G.vel_x[node], G.vel_y[node]) - (vb + wb * Vec2(-r.y(), r.x()));
-          if (!(u.dot(n) < 0)) continue;  // eq. 22: not approaching
+          // Eq. 22 with the distance check: the node may approach by its gap within the step
+          // and no further; a node already in contact may not approach at all.
+          const Real target = patch_gap_[q] > 0 ? -patch_gap_[q] / s.dt : 0;
+          if (!(u.dot(n) < target)) continue;
           const detail::Mat2 Kb = detail::blockInverseMass(B, b, xI);
           const detail::Exchange e =
-              detail::exchange(detail::Mat2::Identity() / ms + Kb, u, n, 0, mu);
+              detail::exchange(detail::Mat2::Identity() / ms + Kb, u, n, target, mu);
           G.vel_x[node] += e.impulse.x() / ms;  // eq. 25
           G.vel_y[node] += e.impulse.y() / ms;
           if (dynamic) {

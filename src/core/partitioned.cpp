@@ -65,6 +65,7 @@ PartitionedCoupling::PartitionedCoupling(const CouplingDef& def, Real cell_size,
       for (int k = 0; k < pieces; ++k) {
         x_.push_back(a + (b - a) * (static_cast<Real>(k) / pieces));
         v_.push_back(body.velocity);
+        body_.push_back(static_cast<int>(&body - bodies.data()));
       }
     }
     const int last = static_cast<int>(x_.size()) - 1;
@@ -73,6 +74,28 @@ PartitionedCoupling::PartitionedCoupling(const CouplingDef& def, Real cell_size,
   }
   load_.assign(x_.size(), Vec2(0, 0));
   stamp_.assign(x_.size(), -1);
+}
+
+void PartitionedCoupling::attach(const Particles& P) {
+  // Each boundary particle's host: the nearest point filled from the same body (points keep
+  // their index for the life of the world). A boundary particle of a body without points has
+  // none and moves with the grid.
+  host_.assign(x_.size(), -1);
+  std::vector<Real> best(x_.size(), std::numeric_limits<Real>::infinity());
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const Vec2 xp(P.x[p], P.y[p]);
+    for (std::size_t e = 0; e < x_.size(); ++e) {
+      if (body_[e] != P.body[p]) continue;
+      const Real d2 = (x_[e] - xp).squaredNorm();
+      if (d2 < best[e]) {
+        best[e] = d2;
+        host_[e] = static_cast<int>(p);
+      }
+    }
+  }
+  offset_.assign(x_.size(), Vec2(0, 0));
+  for (std::size_t e = 0; e < x_.size(); ++e)
+    if (host_[e] >= 0) offset_[e] = x_[e] - Vec2(P.x[host_[e]], P.y[host_[e]]);
 }
 
 void PartitionedCoupling::bucketSegments(const Grid& G) {
@@ -132,6 +155,7 @@ void PartitionedCoupling::beforeStep(CouplingStep& s) {
     for (Real m : P.mass) total += m;
     wall_mass_ = total / P.size();
     half_size_ = P.half_size[0];
+    attach(P);
   }
   bucketSegments(G);
   B.clearCoupling();
@@ -149,7 +173,10 @@ void PartitionedCoupling::beforeStep(CouplingStep& s) {
       lo = lo.cwiseMin(core[k]);
       hi = hi.cwiseMax(core[k]);
     }
-    const Real grow = a + 0.5 * longest_ + G.h;  // segments are filed by their middle
+    // The wall's surface lies the inset outside its segments (where the body's outline was):
+    // a body rests on a block with its outline, not sunk into it by the inset.
+    const Real reach = a + def_.boundary_inset;
+    const Real grow = reach + 0.5 * longest_ + G.h;  // segments are filed by their middle
     const int i0 = std::max(0, static_cast<int>((lo.x() - grow - G.origin.x()) * G.inv_h));
     const int j0 = std::max(0, static_cast<int>((lo.y() - grow - G.origin.y()) * G.inv_h));
     const int i1 =
@@ -162,7 +189,7 @@ void PartitionedCoupling::beforeStep(CouplingStep& s) {
       Real t;
     };
     Nearest nearest[kMaxBlockVertices];
-    for (int k = 0; k < nv; ++k) nearest[k] = {a, -1, 0};
+    for (int k = 0; k < nv; ++k) nearest[k] = {reach, -1, 0};
     for (int j = j0; j <= j1; ++j) {
       for (int i = i0; i <= i1; ++i) {
         const int cell = i + j * cells_x_;
@@ -172,11 +199,12 @@ void PartitionedCoupling::beforeStep(CouplingStep& s) {
             if (stamp_[e] == b) continue;
             stamp_[e] = b;
             const CoreDistance d = closestOnCore(core, nv, x_[e]);
-            // Only within the rounding: a wall node inside the core got there by passing the
+            // Only within reach: a wall node inside the core got there by passing the
             // block's outline, and a spring stretched across the block would throw it out.
-            if (d.distance > 0 && d.distance < a)
-              contact(B, b, d.normal, a - d.distance, d.point + (a + d.distance) / 2 * d.normal,
-                      v_[e], e, e, 0);
+            if (d.distance > 0 && d.distance < reach)
+              contact(B, b, d.normal, reach - d.distance,
+                      d.point + (a + d.distance - def_.boundary_inset) / 2 * d.normal, v_[e], e, e,
+                      0);
           }
           const Vec2 p0 = x_[segments_[sg][0]], p1 = x_[segments_[sg][1]];
           const Vec2 edge = p1 - p0;
@@ -200,7 +228,8 @@ void PartitionedCoupling::beforeStep(CouplingStep& s) {
       const Real t = nearest[k].t;
       const Vec2 edge = x_[sg[1]] - x_[sg[0]];
       const Vec2 n = Vec2(-edge.y(), edge.x()) / edge.norm();  // out of the block, into the wall
-      contact(B, b, n, a - nearest[k].distance, core[k] + (a + nearest[k].distance) / 2 * n,
+      contact(B, b, n, reach - nearest[k].distance,
+              core[k] + (a + nearest[k].distance - def_.boundary_inset) / 2 * n,
               v_[sg[0]] + t * (v_[sg[1]] - v_[sg[0]]), sg[0], sg[1], t);
     }
   }
@@ -222,13 +251,28 @@ void PartitionedCoupling::addGridForces(CouplingStep& s) {
 }
 
 void PartitionedCoupling::afterMaterialStep(CouplingStep& s) {
-  // (3)-(4): the boundary particles move with the material, like massless material points.
+  // (3)-(4): the boundary particles move with the material, like massless material points:
+  // with the affine velocity field of their host point, v_p + L_p (x - x_p), which is the
+  // grid's field near the host to first order. Moved with the grid's velocity interpolated at
+  // their own place instead, they drifted off the surface of a body that turns (on a disk of
+  // 10 cells per radius, +-0.8 mm after one turn): the wall became a lumpy wheel that hopped
+  // as it rolled.
+  const Particles& P = s.particles;
   detail::withKernel(s.kernel, [&](auto k) {
     using K = decltype(k);
     for (std::size_t e = 0; e < x_.size(); ++e) {
       if (!x_[e].allFinite()) continue;  // World reports the non-finite state
-      v_[e] = detail::materialVelocityAt<K>(s.grid, x_[e], half_size_);
-      x_[e] += s.dt * v_[e];
+      const int p = host_.empty() ? -1 : host_[e];
+      if (p >= 0) {  // the offset from the host turns and stretches with L_p
+        Vec2& d = offset_[e];
+        d += s.dt * Vec2(P.lxx[p] * d.x() + P.lxy[p] * d.y(), P.lyx[p] * d.x() + P.lyy[p] * d.y());
+        const Vec2 x = Vec2(P.x[p], P.y[p]) + d;
+        v_[e] = (x - x_[e]) / s.dt;
+        x_[e] = x;
+      } else {
+        v_[e] = detail::materialVelocityAt<K>(s.grid, x_[e], half_size_);
+        x_[e] += s.dt * v_[e];
+      }
       // Inside the domain, as the material points are kept.
       const Vec2 lo = s.grid.origin + Vec2::Constant(Grid::kPad * s.grid.h);
       const Vec2 hi = lo + Vec2(s.grid.cells_x, s.grid.cells_y) * s.grid.h;
@@ -243,6 +287,13 @@ void PartitionedCoupling::afterMaterialStep(CouplingStep& s) {
     const int m = static_cast<int>(x_.size());
     x_.push_back(0.5 * (x_[a] + x_[b]));
     v_.push_back(0.5 * (v_[a] + v_[b]));
+    body_.push_back(body_[a]);
+    if (!host_.empty()) {
+      host_.push_back(host_[a]);
+      offset_.push_back(host_[a] >= 0
+                            ? Vec2(x_[m] - Vec2(s.particles.x[host_[a]], s.particles.y[host_[a]]))
+                            : Vec2(0, 0));
+    }
     load_.emplace_back(0, 0);
     stamp_.push_back(-1);
     segments_[k][1] = m;

@@ -7,7 +7,8 @@
 //
 // As in seed 003's wooden-block case, the boundary particles start on the outline of each body
 // of material, `boundary_inset` inside it (the loads then act on the main body of material, not
-// on lone outer points), and move with the material like massless material points. A segment
+// on lone outer points), and move with the material like massless material points (with the
+// affine velocity field of the nearest point). A segment
 // stretched past one cell by the flow is split at its middle, so the wall stays closed as the
 // material's surface grows.
 #pragma once
@@ -42,9 +43,13 @@ class PartitionedCoupling final : public Coupling {
   void contact(Blocks& B, int b, const Vec2& n, Real overlap, const Vec2& point,
                const Vec2& wall_velocity, int e0, int e1, Real t);
   void bucketSegments(const Grid& G);
+  void attach(const Particles& P);
 
   Real h_;
   std::vector<Vec2> x_, v_, load_;
+  std::vector<int> body_;     // the body each boundary particle was placed on
+  std::vector<int> host_;     // its nearest point of that body (moves it), or -1
+  std::vector<Vec2> offset_;  // from the host (m)
   std::vector<std::array<int, 2>> segments_;
   // Segments by the cell of their middle (counting sort, buffers kept between steps).
   std::vector<int> cell_start_, cell_segments_, segment_cell_, fill_, stamp_;
