@@ -101,7 +101,17 @@ void MultiVelocityCoupling::correctGridVelocity(CouplingStep& s) {
       const Vec2* core = B.vertices(b);
       const int nv = B.vertexCount(b);
       const Real a = B.def(b).rounding;
-      for (std::size_t p = 0; p < P.size(); ++p) {
+      // The points near the patch, from the tiles they were binned in this step.
+      const Tiles& T = s.tiles;
+      std::vector<int>& near = near_points_;
+      near.clear();
+      for (int tb = std::max(0, (j0 - 1) / Tiles::kSize);
+           tb <= std::min(T.ny - 1, (j1 + 1) / Tiles::kSize); ++tb)
+        for (int ta = std::max(0, (i0 - 1) / Tiles::kSize);
+             ta <= std::min(T.nx - 1, (i1 + 1) / Tiles::kSize); ++ta)
+          for (int q = T.start[ta + tb * T.nx]; q < T.start[ta + tb * T.nx + 1]; ++q)
+            near.push_back(T.order[q]);
+      for (const int p : near) {
         const Vec2 x(P.x[p], P.y[p]);
         if (x.x() < near_lo.x() || x.y() < near_lo.y() || x.x() > near_hi.x() ||
             x.y() > near_hi.y())

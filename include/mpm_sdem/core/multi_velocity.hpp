@@ -39,6 +39,7 @@ class MultiVelocityCoupling final : public Coupling {
   std::vector<Samples> samples_;
   std::vector<Real> patch_mass_;
   std::vector<Vec2> patch_normal_;
+  std::vector<int> near_points_;
   std::vector<Real> patch_gap_;  // the material's gap to the block at the node (m)
 };
 
