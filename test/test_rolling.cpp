@@ -103,7 +103,9 @@ TEST(Rolling, MultiVelocitySpinUpConvergesAtFirstOrder) {
     c.t_end = 0.62;  // the spin-up is fitted over [0.05, 0.6] s
     const cases::Rolling r = roll(c);
     // (At 2.5 mm the centre decelerates 4.75% faster than mu g, an open item in README.)
-    if (k == 0) EXPECT_NEAR(r.deceleration / (c.mu * kG), 1.0, 0.02);
+    if (k == 0) {
+      EXPECT_NEAR(r.deceleration / (c.mu * kG), 1.0, 0.02);
+    }
     error[k] = 1 - r.spin_up / (2 * c.mu * kG / kR);
     // The normal impulses lie at most half a cell ahead of the contact point.
     EXPECT_GT(error[k], -0.03);
