@@ -71,21 +71,26 @@ void MultiVelocityCoupling::correctGridVelocity(CouplingStep& s) {
       const int w = i1 - i0 + 1;
       patch_mass_.assign(static_cast<std::size_t>(w) * (j1 - j0 + 1), 0);
       patch_normal_.assign(patch_mass_.size(), Vec2(0, 0));
-      for (const Vec2& o : smp.offset) {
-        const Vec2 x = placed(o);
+      // f(q, w, grad) for each patch entry q of the nodes around x (GIMP half size lp, cells),
+      // with the node's weight S and its gradient (1/m).
+      auto forPatchNodes = [&](const Vec2& x, Real lp, auto&& f) {
         Real xg, yg;
         Stencil1D sx, sy;
-        detail::stencils<K>(G, x.x(), x.y(), half_size, xg, yg, sx, sy);
+        detail::stencils<K>(G, x.x(), x.y(), lp, xg, yg, sx, sy);
         for (int j = 0; j < S; ++j) {
           for (int i = 0; i < S; ++i) {
             const int pi = sx.base + i - i0, pj = sy.base + j - j0;
             if (pi < 0 || pi >= w || pj < 0 || pj > j1 - j0) continue;
-            const std::size_t q = static_cast<std::size_t>(pi + pj * w);
-            patch_mass_[q] += sx.w[i] * sy.w[j] * smp.mass;
-            // Eq. 23: n_I = sum_p m_p grad S_Ip, pointing out of the block.
-            patch_normal_[q] += smp.mass * G.inv_h * Vec2(sx.dw[i] * sy.w[j], sx.w[i] * sy.dw[j]);
+            f(static_cast<std::size_t>(pi + pj * w), sx.w[i] * sy.w[j],
+              Vec2(G.inv_h * Vec2(sx.dw[i] * sy.w[j], sx.w[i] * sy.dw[j])));
           }
         }
+      };
+      for (const Vec2& o : smp.offset) {
+        forPatchNodes(placed(o), half_size, [&](std::size_t q, Real weight, const Vec2& grad) {
+          patch_mass_[q] += weight * smp.mass;
+          patch_normal_[q] += smp.mass * grad;  // eq. 23: n_I = sum_p m_p grad S_Ip, outwards
+        });
       }
       // The material's gap to the block at each node (seed 002 sec. 2.4.1 adds a distance check
       // to eq. 22, after Ma et al.: without one, bodies touch wherever their kernels overlap, up
@@ -95,7 +100,7 @@ void MultiVelocityCoupling::correctGridVelocity(CouplingStep& s) {
       // contact point. Without the check a disk rested on a patch some three cells wide that
       // friction could not tip (the normal impulses moved mu R ahead of the centre and
       // cancelled the friction's torque: a thrown disk did not spin) and floated a cell high.
-      patch_gap_.assign(patch_mass_.size(), std::numeric_limits<Real>::infinity());
+      patch_gap_.assign(patch_mass_.size(), kInfinity);
       const Vec2 near_lo = G.origin + Vec2(i0 - 1, j0 - 1) * G.h;
       const Vec2 near_hi = G.origin + Vec2(i1 + 1, j1 + 1) * G.h;
       const Vec2* core = B.vertices(b);
@@ -118,20 +123,14 @@ void MultiVelocityCoupling::correctGridVelocity(CouplingStep& s) {
           continue;
         const Real lp = P.half_size[p];
         const Real gap = closestOnCore(core, nv, x).distance - a - materialReach(P, p, lp * G.h);
-        Real xg, yg;
-        Stencil1D sx, sy;
-        detail::stencils<K>(G, x.x(), x.y(), lp, xg, yg, sx, sy);
-        for (int j = 0; j < S; ++j) {
-          for (int i = 0; i < S; ++i) {
-            const int pi = sx.base + i - i0, pj = sy.base + j - j0;
-            if (pi < 0 || pi >= w || pj < 0 || pj > j1 - j0 || !(sx.w[i] * sy.w[j] > 0)) continue;
-            const std::size_t q = static_cast<std::size_t>(pi + pj * w);
-            const Vec2 along = x - (G.origin + Vec2(i0 + pi, j0 + pj) * G.h);
-            const Vec2& nq = patch_normal_[q];
-            if (std::abs(along.x() * nq.y() - along.y() * nq.x()) > 0.5 * G.h * nq.norm()) continue;
+        forPatchNodes(x, lp, [&](std::size_t q, Real weight, const Vec2&) {
+          const Vec2& nq = patch_normal_[q];
+          const int pi = static_cast<int>(q % w), pj = static_cast<int>(q / w);
+          const Vec2 along = x - (G.origin + Vec2(i0 + pi, j0 + pj) * G.h);
+          if (weight > 0 &&
+              std::abs(along.x() * nq.y() - along.y() * nq.x()) <= 0.5 * G.h * nq.norm())
             patch_gap_[q] = std::min(patch_gap_[q], gap);
-          }
-        }
+        });
       }
       // Trial block velocity, updated after each node's exchange (Gauss-Seidel), so that the
       // nodes of one contact share the block's momentum.

@@ -98,6 +98,32 @@ void PartitionedCoupling::attach(const Particles& P) {
     if (host_[e] >= 0) offset_[e] = x_[e] - Vec2(P.x[host_[e]], P.y[host_[e]]);
 }
 
+int PartitionedCoupling::nearestPoint(const CouplingStep& s, const Vec2& x, int body) const {
+  // The points binned this step in the 3 x 3 tiles around x (a tile is 3 cells wide, so this
+  // covers every point within three cells).
+  const Tiles& T = s.tiles;
+  const Grid& G = s.grid;
+  const int a = static_cast<int>((x.x() - G.origin.x()) * G.inv_h) / Tiles::kSize;
+  const int b = static_cast<int>((x.y() - G.origin.y()) * G.inv_h) / Tiles::kSize;
+  int best = -1;
+  Real best_d2 = std::numeric_limits<Real>::infinity();
+  for (int tb = std::max(0, b - 1); tb <= std::min(T.ny - 1, b + 1); ++tb) {
+    for (int ta = std::max(0, a - 1); ta <= std::min(T.nx - 1, a + 1); ++ta) {
+      const int t = ta + tb * T.nx;
+      for (int q = T.start[t]; q < T.start[t + 1]; ++q) {
+        const int p = T.order[q];
+        if (s.particles.body[p] != body) continue;
+        const Real d2 = (Vec2(s.particles.x[p], s.particles.y[p]) - x).squaredNorm();
+        if (d2 < best_d2) {
+          best_d2 = d2;
+          best = p;
+        }
+      }
+    }
+  }
+  return best;
+}
+
 void PartitionedCoupling::bucketSegments(const Grid& G) {
   // Counting sort of the segments by the cell of their middle; they move every step.
   cells_x_ = G.nx - 1;
@@ -289,10 +315,13 @@ void PartitionedCoupling::afterMaterialStep(CouplingStep& s) {
     v_.push_back(0.5 * (v_[a] + v_[b]));
     body_.push_back(body_[a]);
     if (!host_.empty()) {
-      host_.push_back(host_[a]);
-      offset_.push_back(host_[a] >= 0
-                            ? Vec2(x_[m] - Vec2(s.particles.x[host_[a]], s.particles.y[host_[a]]))
-                            : Vec2(0, 0));
+      // Its own host, the nearest point around it: with its neighbour's, a segment whose ends'
+      // hosts part (a torn flow) was split again every step, each new particle following the
+      // same host away from the gap (the wooden-block scene grew to 0.7 GB).
+      const int host = nearestPoint(s, x_[m], body_[a]);
+      host_.push_back(host);
+      offset_.push_back(host >= 0 ? Vec2(x_[m] - Vec2(s.particles.x[host], s.particles.y[host]))
+                                  : Vec2(0, 0));
     }
     load_.emplace_back(0, 0);
     stamp_.push_back(-1);

@@ -44,6 +44,8 @@ class PartitionedCoupling final : public Coupling {
                const Vec2& wall_velocity, int e0, int e1, Real t);
   void bucketSegments(const Grid& G);
   void attach(const Particles& P);
+  // The nearest point of body to x among those binned near it this step, or -1.
+  int nearestPoint(const CouplingStep& s, const Vec2& x, int body) const;
 
   Real h_;
   std::vector<Vec2> x_, v_, load_;
