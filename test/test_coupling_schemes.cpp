@@ -149,7 +149,8 @@ TEST_P(Schemes, BlockThrownAt20MetresPerSecondDoesNotTunnel) {
 // host of its own. The wall's length is the flow's surface: split past a cell, its segments are
 // at least half a cell long where the surface stretches (2 particles per cell of length), and
 // particles never merge where it shortens; the count stays within twice that density. With its
-// neighbour's host, a torn gap was split again every step (0.7 GB by 0.3 s).
+// neighbour's host, a torn gap was split again every step (the run passed 0.67 GB and did not
+// finish).
 TEST(Partitioned, WallStaysBoundedInATearingFlow) {
   WorldDef def = loadScene(test::sourcePath("config/scenes/debris_impact_fine.yaml")).world;
   def.coupling.scheme = CouplingScheme::kPartitioned;

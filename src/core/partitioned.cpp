@@ -317,7 +317,7 @@ void PartitionedCoupling::afterMaterialStep(CouplingStep& s) {
     if (!host_.empty()) {
       // Its own host, the nearest point around it: with its neighbour's, a segment whose ends'
       // hosts part (a torn flow) was split again every step, each new particle following the
-      // same host away from the gap (the wooden-block scene grew to 0.7 GB).
+      // same host away from the gap (the wooden-block scene passed 0.67 GB and did not finish).
       const int host = nearestPoint(s, x_[m], body_[a]);
       host_.push_back(host);
       offset_.push_back(host >= 0 ? Vec2(x_[m] - Vec2(s.particles.x[host], s.particles.y[host]))
