@@ -44,7 +44,10 @@ TEST(Rolling, ThrownDiskSpinsUpThenRollsAtTwoThirdsOfItsSpeed) {
   EXPECT_NEAR(r.roll_ratio, 1.0, 0.02) << "rolls without slip at the end";
 }
 
-// The lattice must not decide the physics: the disk and floor moved by fractions of a cell.
+// The lattice must not decide the physics: the disk and floor moved by fractions of a cell (the
+// issue: within 1%). The points carry the disk's area, centroid and polar moment at every offset
+// (pointVolumes); with the lattice's own staircase the spin-up spread 1.6% (centroid up to 0.16 mm
+// off the outline's centre: a lever of up to e / (mu R) = 3% of the friction's moment).
 TEST(Rolling, SameAtFiveLatticeOffsets) {
   std::vector<Real> spin, speed;
   for (Real offset : {0.0, 0.2, 0.4, 0.6, 0.8}) {
@@ -59,7 +62,7 @@ TEST(Rolling, SameAtFiveLatticeOffsets) {
     return (*hi - *lo) / *hi;
   };
   EXPECT_LT(spread(speed), 0.01);
-  EXPECT_LT(spread(spin), 0.02);
+  EXPECT_LT(spread(spin), 0.01);
 }
 
 // A disk rolling without slip on a flat floor keeps its energy: the contact's damping acts only
@@ -102,7 +105,7 @@ TEST(Rolling, MultiVelocitySpinUpConverges) {
     c.cell_size = k == 0 ? 0.005 : 0.0025;
     c.t_end = 0.62;  // the spin-up is fitted over [0.05, 0.6] s
     const cases::Rolling r = roll(c);
-    // (At 2.5 mm the centre decelerates 2.3-4.8% faster than mu g, an open item in README.)
+    // (At 2.5 mm the centre decelerates 1.8% faster than mu g, an open item in README.)
     if (k == 0) {
       EXPECT_NEAR(r.deceleration / (c.mu * kG), 1.0, 0.02);
     }

@@ -47,7 +47,7 @@ void ImpCoupling::beforeStep(CouplingStep& s) {
                           P.vy[p] + P.lyx[p] * d_p.x() + P.lyy[p] * d_p.y());
     const Vec2 v = v_material - B.velocityAt(b, c.point);
     const Real vn = v.dot(d.normal);
-    const Real scale = impSpringScale(def_.stiffness_per, P, p);
+    const Real scale = impSpringScale(def_.stiffness_per, P, p, s.grid.h);
     const Real kn = scale * def_.normal_stiffness, kt = scale * def_.tangential_stiffness;
     const Real mp = P.mass[p];
     const Real m = bd.type == BodyType::kDynamic

@@ -1,5 +1,6 @@
 #include "mpm_sdem/core/shapes.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -130,6 +131,88 @@ std::vector<Vec2> fillPoints(const ShapeDef& shape, const Vec2& domain_min, Real
     }
   }
   return points;
+}
+
+AreaMoments areaMoments(const ShapeDef& shape) {
+  AreaMoments m;
+  switch (shape.type) {
+    case ShapeType::kRectangle: {
+      const Vec2 size = shape.max - shape.min;
+      m.area = size.x() * size.y();
+      m.centroid = 0.5 * (shape.min + shape.max);
+      m.polar = m.area * size.squaredNorm() / 12;
+      return m;
+    }
+    case ShapeType::kDisk:
+      m.area = M_PI * shape.radius * shape.radius;
+      m.centroid = shape.center;
+      m.polar = m.area * shape.radius * shape.radius / 2;
+      return m;
+    case ShapeType::kPolygon: {
+      // Sums over the triangles (o, v_i, v_i+1) from a vertex o, which keeps round-off small;
+      // signed, so either orientation gives the same result once divided by the area.
+      const auto& v = shape.vertices;
+      const Vec2 o = v.front();
+      Real area2 = 0, polar12 = 0;  // twice the area; 12 times the polar moment about o
+      Vec2 first6(0, 0);            // 6 times the first moment about o
+      for (std::size_t i = 0, n = v.size(); i < n; ++i) {
+        const Vec2 a = v[i] - o, b = v[(i + 1) % n] - o;
+        const Real c = cross(a, b);
+        area2 += c;
+        first6 += c * (a + b);
+        polar12 += c * (a.squaredNorm() + a.dot(b) + b.squaredNorm());
+      }
+      m.area = std::abs(area2) / 2;
+      const Vec2 offset = first6 / (3 * area2);
+      m.centroid = o + offset;
+      m.polar = std::abs(polar12) / 12 - m.area * offset.squaredNorm();
+      return m;
+    }
+  }
+  return m;
+}
+
+std::vector<Real> pointVolumes(const ShapeDef& shape, const std::vector<Vec2>& points,
+                               Real spacing) {
+  const Real v0 = spacing * spacing;
+  std::vector<Real> volumes(points.size(), v0);
+  const AreaMoments want = areaMoments(shape);
+  if (points.empty() || !(want.area > 0)) return volumes;
+  // Moments in units of the shape's size, so that the 4 x 4 system is well conditioned.
+  const Real L = std::sqrt(want.area);
+  auto basis = [&](const Vec2& x) {
+    const Vec2 d = (x - want.centroid) / L;
+    return Eigen::Vector4d(1, d.x(), d.y(), d.squaredNorm());
+  };
+  Eigen::Vector4d have = Eigen::Vector4d::Zero();
+  Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
+  std::vector<std::size_t> ring;
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const Eigen::Vector4d b = basis(points[p]);
+    have += v0 / want.area * b;
+    if (outlineDistance(shape, points[p]) < spacing) {
+      ring.push_back(p);
+      normal += b * b.transpose();
+    }
+  }
+  // The points stand for squares of side s whose own polar moment, s^4 / 6 each, is not in
+  // sum V |d|^2: the target is the shape's less A s^2 / 6 (parallel axis theorem), which a
+  // lattice-aligned rectangle meets exactly, keeping its volumes.
+  const Real own = want.area * spacing * spacing / 6;
+  const Eigen::Vector4d target(1, 0, 0, (want.polar - own) / (want.area * want.area));
+  // Already matched up to round-off (a lattice-aligned rectangle): the volumes stay exact.
+  if ((target - have).lpNorm<Eigen::Infinity>() < 1e-12) return volumes;
+  const Eigen::FullPivLU<Eigen::Matrix4d> lu(normal);
+  if (lu.rank() < 4) return volumes;
+  // Least-norm change: dV_p = A b_p . lambda over the ring, with sum_p dV_p b_p = A (target -
+  // have).
+  const Eigen::Vector4d lambda = lu.solve(target - have);
+  for (std::size_t p : ring) {
+    const Real v = v0 + want.area * basis(points[p]).dot(lambda);
+    if (!(v >= 0.5 * v0 && v <= 1.5 * v0)) return std::vector<Real>(points.size(), v0);
+    volumes[p] = v;
+  }
+  return volumes;
 }
 
 }  // namespace mpm_sdem

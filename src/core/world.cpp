@@ -63,13 +63,15 @@ World::World(const WorldDef& def) : def_(def) {
     const BodyDef& body = def.bodies[b];
     const MaterialDef& mat = def.materials[body.material];
     const Real spacing = def.cell_size / body.points_per_cell;
-    for (const Vec2& x : filled[b]) {
+    const std::vector<Real> volumes = pointVolumes(body.shape, filled[b], spacing);
+    for (std::size_t k = 0; k < filled[b].size(); ++k) {
+      const Vec2& x = filled[b][k];
       particles_.x[p] = x.x();
       particles_.y[p] = x.y();
       particles_.vx[p] = body.velocity.x();
       particles_.vy[p] = body.velocity.y();
-      particles_.volume0[p] = spacing * spacing;
-      particles_.mass[p] = mat.density * spacing * spacing;
+      particles_.volume0[p] = volumes[k];
+      particles_.mass[p] = mat.density * volumes[k];
       particles_.half_size[p] = Real(0.5) / body.points_per_cell;
       particles_.depth[p] = std::max(outlineDistance(body.shape, x), Real(0));
       particles_.material[p] = static_cast<std::uint16_t>(body.material);
@@ -83,7 +85,7 @@ World::World(const WorldDef& def) : def_(def) {
   lightest_point_ = std::numeric_limits<Real>::infinity();
   largest_spring_scale_ = 0;
   for (std::size_t q = 0; q < particles_.size(); ++q) {
-    const Real scale = impSpringScale(def.coupling.stiffness_per, particles_, q);
+    const Real scale = impSpringScale(def.coupling.stiffness_per, particles_, q, def.cell_size);
     lightest_point_ = std::fmin(lightest_point_, particles_.mass[q] / scale);
     largest_spring_scale_ = std::fmax(largest_spring_scale_, scale);
   }

@@ -15,10 +15,12 @@
 
 namespace mpm_sdem {
 
-// What point p's springs are k_n and k_t times: 1, or its initial spacing sqrt(V0) (m) when the
-// stiffness is per length of contact.
-inline Real impSpringScale(SpringBasis basis, const Particles& P, std::size_t p) {
-  return basis == SpringBasis::kPerLength ? std::sqrt(P.volume0[p]) : Real(1);
+// What point p's springs are k_n and k_t times: 1, or its lattice spacing (m; the length of
+// contact it stands for) when the stiffness is per length of contact. The spacing, not
+// sqrt(V0): an outer point's volume carries the shape's moments (pointVolumes) but not the
+// length of its face.
+inline Real impSpringScale(SpringBasis basis, const Particles& P, std::size_t p, Real cell_size) {
+  return basis == SpringBasis::kPerLength ? 2 * P.half_size[p] * cell_size : Real(1);
 }
 
 class ImpCoupling final : public Coupling {
