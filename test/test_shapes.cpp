@@ -92,16 +92,24 @@ TEST(PointVolumes, CarryTheDisksMomentsAtEveryLatticeOffset) {
   }
 }
 
-TEST(PointVolumes, LatticeAlignedRectangleAndThinRodKeepTheLatticeVolumes) {
+TEST(PointVolumes, StraightEdgesAndTinyDisksKeepTheLatticeVolumes) {
   ShapeDef column;  // edges on the lattice: the staircase is exact
   column.min = Vec2(0, 0);
   column.max = Vec2(0.1, 0.2);
   const std::vector<Vec2> points = fillPoints(column, Vec2(0, 0), 0.01, 2);
   for (Real v : pointVolumes(column, points, 0.005)) EXPECT_EQ(v, 0.005 * 0.005);
 
-  ShapeDef rod;  // one point thick: no reweighting gives its thickness, so none is tried
-  rod.min = Vec2(0.0, 0.001);
-  rod.max = Vec2(0.1037, 0.004);
-  const std::vector<Vec2> row = fillPoints(rod, Vec2(0, 0), 0.01, 2);
-  for (Real v : pointVolumes(rod, row, 0.005)) EXPECT_EQ(v, 0.005 * 0.005);
+  ShapeDef off = column;  // off the lattice: still spacing^2 (a strip, not a reweighting)
+  off.min = Vec2(0.0013, 0.0021);
+  off.max = Vec2(0.1037, 0.2008);
+  const std::vector<Vec2> shifted = fillPoints(off, Vec2(0, 0), 0.01, 2);
+  for (Real v : pointVolumes(off, shifted, 0.005)) EXPECT_EQ(v, 0.005 * 0.005);
+
+  ShapeDef speck;  // a disk of a few points: no reweighting within bounds, so none
+  speck.type = ShapeType::kDisk;
+  speck.center = Vec2(0.0512, 0.0497);
+  speck.radius = 0.004;
+  const std::vector<Vec2> few = fillPoints(speck, Vec2(0, 0), 0.01, 2);
+  ASSERT_GT(few.size(), 0u);
+  for (Real v : pointVolumes(speck, few, 0.005)) EXPECT_EQ(v, 0.005 * 0.005);
 }

@@ -50,15 +50,14 @@ struct AreaMoments {
 };
 AreaMoments areaMoments(const ShapeDef& shape);
 
-// The volume (m^2 per metre) each filled point stands for. A lattice samples a curved or oblique
-// outline with a staircase whose area, centroid and moment of inertia depend on where the outline
-// sits on the lattice (a disk of 10 cells per radius: area within +-0.8%, centroid up to 0.16 mm
-// off, so the disk's spin under friction changed by 1.6% between lattice offsets). The points of
-// the outermost layer (less than one spacing deep) get the least-squares change of volume that
-// makes the body's area, centroid and polar moment those of the shape (the points' own squares
-// counted, as for a lattice-aligned rectangle); the others keep spacing^2.
-// Where that would take a volume beyond half or 1.5 times spacing^2 (a body a point or two thick,
-// whose outline a reweighting cannot represent), every point keeps spacing^2.
+// The volume (m^2 per metre) each filled point stands for. A lattice samples a disk with a
+// staircase whose area, centroid and moment of inertia depend on where the disk sits on the
+// lattice (10 cells per radius: area within +-0.6%, centroid up to 0.16 mm off, so the disk's
+// spin under friction changed by 1.6% between lattice offsets). For a disk, the points of the
+// outermost layer (less than one spacing deep) get the least-squares change of volume that
+// gives the body the disk's area, centroid and polar moment (the points' own squares counted);
+// the others keep spacing^2. Where that would take a volume beyond half or 1.5 times spacing^2,
+// every point keeps spacing^2. Rectangles and polygons keep spacing^2 (see shapes.cpp).
 std::vector<Real> pointVolumes(const ShapeDef& shape, const std::vector<Vec2>& points,
                                Real spacing);
 
