@@ -201,16 +201,13 @@ std::vector<Real> pointVolumes(const ShapeDef& shape, const std::vector<Vec2>& p
     }
   }
   // The points stand for squares of side s whose own polar moment, s^4 / 6 each, is not in
-  // sum V |d|^2: the target is the shape's less A s^2 / 6 (parallel axis theorem), which a
-  // lattice-aligned rectangle meets exactly, keeping its volumes.
+  // sum V |d|^2: the target is the shape's less A s^2 / 6 (parallel axis theorem).
   const Real own = want.area * spacing * spacing / 6;
   const Eigen::Vector4d target(1, 0, 0, (want.polar - own) / (want.area * want.area));
-  // Already matched up to round-off (a lattice-aligned rectangle): the volumes stay exact.
-  if ((target - have).lpNorm<Eigen::Infinity>() < 1e-12) return volumes;
   const Eigen::FullPivLU<Eigen::Matrix4d> lu(normal);
-  if (lu.rank() < 4) return volumes;
-  // Least-norm change: dV_p = A b_p . lambda over the ring, with sum_p dV_p b_p = A (target -
-  // have).
+  if (lu.rank() < 4) return volumes;  // too few outer points to carry four moments
+  // Least-norm change over the outer layer: dV_p = A b_p . lambda, with
+  // sum_p dV_p b_p = A (target - have).
   const Eigen::Vector4d lambda = lu.solve(target - have);
   for (std::size_t p : ring) {
     const Real v = v0 + want.area * basis(points[p]).dot(lambda);
