@@ -693,6 +693,20 @@ std::string debrisScenePath(bool fast) {
          (fast ? "debris_impact.yaml" : "debris_impact_fine.yaml");
 }
 
+// The wooden-block scene at cell size h and contact factor kappa_2, as the convergence studies
+// run it: 2 x 2 points per cell, the column standing on the floor (outline y = 0 to 0.2 m), r_p
+// the default at this cell size.
+WorldDef debrisAt(const Scene& scene, Real h, Real kappa2) {
+  WorldDef def = scene.world;
+  def.cell_size = h;
+  def.bodies[0].points_per_cell = 2;
+  def.bodies[0].shape.min.y() = 0;
+  def.bodies[0].shape.max.y() = 0.2;
+  def.coupling.contact_radius = 0;
+  def.time_step.contact_factor = kappa2;
+  return def;
+}
+
 // Seed 000 sec. 6 / seed 003, every coupling scheme on the shipped scene: final left faces
 // against the measured 34.6 cm (block 2) and 40.1 cm (block 1), first impact against about
 // 0.25 s (both seeds), the landings against seed 003's simulation, block 2's angle in time and
@@ -815,12 +829,7 @@ void debrisEnsemble(const Options& o, Results& r) {
   for (const SpringBasis basis : {SpringBasis::kPerPoint, SpringBasis::kPerLength}) {
     const char* basis_name = basis == SpringBasis::kPerPoint ? "point" : "length";
     for (Real h : sizes) {
-      WorldDef def = scene.world;
-      def.cell_size = h;
-      def.bodies[0].points_per_cell = 2;
-      def.bodies[0].shape.min.y() = 0;
-      def.bodies[0].shape.max.y() = 0.2;
-      def.coupling.contact_radius = 0;  // the default at this cell size
+      WorldDef def = debrisAt(scene, h, scene.world.time_step.contact_factor);
       def.coupling.stiffness_per = basis;
       if (basis == SpringBasis::kPerLength) {
         def.coupling.normal_stiffness = 4e7;
@@ -885,13 +894,7 @@ void debrisTimeStep(const Options& o, Results& r) {
   for (const Real floor_friction : {0.3, 0.0}) {
     Real last_front = 0;
     for (const Real kappa2 : factors) {
-      WorldDef def = scene.world;
-      def.cell_size = h;
-      def.bodies[0].points_per_cell = 2;
-      def.bodies[0].shape.min.y() = 0;
-      def.bodies[0].shape.max.y() = 0.2;
-      def.coupling.contact_radius = 0;
-      def.time_step.contact_factor = kappa2;
+      WorldDef def = debrisAt(scene, h, kappa2);
       def.blocks[0].friction = floor_friction;  // the floor
       const auto t0 = std::chrono::steady_clock::now();
       World w(def);
@@ -966,16 +969,6 @@ FlowAt flowBeforeImpact(const WorldDef& def, Real t_end) {
 void debrisFlow(const Options& o, Results& r) {
   const Scene scene = loadScene(debrisScenePath(true));
   const Real t_end = 0.2;
-  auto sceneAt = [&](Real h, Real kappa2) {
-    WorldDef def = scene.world;
-    def.cell_size = h;
-    def.bodies[0].points_per_cell = 2;
-    def.bodies[0].shape.min.y() = 0;
-    def.bodies[0].shape.max.y() = 0.2;
-    def.coupling.contact_radius = 0;
-    def.time_step.contact_factor = kappa2;
-    return def;
-  };
   FILE* table = std::fopen((o.out + "/debris_flow.csv").c_str(), "w");
   std::fprintf(table,
                "study,transfer,cell_size_m,contact_factor,points,steps,kinetic_J_per_m,mean_x_cm,"
@@ -999,14 +992,14 @@ void debrisFlow(const Options& o, Results& r) {
   for (const Real kappa2 : {0.1, 0.02}) {
     if (o.fast && kappa2 != 0.1) continue;
     for (const Real h : sizes)
-      record("refinement", "apic", h, kappa2, flowBeforeImpact(sceneAt(h, kappa2), t_end));
+      record("refinement", "apic", h, kappa2, flowBeforeImpact(debrisAt(scene, h, kappa2), t_end));
   }
   const Real h = o.fast ? 0.01 : 0.005;
   const std::vector<Real> factors =
       o.fast ? std::vector<Real>{0.1, 0.05} : std::vector<Real>{0.1, 0.02, 0.005};
   for (const bool flip : {false, true}) {
     for (const Real kappa2 : factors) {
-      WorldDef def = sceneAt(h, kappa2);
+      WorldDef def = debrisAt(scene, h, kappa2);
       if (flip) {
         def.solver.transfer = TransferScheme::kFlip;
         def.solver.pic_fraction = 0;
