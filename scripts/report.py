@@ -32,6 +32,9 @@ CASES = [
     ("debris_ensemble", "Seed 000 sec. 6 / seed 003: ensembles of the wooden-block scene at four "
                         "resolutions (IMP; 8 runs each, points perturbed by 1e-4 of a cell; springs"
                         " per point and per length of contact)", True),
+    ("debris_seed003", "Seed 000 sec. 6 / seed 003: the wooden-block scene as seed 003 models it"
+                       " (the material's base fixed, wood adhesion 30 Pa, 60 Pa with the floor)"
+                       " under refinement (IMP)", True),
     ("debris_timestep", "Seed 000 sec. 6 / seed 003: the wooden-block scene against the time step"
                         " (kappa_2 of eq. 51) at 5 mm cells", True),
     ("debris_flow", "Seed 000 sec. 6 / seed 003: the flow alone before it meets the blocks (0.2 s)"

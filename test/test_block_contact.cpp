@@ -307,3 +307,67 @@ TEST(Box2DContact, RefusesWhatItCannotShape) {
   }
   EXPECT_NO_THROW(Blocks(defs, BlockContactDef(), Vec2(0, -9.81)));
 }
+
+namespace {
+
+// A 0.1 m box (rounding 5 mm, 1000 kg/m^3) against a static slab, in the penalty model with the
+// slab's adhesion c: under it (gravity pulling it away) or on it with a sideways force on its
+// centre. Its face touches the slab along the core's side, L = 0.09 m. It starts overlapping
+// the slab by 1e-5 m: on the slab, where its weight and the pull hold the springs of 1e7 N/m;
+// under it, below where they hold it (adhesion has no range: a box that overshoots to zero
+// overlap is let go, so the hanging box gets springs of 1e5 N/m, whose balance at 1.1 times the
+// critical adhesion is 4.9e-5 m). Returns how far the box has moved after 0.5 s (m).
+Real adhesionRun(Real c, bool hanging, Real sideways, Real* weight = nullptr) {
+  const Real a = 0.005, overlap = 1e-5;
+  const Real y = hanging ? -0.05 + overlap : 0.05 - overlap;
+  std::vector<BlockDef> defs{
+      test::boxBlock("slab", Vec2(0, hanging ? 0.05 : -0.05), 0.4, 0.1, a, BodyType::kStatic, 500),
+      test::boxBlock("box", Vec2(0, y), 0.1, 0.1, a, BodyType::kDynamic, 1000)};
+  defs[0].adhesion = c;
+  defs[1].friction = 0.5;
+  BlockContactDef contact;
+  if (hanging) contact.normal_stiffness = 1e5;
+  Blocks blocks(defs, contact, Vec2(0, -9.81));
+  const Real m = blocks.massProperties(1).mass;
+  if (weight) *weight = m * 9.81;
+  const Real dt = contactTimeStep(0.5 * m, contact.normal_stiffness,
+                                  restitutionDampingRatio(defs[1].restitution), 4, 0.1);
+  const Vec2 start = blocks.state(1).position;
+  for (int n = 0; n < static_cast<int>(0.5 / dt); ++n) {
+    blocks.addMaterialForce(1, Vec2(sideways, 0), blocks.state(1).position);
+    blocks.step(dt);
+  }
+  return (blocks.state(1).position - start).norm();
+}
+
+}  // namespace
+
+// Seed 003's wood contacts have adhesion: c over the length the outlines touch pulls them
+// together. A box hangs under a slab exactly when c L exceeds its weight; 10% either side of
+// that threshold must tell (a contact length off by a spring, or the pull counted per spring,
+// would move the threshold by 2x).
+TEST(Adhesion, HoldsAHangingBoxOnlyAboveItsWeightOverTheContactLength) {
+  Real weight = 0;
+  adhesionRun(0, true, 0, &weight);
+  const Real critical = weight / 0.09;  // Pa
+  const Real held = adhesionRun(1.1 * critical, true, 0),
+             fell = adhesionRun(0.9 * critical, true, 0);
+  std::printf("critical adhesion %.1f Pa: moved %.2e m at 1.1x, %.3f m at 0.9x\n", critical, held,
+              fell);
+  EXPECT_LT(held, 1e-4);  // it settles 3.9e-5 m higher
+  // At 0.1 g it leaves the 1e-5 m overlap within 5 ms, then falls freely: 1.2 m in 0.5 s.
+  EXPECT_GT(fell, 1.0);
+}
+
+// Friction is capped by what the springs push, which balances the weight and the adhesion: the
+// box resting on the slab holds a sideways force up to mu (W + c L), twice mu W here.
+TEST(Adhesion, RaisesTheFrictionLimitByMuCL) {
+  Real weight = 0;
+  adhesionRun(0, false, 0, &weight);
+  const Real c = weight / 0.09, limit = 0.5 * (weight + c * 0.09);
+  const Real stuck = adhesionRun(c, false, 0.9 * limit), slid = adhesionRun(c, false, 1.1 * limit);
+  std::printf("friction limit %.2f N/m: moved %.2e m at 0.9x, %.3f m at 1.1x\n", limit, stuck,
+              slid);
+  EXPECT_LT(stuck, 1e-4);  // the tangential springs' stretch, about F / (2 k_t) = 1e-5 m
+  EXPECT_GT(slid, 0.05);   // 0.1 mu (W + c L) / m = 0.98 m/s^2: 0.12 m in 0.5 s
+}

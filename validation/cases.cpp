@@ -314,7 +314,7 @@ Rolling rollDisk(World& w, const ThrownDisk& c) {
     Real L = 0, I = 0;
     for (std::size_t p = 0; p < P.size(); ++p) {
       const Vec2 r = Vec2(P.x[p], P.y[p]) - x, u = Vec2(P.vx[p], P.vy[p]) - v;
-      L += P.mass[p] * (r.x() * u.y() - r.y() * u.x());
+      L += P.mass[p] * cross(r, u);
       I += P.mass[p] * r.squaredNorm();
     }
     ts.push_back(w.time());

@@ -15,14 +15,6 @@ using detail::box2dReach;
 using detail::fromB2;
 using detail::toB2;
 
-namespace {
-
-Real cross(const Vec2& a, const Vec2& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
-}  // namespace
-
 std::vector<Vec2> placedCore(const BlockDef& d) {
   std::vector<Vec2> v;
   const Real c = std::cos(d.angle), s = std::sin(d.angle);
@@ -77,7 +69,7 @@ Blocks::Blocks(const std::vector<BlockDef>& defs, const BlockContactDef& contact
   for (const BlockDef& d : defs) add(d);
 }
 
-void Blocks::checkDef(const BlockDef& d) {
+void Blocks::checkDef(const BlockDef& d) const {
   const std::string problem = coreProblem(d.core);
   if (!problem.empty()) throw std::invalid_argument("block '" + d.name + "': " + problem);
   if (!(d.rounding > 0))
@@ -86,6 +78,12 @@ void Blocks::checkDef(const BlockDef& d) {
   // infinite one.
   if (!(d.restitution > 0 && d.restitution <= 1))
     throw std::invalid_argument("block '" + d.name + "': restitution must be in (0, 1]");
+  if (!(d.adhesion >= 0 && std::isfinite(d.adhesion)))
+    throw std::invalid_argument("block '" + d.name + "': adhesion must be finite and >= 0 Pa");
+  if (d.adhesion > 0 && contact_.model != BlockContactModel::kPenalty)
+    throw std::invalid_argument("block '" + d.name +
+                                "': adhesion needs block_contact model penalty (Box2D's contact "
+                                "solver has none)");
 }
 
 int Blocks::add(const BlockDef& def) {
@@ -304,11 +302,25 @@ void Blocks::penaltyContacts(Real dt) {
       const Real gamma = 2 * std::max(zeta_[i], zeta_[j]) *
                          std::sqrt(count * contact_.normal_stiffness / inverse_mass) / count;
       const Real mu = std::min(defs_[i].friction, defs_[j].friction);
+      // Adhesion (seed 003 sec. 4.3): c over the length the outlines touch, the spread of the
+      // springs' points across the normal (a face's length; zero on a vertex or a disk), shared
+      // by the springs and pulling. Friction stays capped by what the springs push, which
+      // includes the adhesion they balance.
+      Real pull = 0;
+      if (const Real c = std::max(defs_[i].adhesion, defs_[j].adhesion); c > 0) {
+        const Vec2 t(-normal.y(), normal.x());
+        Real lo = std::numeric_limits<Real>::infinity(), hi = -lo;
+        for (const Spring& s : springs_) {
+          lo = std::fmin(lo, s.point.dot(t));
+          hi = std::fmax(hi, s.point.dot(t));
+        }
+        pull = c * (hi - lo) / count;
+      }
       for (const Spring& s : springs_) {
         const int a = s.side == 0 ? i : j, b = s.side == 0 ? j : i;
         const Vec2 v = velocityAt(a, s.point) - velocityAt(b, s.point);
         const Real vn = v.dot(s.normal);
-        const Real fn = std::fmax(contact_.normal_stiffness * s.xi - gamma * vn, Real(0));
+        const Real push = std::fmax(contact_.normal_stiffness * s.xi - gamma * vn, Real(0));
         const unsigned long long key = (static_cast<unsigned long long>(i) << 40) |
                                        (static_cast<unsigned long long>(j) << 16) |
                                        (static_cast<unsigned long long>(s.vertex) << 1) | s.side;
@@ -321,12 +333,12 @@ void Blocks::penaltyContacts(Real dt) {
         delta += (v - vn * s.normal) * dt;
         delta -= delta.dot(s.normal) * s.normal;
         Vec2 ft = -contact_.tangential_stiffness * delta;
-        if (ft.norm() > mu * fn) {
-          ft *= mu * fn / ft.norm();
+        if (ft.norm() > mu * push) {
+          ft *= mu * push / ft.norm();
           delta = -ft / contact_.tangential_stiffness;
         }
         next_history_.emplace_back(key, delta);
-        const Vec2 f = fn * s.normal + ft;
+        const Vec2 f = (push - pull) * s.normal + ft;
         addForce(a, f, s.point);
         addForce(b, -f, s.point);
       }

@@ -43,9 +43,7 @@ Diagnostics measure(const World& world) {
       d.kinetic += ke;
       d.gravity -= m.mass * g.dot(s.position - base);
       d.block_momentum += m.mass * s.velocity;
-      d.angular_momentum +=
-          m.mass * (s.position.x() * s.velocity.y() - s.position.y() * s.velocity.x()) +
-          m.inertia * s.angular_velocity;
+      d.angular_momentum += m.mass * cross(s.position, s.velocity) + m.inertia * s.angular_velocity;
     }
     d.momentum += d.block_momentum;
   }

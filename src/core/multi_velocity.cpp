@@ -127,8 +127,7 @@ void MultiVelocityCoupling::correctGridVelocity(CouplingStep& s) {
           const Vec2& nq = patch_normal_[q];
           const int pi = static_cast<int>(q % w), pj = static_cast<int>(q / w);
           const Vec2 along = x - (G.origin + Vec2(i0 + pi, j0 + pj) * G.h);
-          if (weight > 0 &&
-              std::abs(along.x() * nq.y() - along.y() * nq.x()) <= 0.5 * G.h * nq.norm())
+          if (weight > 0 && std::abs(cross(along, nq)) <= 0.5 * G.h * nq.norm())
             patch_gap_[q] = std::min(patch_gap_[q], gap);
         });
       }
@@ -161,7 +160,7 @@ void MultiVelocityCoupling::correctGridVelocity(CouplingStep& s) {
           G.vel_y[node] += e.impulse.y() / ms;
           if (dynamic) {
             vb -= e.impulse / B.massProperties(b).mass;
-            wb -= (r.x() * e.impulse.y() - r.y() * e.impulse.x()) / B.massProperties(b).inertia;
+            wb -= cross(r, e.impulse) / B.massProperties(b).inertia;
           }
           B.addMaterialForce(b, -e.impulse / s.dt, xI);  // the same impulse over the step
           on_material_ += e.impulse / s.dt;

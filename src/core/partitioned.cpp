@@ -73,6 +73,7 @@ PartitionedCoupling::PartitionedCoupling(const CouplingDef& def, Real cell_size,
     if (last > first) segments_.push_back({last, first});
   }
   load_.assign(x_.size(), Vec2(0, 0));
+  couple_.assign(x_.size(), 0);
   stamp_.assign(x_.size(), -1);
 }
 
@@ -166,8 +167,15 @@ void PartitionedCoupling::contact(Blocks& B, int b, const Vec2& n, Real overlap,
       slide > 0 ? Vec2(-std::fmin(bd.friction * fn, gamma_t * slide) / slide * ut) : Vec2(0, 0);
   const Vec2 on_wall = fn * n + ft;
   if (on_wall.isZero()) return;
-  load_[e0] += (1 - t) * on_wall;  // the wall's nodal forces F_P, copied to F_S (eq. 23)
-  if (t > 0) load_[e1] += t * on_wall;
+  // The wall's nodal forces F_P, copied to F_S (eq. 23), each with its moment about its node: the
+  // nodes lie the inset inside the body's outline, and a tangential force moved there would
+  // turn the body with a lever shorter by the inset (a thrown disk spun up 1.7% slower).
+  const auto share = [&](int e, Real w) {
+    load_[e] += w * on_wall;
+    couple_[e] += cross(point - x_[e], w * on_wall);
+  };
+  share(e0, 1 - t);
+  if (t > 0) share(e1, t);
   B.addMaterialForce(b, -on_wall, point);
   ++active_;
 }
@@ -186,6 +194,7 @@ void PartitionedCoupling::beforeStep(CouplingStep& s) {
   bucketSegments(G);
   B.clearCoupling();
   std::fill(load_.begin(), load_.end(), Vec2(0, 0));
+  std::fill(couple_.begin(), couple_.end(), Real(0));
   active_ = 0;
   // (1) DEM: each block against the wall segments near it. Vertex-edge pairs both ways as in
   // seed 000 eq. 39: the wall's nodes against the block's outline, and the block's core
@@ -271,7 +280,8 @@ void PartitionedCoupling::addGridForces(CouplingStep& s) {
     using K = decltype(k);
     for (std::size_t e = 0; e < x_.size(); ++e) {
       if (load_[e].isZero()) continue;
-      if (detail::spreadPointLoad<K>(s.grid, x_[e], half_size_, load_[e])) on_material_ += load_[e];
+      if (detail::spreadPointLoad<K>(s.grid, x_[e], half_size_, load_[e], couple_[e]))
+        on_material_ += load_[e];
     }
   });
 }
@@ -324,6 +334,7 @@ void PartitionedCoupling::afterMaterialStep(CouplingStep& s) {
                                   : Vec2(0, 0));
     }
     load_.emplace_back(0, 0);
+    couple_.push_back(0);
     stamp_.push_back(-1);
     segments_[k][1] = m;
     segments_.push_back({m, b});

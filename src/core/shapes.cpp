@@ -8,10 +8,6 @@
 namespace mpm_sdem {
 
 namespace {
-Real cross(const Vec2& a, const Vec2& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
 bool segmentsTouch(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
   const Real d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
   const Real d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);

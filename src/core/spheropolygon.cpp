@@ -10,10 +10,6 @@ namespace mpm_sdem {
 
 namespace {
 
-Real cross(const Vec2& a, const Vec2& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
 // Area, first moment and polar second moment (about the frame origin) of a simple polygon.
 struct Moments {
   Real area = 0;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <optional>
 
 #include "mpm_sdem/core/constitutive.hpp"
 #include "mpm_sdem/core/grid.hpp"
@@ -272,7 +273,7 @@ void spreadParticleForce(Grid& G, const Particles& P, int p, const Vec2& f,
     }
   }
   // (d x f) / D_p in grid units: the couple's force per unit S_Ip r_I^perp (r in cells).
-  const Real c = second > 0 ? (offset.x() * f.y() - offset.y() * f.x()) * G.inv_h / second : 0;
+  const Real c = second > 0 ? cross(offset, f) * G.inv_h / second : 0;
   for (int j = 0; j < S; ++j) {
     const int row = (sy.base + j) * G.nx + sx.base;
     const Real ry = (sy.base + j) - yg;
@@ -286,28 +287,59 @@ void spreadParticleForce(Grid& G, const Particles& P, int p, const Vec2& f,
 }
 
 // A point load at x on the nodes that carry mass, the weights renormalised over them (seed 003
-// eq. 14), so that all of it reaches the material. Returns false, adding nothing, when no node
-// around x has mass.
+// eq. 14), so that all of it reaches the material; it acts at the weights' centroid xbar (x
+// itself where every node around x has mass). With a couple (N m/m, counter-clockwise) the nodes
+// also get w_I c r_I^perp, r_I from xbar: these sum to zero and their moment is the couple (as
+// spreadParticleForce's offset), so a contact force that reaches the material inside its outline
+// keeps the lever it has on the body at the contact point. Where few nodes around x carry mass
+// (the ragged edge of a flow) their second moment about xbar can be tiny and c huge on a node of
+// little mass; the divisor is therefore at least the whole stencil's, as if every node had mass,
+// and such a load hands on only part of its couple. (Moving f itself from xbar to x as well
+// spun up torn-off bits of the wooden-block flow: its partitioned wall, split as they flew,
+// slowed the step to 11 ms.)
+// Returns false, adding nothing, when no node around x has mass.
 // half_size: GIMP's half width of the load's area, in cells (> 0).
 template <class K>
-bool spreadPointLoad(Grid& G, const Vec2& x, Real half_size, const Vec2& f) {
+bool spreadPointLoad(Grid& G, const Vec2& x, Real half_size, const Vec2& f,
+                     std::optional<Real> couple = std::nullopt) {
   constexpr int S = K::kSupport;
   Real xg, yg;
   Stencil1D sx, sy;
   stencils<K>(G, x.x(), x.y(), half_size, xg, yg, sx, sy);
   Real sum = 0;
+  Vec2 mean(0, 0);  // the weights' centroid relative to x, in cells
   for (int j = 0; j < S; ++j) {
     const int row = (sy.base + j) * G.nx + sx.base;
-    for (int i = 0; i < S; ++i) sum += G.mass[row + i] > 0 ? sx.w[i] * sy.w[j] : 0;
+    for (int i = 0; i < S; ++i) {
+      if (!(G.mass[row + i] > 0)) continue;
+      const Real w = sx.w[i] * sy.w[j];
+      sum += w;
+      mean += w * Vec2((sx.base + i) - xg, (sy.base + j) - yg);
+    }
   }
   if (!(sum > 0)) return false;
+  mean /= sum;
+  Real c = 0;  // the couple's force per unit w_I r_I^perp (r in cells)
+  if (couple) {
+    Real second = 0;
+    for (int j = 0; j < S; ++j) {
+      const int row = (sy.base + j) * G.nx + sx.base;
+      for (int i = 0; i < S; ++i) {
+        if (!(G.mass[row + i] > 0)) continue;
+        const Vec2 r = Vec2((sx.base + i) - xg, (sy.base + j) - yg) - mean;
+        second += sx.w[i] * sy.w[j] / sum * r.squaredNorm();
+      }
+    }
+    c = *couple * G.inv_h / std::max(second, sx.second_moment + sy.second_moment);
+  }
   for (int j = 0; j < S; ++j) {
     const int row = (sy.base + j) * G.nx + sx.base;
     for (int i = 0; i < S; ++i) {
       if (!(G.mass[row + i] > 0)) continue;
       const Real w = sx.w[i] * sy.w[j] / sum;
-      G.force_x[row + i] += w * f.x();
-      G.force_y[row + i] += w * f.y();
+      const Vec2 r = Vec2((sx.base + i) - xg, (sy.base + j) - yg) - mean;
+      G.force_x[row + i] += w * (f.x() - c * r.y());
+      G.force_y[row + i] += w * (f.y() + c * r.x());
     }
   }
   return true;

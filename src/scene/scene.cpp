@@ -375,9 +375,10 @@ void parseBodies(const Context& ctx, const MapReader& top, Scene& s,
 }
 
 BlockDef parseBlock(const Context& ctx, const YAML::Node& n, const std::string& path) {
-  MapReader r(ctx, n, path,
-              {"name", "type", "shape", "size", "vertices", "radius", "rounding", "position",
-               "angle", "velocity", "angular_velocity", "density", "friction", "restitution"});
+  MapReader r(
+      ctx, n, path,
+      {"name", "type", "shape", "size", "vertices", "radius", "rounding", "position", "angle",
+       "velocity", "angular_velocity", "density", "friction", "restitution", "adhesion"});
   BlockDef b;
   b.name = r.text("name");
   b.type = r.choiceOf<BodyType>(r.node("type"), r.path("type"),
@@ -432,6 +433,8 @@ BlockDef parseBlock(const Context& ctx, const YAML::Node& n, const std::string& 
   b.restitution = r.number("restitution", "(dimensionless)", b.restitution);
   r.require(b.restitution > 0 && b.restitution <= 1, "restitution",
             "must be in (0, 1] (0 would need an infinite damper), got " + num(b.restitution));
+  b.adhesion = r.number("adhesion", "Pa", b.adhesion);
+  r.require(b.adhesion >= 0, "adhesion", "must be >= 0 Pa, got " + num(b.adhesion));
   if (b.type == BodyType::kStatic) {
     r.require(!r.has("velocity") && !r.has("angular_velocity"), "velocity",
               "a static block does not move; make it kinematic to give it a velocity");
@@ -493,6 +496,15 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
         "model", {{"penalty", BlockContactModel::kPenalty}, {"box2d", BlockContactModel::kBox2D}},
         c.model);
     readSprings(r, c.normal_stiffness, c.tangential_stiffness);
+  }
+  if (s.world.block_contact.model != BlockContactModel::kPenalty) {
+    for (std::size_t i = 0; i < s.world.blocks.size(); ++i) {
+      if (s.world.blocks[i].adhesion > 0) {
+        ctx.fail(list[i]["adhesion"], "blocks[" + std::to_string(i) + "].adhesion",
+                 "needs block_contact.model: penalty (Box2D's contact solver has no adhesion); "
+                 "remove it or switch the model");
+      }
+    }
   }
   if (top.has("coupling")) {
     MapReader r(ctx, top.node("coupling"), "coupling",

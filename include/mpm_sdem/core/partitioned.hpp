@@ -49,6 +49,7 @@ class PartitionedCoupling final : public Coupling {
 
   Real h_;
   std::vector<Vec2> x_, v_, load_;
+  std::vector<Real> couple_;  // each load's moment about its node (N m/m), from the contact point
   std::vector<int> body_;     // the body each boundary particle was placed on
   std::vector<int> host_;     // its nearest point of that body (moves it), or -1
   std::vector<Vec2> offset_;  // from the host (m)

@@ -10,4 +10,9 @@ namespace mpm_sdem {
 using Real = double;
 using Vec2 = Eigen::Matrix<Real, 2, 1>;
 
+// The z component of a x b: the moment of a force b at lever a (N m/m), twice a triangle's area.
+inline Real cross(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
 }  // namespace mpm_sdem
