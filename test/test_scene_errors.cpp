@@ -144,7 +144,7 @@ INSTANTIATE_TEST_SUITE_P(
                                {"blocks.wedge.adhesion=-1"},
                                "--set blocks.wedge.adhesion=-1",
                                "blocks[1].adhesion",
-                               "must be >= 0 Pa"},
+                               "must be a finite number >= 0 Pa"},
                       BadScene{"AdhesionWithBox2DContacts",
                                "valid_blocks.yaml",
                                {"blocks.wedge.adhesion=30", "block_contact.model=box2d"},

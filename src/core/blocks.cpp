@@ -15,6 +15,15 @@ using detail::box2dReach;
 using detail::fromB2;
 using detail::toB2;
 
+std::string adhesionProblem(Real adhesion, BlockContactModel model) {
+  if (!(adhesion >= 0 && std::isfinite(adhesion)))
+    return "must be a finite number >= 0 Pa, got " + std::to_string(adhesion);
+  if (adhesion > 0 && model != BlockContactModel::kPenalty)
+    return "needs block_contact.model: penalty (Box2D's contact solver has no adhesion); remove "
+           "it or switch the model";
+  return "";
+}
+
 std::vector<Vec2> placedCore(const BlockDef& d) {
   std::vector<Vec2> v;
   const Real c = std::cos(d.angle), s = std::sin(d.angle);
@@ -78,12 +87,9 @@ void Blocks::checkDef(const BlockDef& d) const {
   // infinite one.
   if (!(d.restitution > 0 && d.restitution <= 1))
     throw std::invalid_argument("block '" + d.name + "': restitution must be in (0, 1]");
-  if (!(d.adhesion >= 0 && std::isfinite(d.adhesion)))
-    throw std::invalid_argument("block '" + d.name + "': adhesion must be finite and >= 0 Pa");
-  if (d.adhesion > 0 && contact_.model != BlockContactModel::kPenalty)
-    throw std::invalid_argument("block '" + d.name +
-                                "': adhesion needs block_contact model penalty (Box2D's contact "
-                                "solver has none)");
+  const std::string adhesion = adhesionProblem(d.adhesion, contact_.model);
+  if (!adhesion.empty())
+    throw std::invalid_argument("block '" + d.name + "': adhesion " + adhesion);
 }
 
 int Blocks::add(const BlockDef& def) {

@@ -433,8 +433,7 @@ BlockDef parseBlock(const Context& ctx, const YAML::Node& n, const std::string& 
   b.restitution = r.number("restitution", "(dimensionless)", b.restitution);
   r.require(b.restitution > 0 && b.restitution <= 1, "restitution",
             "must be in (0, 1] (0 would need an infinite damper), got " + num(b.restitution));
-  b.adhesion = r.number("adhesion", "Pa", b.adhesion);
-  r.require(b.adhesion >= 0, "adhesion", "must be >= 0 Pa, got " + num(b.adhesion));
+  b.adhesion = r.number("adhesion", "Pa", b.adhesion);  // checked with the contact model below
   if (b.type == BodyType::kStatic) {
     r.require(!r.has("velocity") && !r.has("angular_velocity"), "velocity",
               "a static block does not move; make it kinematic to give it a velocity");
@@ -497,14 +496,11 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
         c.model);
     readSprings(r, c.normal_stiffness, c.tangential_stiffness);
   }
-  if (s.world.block_contact.model != BlockContactModel::kPenalty) {
-    for (std::size_t i = 0; i < s.world.blocks.size(); ++i) {
-      if (s.world.blocks[i].adhesion > 0) {
-        ctx.fail(list[i]["adhesion"], "blocks[" + std::to_string(i) + "].adhesion",
-                 "needs block_contact.model: penalty (Box2D's contact solver has no adhesion); "
-                 "remove it or switch the model");
-      }
-    }
+  for (std::size_t i = 0; i < s.world.blocks.size(); ++i) {
+    const std::string problem =
+        adhesionProblem(s.world.blocks[i].adhesion, s.world.block_contact.model);
+    if (!problem.empty())
+      ctx.fail(list[i]["adhesion"], "blocks[" + std::to_string(i) + "].adhesion", problem);
   }
   if (top.has("coupling")) {
     MapReader r(ctx, top.node("coupling"), "coupling",
