@@ -169,11 +169,11 @@ TEST(RuntimeBlocks, AddedToASceneWithoutBlocksFallsAndIsRemoved) {
   disk.core = {Vec2(0, 0)};
   disk.rounding = 0.01;
   disk.position = Vec2(0.05, 0.05);  // inside the column of material
-  EXPECT_NE(world.placementProblem(disk, false).find("material"), std::string::npos);
+  EXPECT_NE(world.placementProblem(disk, false).text().find("material"), std::string::npos);
   disk.position = Vec2(0.395, 0.15);  // reaches past the right wall
-  EXPECT_NE(world.placementProblem(disk, false).find("domain"), std::string::npos);
+  EXPECT_NE(world.placementProblem(disk, false).text().find("domain"), std::string::npos);
   disk.position = Vec2(0.3, 0.15);
-  ASSERT_EQ(world.placementProblem(disk, false), "");
+  ASSERT_EQ(world.placementProblem(disk, false).text(), "");
   world.addBlock(disk);
   ASSERT_EQ(world.blocks()->count(), 1);
   EXPECT_EQ(world.chooseTimeStep().limit, StepLimit::kContact);

@@ -3,8 +3,11 @@
 // parse.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <cstdlib>
+
 #include <filesystem>
+#include <fstream>
 
 #include "helpers.hpp"
 #include "mpm_sdem/scene/scene.hpp"
@@ -77,7 +80,7 @@ INSTANTIATE_TEST_SUITE_P(
                                {},
                                "bad_density.yaml:21:14",
                                "materials[0].density",
-                               "must be > 0 kg/m^3"},
+                               "must be in [0.1, 100000] kg/m^3, got -1300"},
                       BadScene{"PoissonRatioOutOfRange",
                                "bad_poisson.yaml",
                                {},
@@ -89,13 +92,13 @@ INSTANTIATE_TEST_SUITE_P(
                                {},
                                "bad_youngs.yaml:22:21",
                                "materials[0].youngs_modulus",
-                               "must be > 0 Pa"},
+                               "must be in [1, 1e+13] Pa, got 0"},
                       BadScene{"NonPositiveCellSize",
                                "bad_cell_size.yaml",
                                {},
                                "bad_cell_size.yaml:10:14",
                                "grid.cell_size",
-                               "must be > 0 m"},
+                               "must be in [1e-05, 1000] m, got 0"},
                       BadScene{"BodyOutsideDomain",
                                "body_outside.yaml",
                                {},
@@ -144,7 +147,7 @@ INSTANTIATE_TEST_SUITE_P(
                                {"blocks.wedge.adhesion=-1"},
                                "--set blocks.wedge.adhesion=-1",
                                "blocks[1].adhesion",
-                               "must be a finite number >= 0 Pa"},
+                               "must be in [0, 1e+12] Pa, got -1"},
                       BadScene{"AdhesionWithBox2DContacts",
                                "valid_blocks.yaml",
                                {"blocks.wedge.adhesion=30", "block_contact.model=box2d"},
@@ -192,7 +195,7 @@ INSTANTIATE_TEST_SUITE_P(
                                {},
                                "bad_block_rounding.yaml:46:15",
                                "blocks[1].rounding",
-                               "must be > 0 m"},
+                               "must be in [1e-05, 1000] m, got 0"},
                       BadScene{"BlocksOverlap",
                                "bad_block_overlap.yaml",
                                {},
@@ -210,8 +213,162 @@ INSTANTIATE_TEST_SUITE_P(
                                {"materials.sand.density=-3"},
                                "--set materials.sand.density=-3",
                                "materials[0].density",
-                               "must be > 0 kg/m^3"}),
+                               "must be in [0.1, 100000] kg/m^3, got -3"},
+                      // Ranges that keep the arithmetic sound and time moving (limits.hpp).
+                      BadScene{"BlockDensityOverflowsBox2D",
+                               "valid_blocks.yaml",
+                               {"blocks.wedge.density=1e300"},
+                               "--set blocks.wedge.density=1e300",
+                               "blocks[1].density",
+                               "must be in [0.1, 100000] kg/m^3, got 1e+300"},
+                      BadScene{"BlockDensityFreezesTime",
+                               "valid_blocks.yaml",
+                               {"blocks.wedge.density=1e-300"},
+                               "--set blocks.wedge.density=1e-300",
+                               "blocks[1].density",
+                               "got 1e-300"},
+                      BadScene{"BlockNameNotARosName",
+                               "valid_blocks.yaml",
+                               {"blocks.wedge.name=block 1"},
+                               "--set blocks.wedge.name=block 1",
+                               "blocks[1].name",
+                               "only letters, digits and '_' (a ROS name and tf frame)"},
+                      BadScene{"BlockNameAPath",
+                               "valid_blocks.yaml",
+                               {"blocks.wedge.name=../../etc/passwd"},
+                               "blocks.wedge.name=../../etc/passwd",
+                               "blocks[1].name",
+                               "got '../../etc/passwd'"},
+                      BadScene{"MaterialNameEmpty",
+                               "valid.yaml",
+                               {"materials.sand.name=\"\""},
+                               "--set materials.sand.name",
+                               "materials[0].name",
+                               "must not be empty"},
+                      BadScene{"StaticBlockWithVelocity",
+                               "valid_blocks.yaml",
+                               {"blocks.floor.velocity=[1, 0]"},
+                               "--set blocks.floor.velocity=[1, 0]",
+                               "blocks[0].velocity",
+                               "a static block does not move"},
+                      BadScene{"BlockFasterThanTheStepAllows",
+                               "valid_blocks.yaml",
+                               {"blocks.wedge.velocity=[1e15, 0]"},
+                               "--set blocks.wedge.velocity=[1e15, 0]",
+                               "blocks[1].velocity",
+                               "at most 1000 m/s"},
+                      BadScene{"BlockSpinFasterThanTheStepAllows",
+                               "valid_blocks.yaml",
+                               {"blocks.wedge.angular_velocity=1e6"},
+                               "--set blocks.wedge.angular_velocity=1e6",
+                               "blocks[1].angular_velocity",
+                               "at most 1000 m/s"},
+                      BadScene{"MovingBlockOutsideTheDomain",
+                               "valid_blocks.yaml",
+                               {"blocks.wedge.position=[0.5, 0.05]"},
+                               "--set blocks.wedge.position=[0.5, 0.05]",
+                               "blocks[1].position",
+                               "reaches outside the domain"},
+                      BadScene{"StaticBlockAwayFromTheDomain",
+                               "valid_blocks.yaml",
+                               {"blocks.floor.position=[0.2, 5]"},
+                               "--set blocks.floor.position=[0.2, 5]",
+                               "blocks[0].position",
+                               "does not touch the domain"},
+                      BadScene{"StiffnessFreezesTime",
+                               "valid_blocks.yaml",
+                               {"coupling.normal_stiffness=1e300"},
+                               "--set coupling.normal_stiffness=1e300",
+                               "coupling.normal_stiffness",
+                               "must be in [1, 1e+13] N/m per m"},
+                      BadScene{"ModulusFreezesTime",
+                               "valid.yaml",
+                               {"materials.sand.youngs_modulus=1e300"},
+                               "--set materials.sand.youngs_modulus=1e300",
+                               "materials[0].youngs_modulus",
+                               "must be in [1, 1e+13] Pa"},
+                      BadScene{"GravityBeyondAnyCentrifuge",
+                               "valid.yaml",
+                               {"solver.gravity=[0, -1e30]"},
+                               "--set solver.gravity=[0, -1e30]",
+                               "solver.gravity",
+                               "its magnitude must be in [0, 10000] m/s^2"},
+                      BadScene{"TimeStepFreezesTime",
+                               "valid.yaml",
+                               {"time.dt=1e-300"},
+                               "--set time.dt=1e-300",
+                               "time.dt",
+                               "must be in [1e-09, 1000] s"},
+                      BadScene{"DomainBeyondFloatPrecision",
+                               "valid.yaml",
+                               {"domain.max=[2147483648, 0.2]"},
+                               "--set domain.max=[2147483648, 0.2]",
+                               "domain.max",
+                               "must be in [-100000, 100000] m"},
+                      // 1e10 nodes: beyond half the memory of any machine this runs on.
+                      BadScene{"DomainBeyondMemory",
+                               "valid.yaml",
+                               {"domain.max=[1000, 1000]"},
+                               "valid.yaml",
+                               "grid.cell_size",
+                               "more than half this machine's"},
+                      BadScene{"CellsBeyondMemory",
+                               "valid.yaml",
+                               {"grid.cell_size=1e-5", "domain.max=[10, 10]"},
+                               "--set grid.cell_size=1e-5",
+                               "grid.cell_size",
+                               "use larger cells or a smaller domain"},
+                      BadScene{"VerletDistanceListsEverything",
+                               "valid_blocks.yaml",
+                               {"coupling.verlet_distance=1e300"},
+                               "--set coupling.verlet_distance=1e300",
+                               "coupling.verlet_distance",
+                               "must be in (0, 5 cell sizes"}),
     [](const ::testing::TestParamInfo<BadScene>& info) { return std::string(info.param.test); });
+
+// Only a regular file of bounded size is read: a FIFO would block for ever, /dev/zero never end.
+TEST(SceneErrors, OnlyARegularFileIsRead) {
+  namespace fs = std::filesystem;
+  const auto refused = [](const std::string& path) {
+    try {
+      loadScene(path);
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(refused("/dev/zero").find("not a regular file"), std::string::npos);
+  EXPECT_NE(refused(fs::temp_directory_path().string()).find("not a regular file"),
+            std::string::npos);
+  EXPECT_NE(refused("/no/such/scene.yaml").find("no such scene file"), std::string::npos);
+  const fs::path fifo = fs::temp_directory_path() / "mpm_sdem_test_fifo.yaml";
+  fs::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_NE(refused(fifo.string()).find("not a regular file"), std::string::npos);
+  fs::remove(fifo);
+  const fs::path big = fs::temp_directory_path() / "mpm_sdem_test_big.yaml";
+  {
+    std::ofstream out(big);
+    out << "# " << std::string(2 << 20, 'x') << "\n";
+  }
+  EXPECT_NE(refused(big.string()).find("more than a scene file's"), std::string::npos);
+  fs::remove(big);
+}
+
+// A scene whose values each lie in range can still ask for a step that would stop the clock:
+// World refuses it, naming the term (here a 10 um block with the stiffest springs allowed).
+TEST(SceneErrors, AStepBelowTheFloorIsRefusedByTheWorld) {
+  Scene s = loadScene(test::sourcePath("test/data/valid_blocks.yaml"),
+                      {"coupling.normal_stiffness=1e13", "materials.sand.youngs_modulus=1e13",
+                       "materials.sand.density=0.1"});
+  try {
+    World world(s.world);
+    FAIL() << "accepted a first step of " << world.chooseTimeStep().dt << " s";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("a simulated second would take over"), std::string::npos)
+        << e.what();
+  }
+}
 
 TEST(SceneErrors, OverrideByMaterialNameIsApplied) {
   const Scene s =

@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "mpm_sdem/core/block_checks.hpp"
+
 #include "box2d_shapes.hpp"
 #include "contact_impulse.hpp"
 
@@ -14,15 +16,6 @@ using detail::box2dPolygon;
 using detail::box2dReach;
 using detail::fromB2;
 using detail::toB2;
-
-std::string adhesionProblem(Real adhesion, BlockContactModel model) {
-  if (!(adhesion >= 0 && std::isfinite(adhesion)))
-    return "must be a finite number >= 0 Pa, got " + std::to_string(adhesion);
-  if (adhesion > 0 && model != BlockContactModel::kPenalty)
-    return "needs block_contact.model: penalty (Box2D's contact solver has no adhesion); remove "
-           "it or switch the model";
-  return "";
-}
 
 std::vector<Vec2> placedCore(const BlockDef& d) {
   std::vector<Vec2> v;
@@ -79,17 +72,8 @@ Blocks::Blocks(const std::vector<BlockDef>& defs, const BlockContactDef& contact
 }
 
 void Blocks::checkDef(const BlockDef& d) const {
-  const std::string problem = coreProblem(d.core);
-  if (!problem.empty()) throw std::invalid_argument("block '" + d.name + "': " + problem);
-  if (!(d.rounding > 0))
-    throw std::invalid_argument("block '" + d.name + "': rounding must be > 0");
-  // A dashpot gives any restitution above 0 (restitutionDampingRatio); 0 would need an
-  // infinite one.
-  if (!(d.restitution > 0 && d.restitution <= 1))
-    throw std::invalid_argument("block '" + d.name + "': restitution must be in (0, 1]");
-  const std::string adhesion = adhesionProblem(d.adhesion, contact_.model);
-  if (!adhesion.empty())
-    throw std::invalid_argument("block '" + d.name + "': adhesion " + adhesion);
+  const Problem p = blockProblem(d, contact_.model);
+  if (!p.empty()) throw std::invalid_argument("block '" + d.name + "': " + p.text());
 }
 
 int Blocks::add(const BlockDef& def) {

@@ -6,8 +6,10 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "mpm_sdem/core/block_checks.hpp"
 #include "mpm_sdem/core/constitutive.hpp"
 #include "mpm_sdem/core/imp_coupling.hpp"
+#include "mpm_sdem/core/limits.hpp"
 #include "transfer.hpp"
 
 namespace mpm_sdem {
@@ -39,8 +41,25 @@ int cellCount(Real extent, Real h, const char* what) {
 
 }  // namespace
 
+std::string sizeProblem(const DomainDef& domain, Real cell_size,
+                        const std::vector<BodyDef>& bodies) {
+  if (const std::string p = limits::rangeProblem(cell_size, limits::kCellSize); !p.empty())
+    return "cell_size " + p;
+  const Vec2 cells = (domain.max - domain.min) / cell_size;
+  const double pad = 2 * Grid::kPad + 1;
+  double points = 0;
+  for (const BodyDef& b : bodies) {
+    Vec2 lo, hi;
+    bounds(b.shape, lo, hi);
+    const Vec2 extent = (hi - lo) / cell_size * b.points_per_cell;
+    points += (extent.x() + 1) * (extent.y() + 1);  // at most one point per lattice site
+  }
+  return limits::memoryProblem((cells.x() + pad) * (cells.y() + pad), points);
+}
+
 World::World(const WorldDef& def) : def_(def) {
-  if (!(def.cell_size > 0)) throw std::invalid_argument("cell_size must be positive");
+  if (const std::string p = sizeProblem(def.domain, def.cell_size, def.bodies); !p.empty())
+    throw std::invalid_argument("the world " + p);
   const Vec2 size = def.domain.max - def.domain.min;
   grid_.init(def.domain.min, cellCount(size.x(), def.cell_size, "width"),
              cellCount(size.y(), def.cell_size, "height"), def.cell_size);
@@ -110,6 +129,21 @@ World::World(const WorldDef& def) : def_(def) {
       throw std::invalid_argument(msg);
     }
   }
+  // A step below the floor would freeze simulated time (a stiffness or modulus far beyond the
+  // others, a sliver of a block): refuse it with the term that sets it.
+  const TimeStepChoice first = def.time_step.automatic
+                                   ? stepBound(def.time_step.cfl, def.time_step.contact_factor)
+                                   : TimeStepChoice{def.time_step.fixed, StepLimit::kFixed};
+  if (!(first.dt >= limits::kMinTimeStep)) {
+    char msg[320];
+    std::snprintf(msg, sizeof msg,
+                  "the stable step at the start is %.3g s (the %s term of seed 000 eq. 51), "
+                  "below %.3g s: a simulated second would take over %.3g steps; check the "
+                  "moduli, densities, spring stiffnesses and block sizes",
+                  first.dt, stepLimitName(first.limit), limits::kMinTimeStep,
+                  1 / limits::kMinTimeStep);
+    throw std::invalid_argument(msg);
+  }
 }
 
 CouplingDef World::resolvedCoupling() const {
@@ -129,53 +163,34 @@ void World::initCoupling() {
                            def_.bodies);
 }
 
-std::string World::placementProblem(const BlockDef& d, bool allow_overlap, int moving) const {
-  std::string problem = coreProblem(d.core);
-  if (!problem.empty()) return problem;
-  auto finite = [](Real v) { return std::isfinite(v); };
-  if (!(d.rounding > 0) || !finite(d.rounding)) return "rounding must be a finite length > 0 m";
-  if (!finite(d.position.x()) || !finite(d.position.y()) || !finite(d.angle) ||
-      !finite(d.velocity.x()) || !finite(d.velocity.y()) || !finite(d.angular_velocity))
-    return "pose and twist must be finite numbers";
-  if (d.type == BodyType::kDynamic && !(d.density > 0 && finite(d.density)))
-    return "a dynamic block needs a finite density > 0 kg/m^3";
-  if (!(d.friction >= 0 && finite(d.friction))) return "friction must be a finite number >= 0";
-  if (!(d.restitution > 0 && d.restitution <= 1))
-    return "restitution must be in (0, 1] (1: elastic)";
+Problem World::placementProblem(const BlockDef& d, bool allow_overlap, int moving) const {
+  if (Problem own = blockProblem(d, def_.block_contact.model); !own.empty()) return own;
   if (!coupling_ && def_.coupling.scheme == CouplingScheme::kPartitioned && steps_ > 0)
-    return "the partitioned coupling builds its wall from the material's initial outline: give "
-           "the scene a block from the start, or use another coupling scheme";
+    return {"",
+            "the partitioned coupling builds its wall from the material's initial outline: "
+            "give the scene a block from the start, or use another coupling scheme"};
   if (moving < 0 && blocks_ && blocks_->find(d.name) >= 0)
-    return "a block named '" + d.name + "' exists";
-  if (d.name.empty()) return "the block needs a name";
+    return {"name", "a block named '" + d.name + "' exists"};
+  if (Problem where = domainProblem(d, def_.domain.min, def_.domain.max); !where.empty())
+    return where;
+  if (allow_overlap) return {};
   const std::vector<Vec2> core = placedCore(d);
-  const int n = static_cast<int>(core.size());
-  for (const Vec2& v : core) {
-    const Vec2 lo = v.array() - d.rounding, hi = v.array() + d.rounding;
-    if ((lo.array() < def_.domain.min.array()).any() ||
-        (hi.array() > def_.domain.max.array()).any())
-      return "the block reaches outside the domain [" + std::to_string(def_.domain.min.x()) + ", " +
-             std::to_string(def_.domain.max.x()) + "] x [" + std::to_string(def_.domain.min.y()) +
-             ", " + std::to_string(def_.domain.max.y()) + "] m";
-  }
-  if (allow_overlap) return "";
   if (blocks_) {
     for (int i = 0; i < blocks_->count(); ++i) {
       if (i == moving) continue;
-      const Real r = blocks_->def(i).rounding;
-      const Real gap =
-          roundedGap(core.data(), n, d.rounding, blocks_->vertices(i), blocks_->vertexCount(i), r);
-      // Touching is fine; the same 1% tolerance as the scene files.
-      if (gap < -0.01 * std::min(r, d.rounding))
-        return "it overlaps block '" + blocks_->def(i).name + "' by " + std::to_string(-gap) + " m";
+      const Real depth = startingOverlap(core, d.rounding, blocks_->vertices(i),
+                                         blocks_->vertexCount(i), blocks_->def(i).rounding);
+      if (depth > 0)
+        return {"position", "it overlaps block '" + blocks_->def(i).name + "' by " +
+                                std::to_string(depth) + " m"};
     }
   }
   const Particles& P = particles_;
   for (std::size_t p = 0; p < P.size(); ++p) {
-    if (closestOnCore(core.data(), n, Vec2(P.x[p], P.y[p])).distance < d.rounding)
-      return "it overlaps the material (point " + std::to_string(p) + " is inside)";
+    if (insideOutline(core, d.rounding, Vec2(P.x[p], P.y[p])))
+      return {"position", "it overlaps the material (point " + std::to_string(p) + " is inside)"};
   }
-  return "";
+  return {};
 }
 
 int World::addBlock(const BlockDef& d) {

@@ -3,6 +3,8 @@
 #include <ctime>
 #include <filesystem>
 
+#include "mpm_sdem/core/limits.hpp"
+
 namespace mpm_sdem::node {
 
 namespace {
@@ -38,6 +40,19 @@ std::string defaultBagPath(const std::string& scene) {
       .string();
 }
 
+// A tf frame: names (limits::nameProblem) joined by '/', without a leading one (tf2).
+std::string frameProblem(const std::string& frame) {
+  if (frame.empty()) return "must not be empty";
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t end = frame.find('/', start);
+    if (const std::string p = limits::nameProblem(frame.substr(start, end - start)); !p.empty())
+      return "must be names joined by '/': " + p;
+    if (end == std::string::npos) return "";
+    start = end + 1;
+  }
+}
+
 }  // namespace
 
 bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
@@ -69,6 +84,7 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
       read(pnh, "threads", p.threads, "a whole number >= 0", error) &&
       read(pnh, "allow_overlap", p.allow_overlap, "true or false", error) &&
       read(pnh, "record", p.record, "true or false", error) &&
+      read(pnh, "record_after_reset", p.record_after_reset, "true or false", error) &&
       read(pnh, "bag", p.bag, "a file path", error) &&
       readRate(pnh, "bag_cloud_rate", p.record_def.cloud_rate, error) &&
       readRate(pnh, "bag_state_rate", p.record_def.state_rate, error) &&
@@ -80,6 +96,10 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
     error = m;
     return false;
   };
+  if (const std::string f = frameProblem(p.fixed_frame); !f.empty())
+    return fail("parameter ~fixed_frame " + f);
+  if (const std::string f = frameProblem(p.tf_prefix); !f.empty())
+    return fail("parameter ~tf_prefix " + f);
   if (decimation < 1) return fail("parameter ~cloud_decimation must be >= 1");
   if (bag_decimation < 1) return fail("parameter ~bag_cloud_decimation must be >= 1");
   p.cloud_decimation = decimation;
@@ -93,7 +113,8 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
   } else {
     return fail("parameter ~image/color_by must be speed or pressure, got '" + color + "'");
   }
-  if (!(p.image.max_value >= 0)) return fail("parameter ~image/max_value must be >= 0 (0: auto)");
+  if (!(p.image.max_value >= 0) || !std::isfinite(p.image.max_value))
+    return fail("parameter ~image/max_value must be a finite number >= 0 (0: auto)");
   if (!(p.real_time_factor >= 0) || !std::isfinite(p.real_time_factor))
     return fail("parameter ~real_time_factor must be >= 0 (0: as fast as possible)");
   if (end == "pause") {
@@ -105,10 +126,20 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
   } else {
     return fail("parameter ~end_action must be pause, shutdown or continue, got '" + end + "'");
   }
-  if (p.threads < 0) return fail("parameter ~threads must be >= 0 (0: all cores)");
+  if (const std::string t = limits::threadsProblem(p.threads); !t.empty())
+    return fail("parameter ~threads " + t);
   if (!(p.video_fps > 0) || p.video_fps > 1000)
     return fail("parameter ~video_fps must be in (0, 1000] frames per simulated second");
   if (p.record && p.bag.empty()) p.bag = defaultBagPath(p.scene);
+  // Checked now, so that a bad path stops the node before it simulates anything.
+  if (p.record) {
+    if (const std::string b = bagPathProblem(p.bag); !b.empty())
+      return fail("parameter ~bag: " + b);
+  }
+  if (!p.video.empty()) {
+    if (const std::string v = render::videoPathProblem(p.video); !v.empty())
+      return fail("parameter ~video: " + v);
+  }
   p.record_def.fixed_frame = p.fixed_frame;
   p.record_def.tf_prefix = p.tf_prefix;
   p.record_def.ns = pnh.getNamespace();

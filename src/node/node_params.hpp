@@ -31,10 +31,13 @@ struct NodeParams {
   double real_time_factor = 0;
   bool start_paused = false;
   EndAction end_action = EndAction::kPause;  // at the scene's time.end
-  int threads = 0;                           // OpenMP threads; 0: OMP_NUM_THREADS or all cores
+  int threads = 0;  // OpenMP threads, 0 to the cores; 0: chosen while running (ThreadTuner)
   bool allow_overlap = false;  // spawn/teleport obstacles into material or other blocks
   // Recording.
   bool record = false;
+  // After ~reset: false closes the bag and the video (one recording per run of the node);
+  // true starts new ones (<bag>-reset<n>.bag, ...).
+  bool record_after_reset = false;
   std::string bag;  // path; default <ROS_HOME or ~/.ros>/mpm_sdem_<scene>_<date>.bag
   RecordDef record_def;
   std::string video;  // .avi/.mp4/.mkv path; empty: no video

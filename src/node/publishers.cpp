@@ -34,7 +34,8 @@ Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
   blocks_ = {pnh.advertise<mpm_sdem::BlockStates>("blocks", 10), SampleClock(params.blocks_rate)};
   poses_ = {pnh.advertise<geometry_msgs::PoseArray>("block_poses", 10),
             SampleClock(params.blocks_rate)};
-  stats_ = {pnh.advertise<mpm_sdem::SimStats>("stats", 10), SampleClock(params.stats_rate)};
+  // Latched: a late listener (rostopic echo -n1) gets the last one at once, paused or not.
+  stats_ = {pnh.advertise<mpm_sdem::SimStats>("stats", 10, true), SampleClock(params.stats_rate)};
   image_ = {pnh.advertise<sensor_msgs::Image>("image", 1), SampleClock(params.image_rate)};
   markers_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   scene_ = pnh.advertise<std_msgs::String>("scene", 1, true);
@@ -44,13 +45,10 @@ Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
   std_msgs::String text;
   text.data = scene_text;
   scene_.publish(text);
-  stats_wall_ = std::chrono::steady_clock::now();
 }
 
 void Publishers::restart(const World& world) {
   for (Channel* c : {&particles_, &blocks_, &poses_, &stats_, &image_, &clock_}) c->clock.restart();
-  stats_sim_time_ = world.time();
-  stats_wall_ = std::chrono::steady_clock::now();
   stats_profile_ = world.profile();
 }
 
@@ -58,17 +56,35 @@ void Publishers::blocksChanged(const World& world) {
   markers_.publish(conversions::toMarkers(world, params_.tf_prefix, ros::Time(0)));
 }
 
-void Publishers::publish(const World& world, const TimeStepChoice& dt, bool paused, bool force) {
+void Publishers::publishClock(const std_msgs::Header& header) {
+  rosgraph_msgs::Clock clock;
+  clock.clock = header.stamp;
+  clock_.pub.publish(clock);
+}
+
+void Publishers::publishStats(const World& world, const conversions::StatsInput& status,
+                              const std_msgs::Header& header) {
+  conversions::StatsInput in = status;
+  in.profile = since(world.profile(), stats_profile_);
+  stats_.pub.publish(conversions::toStats(world, measure(world), in, header));
+  stats_profile_ = world.profile();
+}
+
+void Publishers::publishIdle(const World& world, const conversions::StatsInput& status) {
+  std_msgs::Header header;
+  header.stamp = conversions::toRosTime(world.time());
+  header.frame_id = params_.fixed_frame;
+  if (use_sim_time_) publishClock(header);
+  publishStats(world, status, header);
+}
+
+void Publishers::publish(const World& world, const conversions::StatsInput& status, bool force) {
   const Real t = world.time();
   std_msgs::Header header;
   header.stamp = conversions::toRosTime(t);
   header.frame_id = params_.fixed_frame;
   // Clock first, so that a listener's time has reached the stamps that follow it.
-  if (clock_.due(t, force, true)) {
-    rosgraph_msgs::Clock clock;
-    clock.clock = header.stamp;
-    clock_.pub.publish(clock);
-  }
+  if (clock_.due(t, force, true)) publishClock(header);
   if (particles_.due(t, force)) {
     conversions::toPointCloud(world, params_.cloud_decimation, header, cloud_);
     particles_.pub.publish(cloud_);
@@ -85,19 +101,8 @@ void Publishers::publish(const World& world, const TimeStepChoice& dt, bool paus
     }
     if (poses_due) poses_.pub.publish(conversions::toPoseArray(states));
   }
-  if (stats_.due(t, force)) {
-    const auto now = std::chrono::steady_clock::now();
-    const double wall = std::chrono::duration<double>(now - stats_wall_).count();
-    conversions::StatsInput in;
-    in.dt = dt;
-    in.paused = paused;
-    in.real_time_factor = wall > 0 ? (t - stats_sim_time_) / wall : 0;
-    in.profile = since(world.profile(), stats_profile_);
-    stats_.pub.publish(conversions::toStats(world, measure(world), in, header));
-    stats_sim_time_ = t;
-    stats_wall_ = now;
-    stats_profile_ = world.profile();
-  }
+  // Always, like tf: latched, so that it answers a late `rostopic echo -n1`.
+  if (stats_.due(t, force, true)) publishStats(world, status, header);
   if (image_.due(t, force)) {
     render::renderWorld(world, params_.image, frame_);
     sensor_msgs::Image img;

@@ -19,8 +19,11 @@ class Publishers {
              const std::string& scene_text);
 
   // After a step: publishes what is due at the world's time. force: everything now (after a
-  // command while paused, so that listeners see its effect).
-  void publish(const World& world, const TimeStepChoice& dt, bool paused, bool force = false);
+  // command while paused, so that listeners see its effect). status: the step, pause and
+  // real-time factor for ~stats (its profile is taken here, per message).
+  void publish(const World& world, const conversions::StatsInput& status, bool force = false);
+  // While paused, every half second: /clock at the world's time and ~stats.
+  void publishIdle(const World& world, const conversions::StatsInput& status);
   // The set of blocks changed (spawn, remove, reset): markers are re-sent.
   void blocksChanged(const World& world);
   // Restart the rate schedules at the world's time (after a reset).
@@ -41,9 +44,10 @@ class Publishers {
   bool use_sim_time_ = false;
   sensor_msgs::PointCloud2 cloud_;
   cv::Mat frame_;
-  // For the real-time factor and per-stage times in ~stats: the state at the last message.
-  Real stats_sim_time_ = 0;
-  std::chrono::steady_clock::time_point stats_wall_;
+  void publishClock(const std_msgs::Header& header);
+  void publishStats(const World& world, const conversions::StatsInput& status,
+                    const std_msgs::Header& header);
+  // For the per-stage times in ~stats: the profile at the last message.
   Profile stats_profile_;
 };
 

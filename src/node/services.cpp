@@ -1,6 +1,10 @@
 #include "services.hpp"
 
 #include <cmath>
+#include <cstdio>
+
+#include "mpm_sdem/core/block_checks.hpp"
+#include "mpm_sdem/core/limits.hpp"
 
 #include "mpm_sdem/ros/conversions.hpp"
 #include "sim_loop.hpp"
@@ -17,23 +21,35 @@ bool answer(Res& res, const Reply& r) {
   return true;  // the call itself succeeded; success says whether the request did
 }
 
-bool finite(double v) {
-  return std::isfinite(v);
-}
-bool finitePose(const geometry_msgs::Pose2D& p) {
-  return finite(p.x) && finite(p.y) && finite(p.theta);
-}
-bool finiteTwist(const geometry_msgs::Twist& t) {
-  return finite(t.linear.x) && finite(t.linear.y) && finite(t.angular.z);
+// A problem in the words of the requests: their fields, not the scene file's keys.
+std::string inRequestTerms(const Problem& p) {
+  static const std::pair<const char*, const char*> fields[] = {
+      {"velocity", "twist"},
+      {"angular_velocity", "twist.angular.z"},
+      {"position", "pose"},
+      {"angle", "pose.theta"},
+      {"rounding", "rounding (with disk_radius for a disk)"}};
+  for (const auto& [key, field] : fields) {
+    if (p.key == key) return std::string(field) + ": " + p.message;
+  }
+  return p.text();
 }
 
-// Sets a block's velocity from a twist of its frame origin, refusing a static block.
+// Sets a block's velocity from a twist of its frame origin: refused for a static block and
+// for a twist that would collapse the step (twistProblem).
 Reply applyTwist(World& w, int i, const geometry_msgs::Twist& t) {
-  if (w.blocks()->def(i).type == BodyType::kStatic)
-    return {false, "block '" + w.blocks()->def(i).name +
-                       "' is static and cannot move; spawn it kinematic to command its twist"};
-  w.blocks()->setVelocity(i, Vec2(t.linear.x, t.linear.y), t.angular.z);
+  const BlockDef& def = w.blocks()->def(i);
+  const Vec2 v(t.linear.x, t.linear.y);
+  if (const Problem p = twistProblem(def, v, t.angular.z); !p.empty())
+    return {false, "block '" + def.name + "': " + inRequestTerms(p)};
+  w.blocks()->setVelocity(i, v, t.angular.z);
   return {true, ""};
+}
+
+std::string describe(const geometry_msgs::Twist& t) {
+  char s[128];
+  std::snprintf(s, sizeof s, "(%.3g, %.3g) m/s, %.3g rad/s", t.linear.x, t.linear.y, t.angular.z);
+  return s;
 }
 
 int findBlock(World& w, const std::string& name) {
@@ -68,38 +84,41 @@ bool Services::spawn(mpm_sdem::SpawnObstacle::Request& req,
   if (!known_type)
     return answer(res, {false, "body_type must be 0 (STATIC), 1 (KINEMATIC) or 2 (DYNAMIC), got " +
                                    std::to_string(req.body_type)});
-  if (req.name.empty() || req.name.find_first_of(" /") != std::string::npos)
-    return answer(res, {false,
-                        "name must be non-empty, without spaces or '/' (it names a tf "
-                        "frame), got '" +
-                            req.name + "'"});
-  if (!finitePose(req.pose) || !finiteTwist(req.twist) || !finite(req.rounding) ||
-      !finite(req.disk_radius) || !finite(req.density) || !finite(req.friction) ||
-      !finite(req.restitution))
-    return answer(res, {false, "every number must be finite (no NaN or infinity)"});
   if (req.vertices.empty() && !(req.disk_radius >= 0))
     return answer(res, {false, "disk_radius must be >= 0 m"});
+  // Every other value is judged by the world's rules, the scene file's (blockProblem).
   const BlockDef def = conversions::toBlockDef(req);
-  const std::string shape = coreProblem(def.core);
-  if (!shape.empty()) return answer(res, {false, "vertices: " + shape});
-  return answer(res, queue_.call([def](Simulation& s) -> Reply {
+  const std::string twist = describe(req.twist);
+  return answer(res, queue_.call([def, twist](Simulation& s) -> Reply {
     World& w = s.world();
-    const std::string problem = w.placementProblem(def, s.params().allow_overlap);
-    if (!problem.empty()) return {false, "cannot spawn '" + def.name + "': " + problem};
-    w.addBlock(def);
+    const Problem problem = w.placementProblem(def, s.params().allow_overlap);
+    const std::string name = limits::nameProblem(def.name).empty() ? def.name : "(bad name)";
+    if (!problem.empty()) return {false, "cannot spawn '" + name + "': " + inRequestTerms(problem)};
+    const int i = w.addBlock(def);
+    // A block so light or small that its springs' stable step would stop the clock.
+    if (const TimeStepChoice dt = w.chooseTimeStep(); !(dt.dt >= limits::kMinTimeStep)) {
+      w.removeBlock(i);
+      return {false, "cannot spawn '" + def.name + "': the time step would fall to " +
+                         std::to_string(dt.dt) + " s (" + stepLimitName(dt.limit) +
+                         " term); make it heavier or larger"};
+    }
     s.blocksChanged();
+    s.noteRequest("~spawn_obstacle '" + def.name + "' with twist " + twist);
     return {true, "spawned '" + def.name + "' at t = " + std::to_string(w.time()) + " s"};
   }));
 }
 
 bool Services::remove(mpm_sdem::RemoveObstacle::Request& req,
                       mpm_sdem::RemoveObstacle::Response& res) {
+  if (const std::string p = limits::nameProblem(req.name); !p.empty())
+    return answer(res, {false, "name " + p});
   const std::string name = req.name;
   return answer(res, queue_.call([name](Simulation& s) -> Reply {
     const int i = findBlock(s.world(), name);
     if (i < 0) return {false, "no block named '" + name + "'"};
     s.world().removeBlock(i);
     s.blocksChanged();
+    s.noteRequest("~remove_obstacle '" + name + "'");
     return {true, "removed '" + name + "'"};
   }));
 }
@@ -108,25 +127,33 @@ bool Services::setState(mpm_sdem::SetObstacleState::Request& req,
                         mpm_sdem::SetObstacleState::Response& res) {
   if (!req.set_pose && !req.set_twist)
     return answer(res, {false, "nothing to do: set set_pose and/or set_twist"});
-  if ((req.set_pose && !finitePose(req.pose)) || (req.set_twist && !finiteTwist(req.twist)))
-    return answer(res, {false, "pose and twist must be finite (no NaN or infinity)"});
+  if (const std::string p = limits::nameProblem(req.name); !p.empty())
+    return answer(res, {false, "name " + p});
   const mpm_sdem::SetObstacleState::Request r = req;
   return answer(res, queue_.call([r](Simulation& s) -> Reply {
     World& w = s.world();
     const int i = findBlock(w, r.name);
     if (i < 0) return {false, "no block named '" + r.name + "'"};
-    if (r.set_twist && w.blocks()->def(i).type == BodyType::kStatic)
-      return applyTwist(w, i, r.twist);  // refused, before any change
+    // Both checked before either is applied: a refused request changes nothing.
+    if (r.set_twist) {
+      const Problem p = twistProblem(w.blocks()->def(i), Vec2(r.twist.linear.x, r.twist.linear.y),
+                                     r.twist.angular.z);
+      if (!p.empty())
+        return {false, "cannot set the twist of '" + r.name + "': " + inRequestTerms(p)};
+    }
     if (r.set_pose) {
       BlockDef moved = w.blocks()->def(i);
       moved.position = Vec2(r.pose.x, r.pose.y);
       moved.angle = r.pose.theta;
-      const std::string problem = w.placementProblem(moved, s.params().allow_overlap, i);
-      if (!problem.empty()) return {false, "cannot move '" + r.name + "' there: " + problem};
+      const Problem problem = w.placementProblem(moved, s.params().allow_overlap, i);
+      if (!problem.empty())
+        return {false, "cannot move '" + r.name + "' there: " + inRequestTerms(problem)};
       w.blocks()->setPose(i, moved.position, moved.angle);
     }
     if (r.set_twist) applyTwist(w, i, r.twist);
     s.blocksChanged();
+    s.noteRequest("~set_obstacle_state '" + r.name + "'" +
+                  (r.set_twist ? " with twist " + describe(r.twist) : std::string()));
     return {true, "set the state of '" + r.name + "'"};
   }));
 }
@@ -150,7 +177,7 @@ bool Services::step(mpm_sdem::StepSimulation::Request& req,
   if (req.steps < 1 || req.steps > 1000000)
     return answer(res, {false, "steps must be 1 to 1000000, got " + std::to_string(req.steps)});
   const long n = req.steps;
-  std::uint64_t step = 0;
+  std::uint64_t step = 0;  // where the steps start: the loop takes them after this answer
   double time = 0;
   const Reply r = queue_.call([n, &step, &time](Simulation& s) -> Reply {
     const Reply out = s.step(n);
@@ -164,9 +191,8 @@ bool Services::step(mpm_sdem::StepSimulation::Request& req,
 }
 
 void Services::obstacleCommand(const mpm_sdem::ObstacleCommand::ConstPtr& msg) {
-  if (!finiteTwist(msg->twist)) {
-    ROS_WARN_THROTTLE(1, "~obstacle_cmd for '%s' ignored: the twist is not finite",
-                      msg->name.c_str());
+  if (const std::string p = limits::nameProblem(msg->name); !p.empty()) {
+    ROS_WARN_THROTTLE(1, "~obstacle_cmd ignored: name %s", p.c_str());
     return;
   }
   const std::string name = msg->name;
@@ -175,7 +201,10 @@ void Services::obstacleCommand(const mpm_sdem::ObstacleCommand::ConstPtr& msg) {
     const int i = findBlock(s.world(), name);
     const Reply r =
         i < 0 ? Reply{false, "no block named '" + name + "'"} : applyTwist(s.world(), i, twist);
-    if (!r.success) ROS_WARN_THROTTLE(1, "~obstacle_cmd ignored: %s", r.message.c_str());
+    if (!r.success)
+      ROS_WARN_THROTTLE(1, "~obstacle_cmd ignored: %s", r.message.c_str());
+    else
+      s.noteRequest("~obstacle_cmd '" + name + "' twist " + describe(twist));
     return r;
   });
 }

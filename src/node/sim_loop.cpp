@@ -2,7 +2,11 @@
 
 #include <omp.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <thread>
+
+#include "mpm_sdem/core/limits.hpp"
 
 namespace mpm_sdem::node {
 
@@ -27,7 +31,10 @@ Simulation::Simulation(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
       world_(std::make_unique<World>(scene_.world)),
       publishers_(nh, pnh, params_, scene_text_),
       paused_(params.start_paused) {
-  if (params_.threads > 0) omp_set_num_threads(params_.threads);
+  if (params_.threads > 0)
+    omp_set_num_threads(params_.threads);
+  else
+    tuner_ = std::make_unique<ThreadTuner>(std::min(omp_get_max_threads(), limits::logicalCores()));
   dt_ = world_->chooseTimeStep();
   openRecordings();
   publishers_.blocksChanged(*world_);
@@ -37,9 +44,18 @@ Simulation::~Simulation() {
   closeRecordings();
 }
 
-void Simulation::openRecordings() {
+conversions::StatsInput Simulation::status() const {
   conversions::StatsInput in;
   in.dt = dt_;
+  in.paused = paused_ && pending_steps_ == 0;
+  in.real_time_factor = real_time_.factor();
+  in.profile = world_->profile();
+  return in;
+}
+
+void Simulation::openRecordings() {
+  if (!recording_) return;
+  const conversions::StatsInput in = status();
   if (params_.record) {
     bag_ = std::make_unique<BagRecorder>(withSuffix(params_.bag, resets_), params_.record_def,
                                          scene_text_);
@@ -87,36 +103,62 @@ void Simulation::logProgress(bool force) {
   const auto now = Clock::now();
   if (!force && now - last_log_ < std::chrono::seconds(10)) return;
   last_log_ = now;
-  const double wall = std::chrono::duration<double>(now - start_wall_).count();
-  ROS_INFO("t = %.4f / %.4g s, step %ld, dt %.3g s (%s), %.3g x real time", world_->time(),
-           scene_.end_time, world_->stepCount(), dt_.dt, stepLimitName(dt_.limit),
-           wall > 0 ? world_->time() / wall : 0.0);
+  ROS_INFO(
+      "t = %.4f / %.4g s, step %ld, dt %.3g s (%s), %.3g x real time over the last %g s "
+      "run, %d threads",
+      world_->time(), scene_.end_time, world_->stepCount(), dt_.dt, stepLimitName(dt_.limit),
+      real_time_.factor(), RealTimeMeter::kWindow, tuner_ ? tuner_->threads() : params_.threads);
+}
+
+void Simulation::noteRequest(const std::string& what) {
+  char at[96];
+  std::snprintf(at, sizeof at, " at step %ld, t = %.6g s", world_->stepCount(), world_->time());
+  last_request_ = what + at;
+}
+
+void Simulation::fail(const std::string& what, Real dt) {
+  unstable_ = true;
+  paused_ = true;
+  pending_steps_ = 0;
+  const std::string cause = last_request_.empty()
+                                ? "Call ~reset, and lower time.cfl or time.dt in the scene."
+                                : "The last request before it was " + last_request_ +
+                                      "; call ~reset (a request like it will do the same).";
+  ROS_ERROR("%s at step %ld, t = %.6g s (dt = %.3g s, %s); paused. %s", what.c_str(),
+            world_->stepCount(), world_->time(), dt, stepLimitName(dt_.limit), cause.c_str());
+  publishers_.publish(*world_, status(), true);
+}
+
+void Simulation::publishWhilePaused() {
+  // /clock holds its time and ~stats (latched) stays fresh for late listeners.
+  const auto now = Clock::now();
+  if (now - last_idle_ < std::chrono::milliseconds(500)) return;
+  last_idle_ = now;
+  publishers_.publishIdle(*world_, status());
 }
 
 bool Simulation::advance() {
+  const auto start = Clock::now();
+  if (tuner_) tuner_->beforeStep();
   dt_ = world_->chooseTimeStep();
+  if (!(dt_.dt >= limits::kMinTimeStep)) {
+    fail("the stable step collapsed (below " + std::to_string(limits::kMinTimeStep) +
+             " s: time would stand still)",
+         dt_.dt);
+    return false;
+  }
   const bool to_end = params_.end_action != EndAction::kContinue && !end_reached_;
   const Real h = to_end ? stepTowards(dt_.dt, scene_.end_time, world_->time()) : dt_.dt;
   const StepInfo info = world_->step(h);
+  if (tuner_) tuner_->afterStep(std::chrono::duration<double>(Clock::now() - start).count());
   if (!info.finite) {
-    unstable_ = true;
-    paused_ = true;
-    ROS_ERROR(
-        "the state became non-finite at step %ld, t = %.6g s (dt = %.3g s, %s); paused. "
-        "Call ~reset, and lower time.cfl or time.dt in the scene.",
-        world_->stepCount(), world_->time(), h, stepLimitName(dt_.limit));
+    fail("the state became non-finite", h);
     return false;
   }
-  if (bag_) {
-    conversions::StatsInput in;
-    in.dt = dt_;
-    const double wall = std::chrono::duration<double>(Clock::now() - start_wall_).count();
-    in.real_time_factor = wall > 0 ? world_->time() / wall : 0;
-    in.profile = world_->profile();
-    bag_->record(*world_, in);
-  }
+  real_time_.sample(world_->time());
+  if (bag_) bag_->record(*world_, status());
   if (video_) video_->record(*world_);
-  publishers_.publish(*world_, dt_, paused_);
+  publishers_.publish(*world_, status());
   if (to_end && world_->time() >= scene_.end_time * (1 - 1e-9)) {
     end_reached_ = true;
     logProgress(true);
@@ -128,16 +170,17 @@ bool Simulation::advance() {
       ROS_INFO("reached the scene's end time %g s; paused (~resume continues past it)",
                scene_.end_time);
       paused_ = true;
-      publishers_.publish(*world_, dt_, paused_, true);
+      pending_steps_ = 0;
+      publishers_.publish(*world_, status(), true);
     }
   }
   return true;
 }
 
 int Simulation::run(const volatile std::sig_atomic_t& stop) {
-  start_wall_ = last_log_ = Clock::now();
+  last_log_ = Clock::now();
   restartPacing();
-  publishers_.publish(*world_, dt_, paused_, true);
+  publishers_.publish(*world_, status(), true);
   ROS_INFO(
       "scene %s: %zu material points, %d blocks (coupling %s), end %g s, first dt %.3g s "
       "(%s)%s",
@@ -147,12 +190,20 @@ int Simulation::run(const volatile std::sig_atomic_t& stop) {
       stepLimitName(dt_.limit), paused_ ? "; paused (call ~resume)" : "");
   while (!stop && ros::ok() && !shutdown_) {
     commands_.runPending(*this);
-    if (paused_) {
+    const bool stepping = pending_steps_ > 0;
+    real_time_.setRunning(!paused_ || stepping);
+    if (paused_ && !stepping) {
+      publishWhilePaused();
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
       continue;
     }
-    advance();
-    pace();
+    // ~step's steps run unpaced, one per pass, so that commands (~pause) come in between.
+    if (advance() && stepping && --pending_steps_ == 0) {
+      ROS_INFO("took the %ld steps asked for; at step %ld, t = %.6g s", asked_steps_,
+               world_->stepCount(), world_->time());
+      publishers_.publish(*world_, status(), true);
+    }
+    if (!stepping) pace();
     logProgress(false);
   }
   commands_.close("the node is shutting down");
@@ -162,9 +213,17 @@ int Simulation::run(const volatile std::sig_atomic_t& stop) {
 }
 
 Reply Simulation::pause() {
+  if (pending_steps_ > 0) {
+    const long left = pending_steps_;
+    pending_steps_ = 0;
+    publishers_.publish(*world_, status(), true);
+    return {true, "cancelled the last " + std::to_string(left) + " of " +
+                      std::to_string(asked_steps_) + " steps; paused at step " +
+                      std::to_string(world_->stepCount())};
+  }
   if (paused_) return {true, "already paused at step " + std::to_string(world_->stepCount())};
   paused_ = true;
-  publishers_.publish(*world_, dt_, paused_, true);
+  publishers_.publish(*world_, status(), true);
   return {true, "paused at step " + std::to_string(world_->stepCount()) +
                     ", t = " + std::to_string(world_->time()) + " s"};
 }
@@ -173,42 +232,53 @@ Reply Simulation::resume() {
   if (unstable_) return {false, "the state is non-finite; call ~reset first"};
   if (!paused_) return {true, "already running"};
   paused_ = false;
+  pending_steps_ = 0;
   restartPacing();
   return {true, "resumed at step " + std::to_string(world_->stepCount())};
 }
 
 Reply Simulation::reset() {
+  const bool was_recording = bag_ || video_;
   closeRecordings();
   world_ = std::make_unique<World>(scene_.world);
   ++resets_;
   unstable_ = false;
   end_reached_ = false;
+  pending_steps_ = 0;
+  last_request_.clear();
+  real_time_.clear();
   dt_ = world_->chooseTimeStep();
+  recording_ = params_.record_after_reset;
   openRecordings();
   publishers_.restart(*world_);
   publishers_.blocksChanged(*world_);
-  publishers_.publish(*world_, dt_, paused_, true);
+  publishers_.publish(*world_, status(), true);
   restartPacing();
-  return {true, "reset to t = 0 (spawned obstacles removed)" +
-                    std::string(paused_ ? "; still paused" : "")};
+  std::string note = paused_ ? "; still paused" : "";
+  if (was_recording && !recording_)
+    note +=
+        "; the recording of the run before it is closed (~record_after_reset: true records "
+        "each run)";
+  return {true, "reset to t = 0 (spawned obstacles removed)" + note};
 }
 
 Reply Simulation::step(long n) {
   if (!paused_) return {false, "~step works while paused; call ~pause first"};
   if (unstable_) return {false, "the state is non-finite; call ~reset first"};
-  for (long k = 0; k < n; ++k) {
-    if (!advance())
-      return {false, "the state became non-finite after " + std::to_string(k + 1) + " steps"};
-  }
-  publishers_.publish(*world_, dt_, paused_, true);
-  return {true, "took " + std::to_string(n) + " steps"};
+  if (pending_steps_ > 0)
+    return {false, "still taking " + std::to_string(pending_steps_) + " of " +
+                       std::to_string(asked_steps_) + " steps; ~pause cancels them"};
+  pending_steps_ = asked_steps_ = n;
+  return {true, "taking " + std::to_string(n) + " steps from step " +
+                    std::to_string(world_->stepCount()) +
+                    " between commands; ~pause cancels them, ~stats shows the progress"};
 }
 
 void Simulation::blocksChanged() {
   dt_ = world_->chooseTimeStep();
   publishers_.blocksChanged(*world_);
   if (bag_) bag_->blocksChanged(*world_);
-  publishers_.publish(*world_, dt_, paused_, true);
+  publishers_.publish(*world_, status(), true);
 }
 
 }  // namespace mpm_sdem::node

@@ -10,6 +10,8 @@
 #include <string>
 
 #include "commands.hpp"
+#include "mpm_sdem/core/real_time_meter.hpp"
+#include "mpm_sdem/core/thread_tuner.hpp"
 #include "mpm_sdem/render/render.hpp"
 #include "mpm_sdem/ros/bag_recorder.hpp"
 #include "mpm_sdem/scene/scene.hpp"
@@ -33,17 +35,23 @@ class Simulation {
   // For commands, on the loop thread.
   World& world() { return *world_; }
   const NodeParams& params() const { return params_; }
-  Reply pause();
+  Reply pause();  // also cancels the steps ~step asked for
   Reply resume();
   Reply reset();
-  // Takes n steps now (the simulation must be paused); false when the state became unstable.
+  // Queues n steps, taken by the loop between commands while paused; answers at once.
   Reply step(long n);
   // After a spawn or remove: markers and the time step change.
   void blocksChanged();
+  // A request that changed the world (said in the error if the state then fails).
+  void noteRequest(const std::string& what);
 
  private:
-  // One step and its outputs; false when the state became non-finite (the loop then pauses).
+  // One step and its outputs; false when the state became non-finite or the step collapsed
+  // (the loop then pauses).
   bool advance();
+  void fail(const std::string& what, Real dt);
+  conversions::StatsInput status() const;
+  void publishWhilePaused();
   void openRecordings();
   void closeRecordings();
   void restartPacing();
@@ -63,10 +71,15 @@ class Simulation {
   bool end_reached_ = false;
   bool unstable_ = false;
   bool shutdown_ = false;
+  bool recording_ = true;  // false after a reset unless record_after_reset
   int resets_ = 0;
+  long pending_steps_ = 0, asked_steps_ = 0;  // of a ~step request
+  std::string last_request_;                  // "" since the start or the last reset
   using Clock = std::chrono::steady_clock;
-  Clock::time_point pace_wall_, start_wall_, last_log_;
+  Clock::time_point pace_wall_, last_log_, last_idle_;
   Real pace_sim_ = 0;
+  RealTimeMeter real_time_;
+  std::unique_ptr<ThreadTuner> tuner_;  // with threads: 0
 };
 
 }  // namespace mpm_sdem::node

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "mpm_sdem/core/constitutive.hpp"
+#include "mpm_sdem/core/limits.hpp"
 
 namespace mpm_sdem::render {
 
@@ -85,9 +86,15 @@ void renderWorld(const World& world, const RenderDef& def, cv::Mat& image) {
               cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
 }
 
+std::string videoPathProblem(const std::string& path) {
+  return limits::outputFileProblem(path, {".avi", ".mp4", ".mkv"});
+}
+
 VideoRecorder::VideoRecorder(const std::string& path, double fps, const RenderDef& def,
                              const World& world)
     : def_(def), path_(path), frames_due_(fps) {
+  if (const std::string problem = videoPathProblem(path); !problem.empty())
+    throw std::runtime_error("cannot write the video: " + problem);
   if (!(fps > 0))
     throw std::runtime_error("video frame rate must be > 0, got " + std::to_string(fps));
   if (!writer_.open(path, fourccFor(path), fps, imageSize(world, def.width))) {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "mpm_sdem/core/diagnostics.hpp"
+#include "mpm_sdem/core/limits.hpp"
 
 namespace mpm_sdem {
 
@@ -27,6 +28,8 @@ BagRecorder::BagRecorder(const std::string& path, const RecordDef& def,
       path_(path),
       clouds_(def.cloud_rate),
       states_(def.state_rate) {
+  if (const std::string problem = bagPathProblem(path); !problem.empty())
+    throw std::runtime_error("cannot record the bag: " + problem);
   try {
     bag_->open(path_ + ".active", rosbag::bagmode::Write);
   } catch (const rosbag::BagException& e) {
@@ -35,6 +38,10 @@ BagRecorder::BagRecorder(const std::string& path, const RecordDef& def,
   std_msgs::String scene;
   scene.data = scene_text;
   write(def_.ns + "/scene", 0, scene, true);
+}
+
+std::string bagPathProblem(const std::string& path) {
+  return limits::outputFileProblem(path, {".bag"});
 }
 
 BagRecorder::~BagRecorder() {

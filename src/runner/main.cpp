@@ -2,6 +2,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +12,8 @@
 #include <sstream>
 
 #include "mpm_sdem/core/diagnostics.hpp"
+#include "mpm_sdem/core/limits.hpp"
+#include "mpm_sdem/core/thread_tuner.hpp"
 #include "mpm_sdem/ros/bag_recorder.hpp"
 #include "mpm_sdem/scene/scene.hpp"
 #include "options.hpp"
@@ -74,6 +77,9 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
+  std::unique_ptr<ThreadTuner> tuner;
+  if (opt.threads == 0)
+    tuner = std::make_unique<ThreadTuner>(std::min(omp_get_max_threads(), limits::logicalCores()));
 
   Scene scene;
   try {
@@ -136,9 +142,21 @@ int main(int argc, char** argv) {
   int status = 0;
   const Real eps = 1e-9 * scene.end_time;
   while (world.time() < scene.end_time - eps && !g_interrupted) {
+    const auto start = std::chrono::steady_clock::now();
+    if (tuner) tuner->beforeStep();
     dt = world.chooseTimeStep();
+    if (!(dt.dt >= limits::kMinTimeStep)) {
+      std::cerr << "\nerror: the stable step collapsed to " << dt.dt << " s ("
+                << stepLimitName(dt.limit) << " term) at step " << world.stepCount()
+                << ", t = " << world.time() << " s: time would stand still.\n";
+      status = 3;
+      break;
+    }
     const Real h = stepTowards(dt.dt, scene.end_time, world.time());
     const StepInfo info = world.step(h);
+    if (tuner)
+      tuner->afterStep(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     if (!info.finite) {
       std::cerr << "\nerror: the state became non-finite at step " << world.stepCount()
                 << ", t = " << world.time() << " s (dt = " << h

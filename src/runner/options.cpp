@@ -2,6 +2,9 @@
 
 #include <cstdlib>
 
+#include "mpm_sdem/core/limits.hpp"
+#include "mpm_sdem/ros/bag_recorder.hpp"
+
 namespace mpm_sdem::runner {
 
 const char* usage() {
@@ -11,7 +14,8 @@ const char* usage() {
          "                   (default: out/<scene file name without .yaml>)\n"
          "  --set key=value  override a scene value, e.g. --set time.end=0.5 or\n"
          "                   --set materials.sand.density=1500 (repeatable)\n"
-         "  --threads N      OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
+         "  --threads N      OpenMP threads, 1 to the cores (default 0: chosen while running,\n"
+         "                   up to OMP_NUM_THREADS or all cores, from measured step times)\n"
          "  --quiet          no progress line\n"
          "  --bag FILE       also record a rosbag as the node does (no ROS master needed)\n"
          "  --bag-cloud-rate HZ, --bag-state-rate HZ\n"
@@ -47,8 +51,10 @@ bool parseOptions(int argc, char** argv, Options& out, std::string& error, bool&
       if (!v) return false;
       char* end = nullptr;
       const long n = std::strtol(v, &end, 10);
-      if (*end != '\0' || n < 1 || n > 1024) {
-        error = std::string("--threads takes a whole number >= 1, got '") + v + "'";
+      if (*end != '\0' || *v == '\0' || !limits::threadsProblem(n).empty()) {
+        error = std::string("--threads ") +
+                (*end != '\0' || *v == '\0' ? "takes a whole number, got '" + std::string(v) + "'"
+                                            : limits::threadsProblem(n));
         return false;
       }
       out.threads = static_cast<int>(n);
@@ -81,6 +87,12 @@ bool parseOptions(int argc, char** argv, Options& out, std::string& error, bool&
   if (out.scene.empty()) {
     error = "no scene file given";
     return false;
+  }
+  if (!out.bag.empty()) {
+    if (const std::string p = bagPathProblem(out.bag); !p.empty()) {
+      error = "--bag: " + p;
+      return false;
+    }
   }
   return true;
 }

@@ -10,7 +10,7 @@ struct Options {
   std::string scene;
   std::string out_dir;  // empty: out/<scene file stem>
   std::vector<std::string> overrides;
-  int threads = 0;  // 0: OpenMP default (OMP_NUM_THREADS or all cores)
+  int threads = 0;  // 0: chosen while running (ThreadTuner), up to the OpenMP default
   bool quiet = false;
   std::string bag;              // write a rosbag like the node's (empty: none)
   double bag_cloud_rate = 30;   // Hz of simulation time

@@ -1,11 +1,14 @@
 #include "mpm_sdem/scene/scene.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
 
+#include "mpm_sdem/core/block_checks.hpp"
+#include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/shapes.hpp"
 #include "mpm_sdem/core/spheropolygon.hpp"
 #include "yaml_reader.hpp"
@@ -98,8 +101,7 @@ WallDef parseWall(const Context& ctx, const MapReader& walls, const char* side) 
   MapReader m(ctx, n, path, {"type", "friction"});
   w.type = type(m.node("type"), m.path("type"));
   if (w.type == WallType::kFriction) {
-    w.friction = m.number("friction", "(dimensionless)");
-    m.require(w.friction >= 0, "friction", "must be >= 0, got " + num(w.friction));
+    w.friction = m.number("friction", limits::kFriction);
   }
   return w;
 }
@@ -107,8 +109,8 @@ WallDef parseWall(const Context& ctx, const MapReader& walls, const char* side) 
 void parseDomain(const Context& ctx, const MapReader& top, Scene& s) {
   MapReader d(ctx, top.node("domain"), "domain", {"min", "max", "walls"});
   DomainDef& dom = s.world.domain;
-  dom.min = d.vec2("min", "m");
-  dom.max = d.vec2("max", "m");
+  dom.min = d.vec2("min", limits::kCoordinate);
+  dom.max = d.vec2("max", limits::kCoordinate);
   d.require(dom.max.x() > dom.min.x() && dom.max.y() > dom.min.y(), "max",
             "must exceed domain.min in both x and y");
   if (d.has("walls")) {
@@ -122,8 +124,7 @@ void parseDomain(const Context& ctx, const MapReader& top, Scene& s) {
 
 void parseGrid(const Context& ctx, const MapReader& top, Scene& s) {
   MapReader g(ctx, top.node("grid"), "grid", {"cell_size"});
-  const Real h = g.number("cell_size", "m");
-  g.require(h > 0, "cell_size", "must be > 0 m, got " + num(h));
+  const Real h = g.number("cell_size", limits::kCellSize);
   const Vec2 size = s.world.domain.max - s.world.domain.min;
   for (int a = 0; a < 2; ++a) {
     const Real n = size[a] / h;
@@ -135,6 +136,8 @@ void parseGrid(const Context& ctx, const MapReader& top, Scene& s) {
                     " m");
     }
   }
+  const std::string memory = sizeProblem(s.world.domain, h, {});
+  g.require(memory.empty(), "cell_size", "the grid " + memory);
   s.world.cell_size = h;
 }
 
@@ -164,6 +167,8 @@ void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
       "stress_update", {{"usf", StressUpdate::kUsf}, {"usl", StressUpdate::kUsl}},
       sol.stress_update);
   sol.gravity = r.vec2("gravity", "m/s^2", sol.gravity);
+  r.require(limits::rangeProblem(sol.gravity.norm(), limits::kGravity).empty(), "gravity",
+            "its magnitude " + limits::rangeProblem(sol.gravity.norm(), limits::kGravity));
   sol.damping = r.number("damping", "(dimensionless)", sol.damping);
   r.require(
       sol.damping >= 0 && sol.damping < 1, "damping",
@@ -172,14 +177,13 @@ void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
 
 void parseTime(const Context& ctx, const MapReader& top, Scene& s) {
   MapReader t(ctx, top.node("time"), "time", {"end", "dt", "cfl", "dt_max", "contact_factor"});
-  s.end_time = t.number("end", "s");
-  t.require(s.end_time > 0, "end", "must be > 0 s, got " + num(s.end_time));
+  s.end_time = t.number("end", limits::kEndTime);
   TimeStepDef& ts = s.world.time_step;
   if (t.has("dt") && !(t.node("dt").IsScalar() && t.node("dt").Scalar() == "auto")) {
     ts.automatic = false;
-    ts.fixed = t.number("dt", "s (or 'auto')");
-    t.require(ts.fixed > 0 && ts.fixed <= s.end_time, "dt",
-              "must be in (0, time.end] s or 'auto', got " + num(ts.fixed));
+    ts.fixed = t.number("dt", limits::kTimeStep);
+    t.require(ts.fixed <= s.end_time, "dt",
+              "must be at most time.end = " + num(s.end_time) + " s, or 'auto'");
   }
   if (t.has("cfl")) {
     t.require(ts.automatic, "cfl", "applies only with dt: auto");
@@ -195,8 +199,7 @@ void parseTime(const Context& ctx, const MapReader& top, Scene& s) {
   }
   if (t.has("dt_max")) {
     t.require(ts.automatic, "dt_max", "applies only with dt: auto");
-    ts.max = t.number("dt_max", "s");
-    t.require(ts.max > 0, "dt_max", "must be > 0 s, got " + num(ts.max));
+    ts.max = t.number("dt_max", limits::kTimeStep);
   }
 }
 
@@ -206,12 +209,11 @@ MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::st
                "shear_modulus", "friction_angle", "dilation_angle", "cohesion", "tensile_strength",
                "separation_volume_ratio"});
   MaterialDef m;
-  m.name = r.text("name");
+  m.name = r.name("name");
   m.model = r.choiceOf<MaterialModel>(r.node("model"), r.path("model"),
                                       {{"linear_elastic", MaterialModel::kLinearElastic},
                                        {"drucker_prager", MaterialModel::kDruckerPrager}});
-  m.density = r.number("density", "kg/m^3");
-  r.require(m.density > 0, "density", "must be > 0 kg/m^3, got " + num(m.density));
+  m.density = r.number("density", limits::kDensity);
   const bool e_nu = r.has("youngs_modulus") || r.has("poisson_ratio");
   const bool k_g = r.has("bulk_modulus") || r.has("shear_modulus");
   if (e_nu == k_g) {
@@ -220,18 +222,15 @@ MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::st
              "bulk_modulus and shear_modulus (Pa)");
   }
   if (e_nu) {
-    const Real E = r.number("youngs_modulus", "Pa");
-    r.require(E > 0, "youngs_modulus", "must be > 0 Pa, got " + num(E));
+    const Real E = r.number("youngs_modulus", limits::kModulus);
     const Real nu = r.number("poisson_ratio", "(dimensionless)");
     r.require(nu > -1 && nu < 0.5, "poisson_ratio",
               "must be in (-1, 0.5) (0.5 is incompressible), got " + num(nu));
     m.bulk_modulus = E / (3 * (1 - 2 * nu));
     m.shear_modulus = E / (2 * (1 + nu));
   } else {
-    m.bulk_modulus = r.number("bulk_modulus", "Pa");
-    r.require(m.bulk_modulus > 0, "bulk_modulus", "must be > 0 Pa, got " + num(m.bulk_modulus));
-    m.shear_modulus = r.number("shear_modulus", "Pa");
-    r.require(m.shear_modulus > 0, "shear_modulus", "must be > 0 Pa, got " + num(m.shear_modulus));
+    m.bulk_modulus = r.number("bulk_modulus", limits::kModulus);
+    m.shear_modulus = r.number("shear_modulus", limits::kModulus);
   }
   const char* plastic_keys[] = {"friction_angle", "dilation_angle", "cohesion", "tensile_strength",
                                 "separation_volume_ratio"};
@@ -246,11 +245,8 @@ MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::st
               "must be in [0, friction_angle] deg, got " + num(psi));
     m.friction_angle = phi * kDeg;
     m.dilation_angle = psi * kDeg;
-    m.cohesion = r.number("cohesion", "Pa", 0);
-    r.require(m.cohesion >= 0, "cohesion", "must be >= 0 Pa, got " + num(m.cohesion));
-    m.tensile_strength = r.number("tensile_strength", "Pa", 0);
-    r.require(m.tensile_strength >= 0, "tensile_strength",
-              "must be >= 0 Pa, got " + num(m.tensile_strength));
+    m.cohesion = r.number("cohesion", limits::kStrength, 0);
+    m.tensile_strength = r.number("tensile_strength", limits::kStrength, 0);
     m.separation_volume_ratio = r.number("separation_volume_ratio", "(dimensionless)", 0);
     r.require(m.separation_volume_ratio == 0 || m.separation_volume_ratio > 1,
               "separation_volume_ratio",
@@ -325,7 +321,7 @@ void parseBodies(const Context& ctx, const MapReader& top, Scene& s,
                 {"name", "material", "shape", "min", "max", "vertices", "center", "radius",
                  "points_per_cell", "velocity"});
     BodyDef b;
-    b.name = r.text("name");
+    b.name = r.name("name");
     const std::string mat = r.text("material");
     const auto it = materials.find(mat);
     if (it == materials.end()) {
@@ -340,6 +336,8 @@ void parseBodies(const Context& ctx, const MapReader& top, Scene& s,
               "must be a whole number in [1, 8] (points per cell per direction), got " +
                   std::to_string(b.points_per_cell));
     b.velocity = r.vec2("velocity", "m/s", b.velocity);
+    r.require(limits::rangeProblem(b.velocity.norm(), limits::kSpeed).empty(), "velocity",
+              "its magnitude " + limits::rangeProblem(b.velocity.norm(), limits::kSpeed));
 
     Vec2 lo, hi;
     bounds(b.shape, lo, hi);
@@ -350,6 +348,10 @@ void parseBodies(const Context& ctx, const MapReader& top, Scene& s,
                    num(dom.max.x()) + "] x [" + num(dom.min.y()) + ", " + num(dom.max.y()) +
                    "] m; move it inside or enlarge domain.min/max");
     }
+    std::vector<BodyDef> so_far = s.world.bodies;
+    so_far.push_back(b);
+    const std::string size = sizeProblem(dom, s.world.cell_size, so_far);
+    if (!size.empty()) ctx.fail(list[i], path, "with body '" + b.name + "' the world " + size);
     const auto points = fillPoints(b.shape, dom.min, s.world.cell_size, b.points_per_cell);
     if (points.empty()) {
       ctx.fail(list[i], path,
@@ -395,15 +397,12 @@ BlockDef parseBlock(const Context& ctx, const YAML::Node& n, const std::string& 
   r.require(kind == Kind::kDisk || !r.has("radius"), "radius", "applies only to shape: disk");
   r.require(kind != Kind::kDisk || !r.has("rounding"), "rounding",
             "a disk is a point swept by its radius: give radius only");
+  // The values' ranges are checked with the contact model, in parseBlocks (blockProblem).
   if (kind == Kind::kDisk) {
     b.rounding = r.number("radius", "m");
-    r.require(b.rounding > 0, "radius", "must be > 0 m, got " + num(b.rounding));
     b.core = {Vec2(0, 0)};
   } else {
     b.rounding = r.number("rounding", "m");
-    r.require(
-        b.rounding > 0, "rounding",
-        "must be > 0 m (the radius of the disk that rounds the block), got " + num(b.rounding));
   }
   if (kind == Kind::kBox) {
     const Vec2 size = r.vec2("size", "m");
@@ -419,34 +418,22 @@ BlockDef parseBlock(const Context& ctx, const YAML::Node& n, const std::string& 
       b.core.push_back(
           MapReader::toVec2(ctx, v[i], r.path("vertices") + "[" + std::to_string(i) + "]", "m"));
     }
-    const std::string problem = coreProblem(b.core);
-    r.require(problem.empty(), "vertices", problem);
   }
   b.position = r.vec2("position", "m");
   b.angle = r.number("angle", "deg", 0) * kDeg;
   b.velocity = r.vec2("velocity", "m/s", b.velocity);
   b.angular_velocity = r.number("angular_velocity", "rad/s", 0);
   b.density = r.number("density", "kg/m^3");
-  r.require(b.density > 0, "density", "must be > 0 kg/m^3, got " + num(b.density));
   b.friction = r.number("friction", "(dimensionless)", b.friction);
-  r.require(b.friction >= 0, "friction", "must be >= 0, got " + num(b.friction));
   b.restitution = r.number("restitution", "(dimensionless)", b.restitution);
-  r.require(b.restitution > 0 && b.restitution <= 1, "restitution",
-            "must be in (0, 1] (0 would need an infinite damper), got " + num(b.restitution));
-  b.adhesion = r.number("adhesion", "Pa", b.adhesion);  // checked with the contact model below
-  if (b.type == BodyType::kStatic) {
-    r.require(!r.has("velocity") && !r.has("angular_velocity"), "velocity",
-              "a static block does not move; make it kinematic to give it a velocity");
-  }
+  b.adhesion = r.number("adhesion", "Pa", b.adhesion);
   return b;
 }
 
 // The normal and tangential spring constants of a contact model (N/m per metre of thickness).
 void readSprings(const MapReader& r, Real& normal, Real& tangential) {
-  normal = r.number("normal_stiffness", "N/m per m", normal);
-  r.require(normal > 0, "normal_stiffness", "must be > 0 N/m, got " + num(normal));
-  tangential = r.number("tangential_stiffness", "N/m per m", tangential);
-  r.require(tangential > 0, "tangential_stiffness", "must be > 0 N/m, got " + num(tangential));
+  normal = r.number("normal_stiffness", limits::kStiffness, normal);
+  tangential = r.number("tangential_stiffness", limits::kStiffness, tangential);
 }
 
 void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
@@ -455,38 +442,9 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
   const YAML::Node list =
       top.has("blocks") ? top.node("blocks") : YAML::Node(YAML::NodeType::Sequence);
   if (!list.IsSequence()) ctx.fail(list, "blocks", "expected a list of blocks");
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const std::string path = "blocks[" + std::to_string(i) + "]";
-    BlockDef b = parseBlock(ctx, list[i], path);
-    makeCounterClockwise(b.core);
-    for (const BlockDef& other : s.world.blocks) {
-      if (other.name == b.name)
-        ctx.fail(list[i], path, "a block named '" + b.name + "' exists already");
-      // Touching is fine (stacked blocks); overlapping beyond 1% of the rounding is refused:
-      // the penalty springs would start loaded and throw the blocks apart.
-      const std::vector<Vec2> cb = placedCore(b), co = placedCore(other);
-      const Real gap = roundedGap(cb.data(), static_cast<int>(cb.size()), b.rounding, co.data(),
-                                  static_cast<int>(co.size()), other.rounding);
-      if (gap < -0.01 * std::min(b.rounding, other.rounding)) {
-        ctx.fail(list[i], path,
-                 "block '" + b.name + "' overlaps block '" + other.name + "' by " + num(-gap) +
-                     " m; move it so that the rounded outlines at most touch");
-      }
-    }
-    // Material points inside a block would be thrown out by the contact springs.
-    const std::vector<Vec2> core = placedCore(b);
-    for (const BodyDef& body : s.world.bodies) {
-      for (const Vec2& p :
-           fillPoints(body.shape, s.world.domain.min, s.world.cell_size, body.points_per_cell)) {
-        if (closestOnCore(core.data(), static_cast<int>(core.size()), p).distance < b.rounding) {
-          ctx.fail(list[i], path,
-                   "block '" + b.name + "' overlaps the material of body '" + body.name +
-                       "'; move the block or shrink the body");
-        }
-      }
-    }
-    s.world.blocks.push_back(std::move(b));
-  }
+  std::vector<BlockDef> blocks;
+  for (std::size_t i = 0; i < list.size(); ++i)
+    blocks.push_back(parseBlock(ctx, list[i], "blocks[" + std::to_string(i) + "]"));
   if (top.has("block_contact")) {
     MapReader r(ctx, top.node("block_contact"), "block_contact",
                 {"model", "normal_stiffness", "tangential_stiffness"});
@@ -496,11 +454,45 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
         c.model);
     readSprings(r, c.normal_stiffness, c.tangential_stiffness);
   }
-  for (std::size_t i = 0; i < s.world.blocks.size(); ++i) {
-    const std::string problem =
-        adhesionProblem(s.world.blocks[i].adhesion, s.world.block_contact.model);
-    if (!problem.empty())
-      ctx.fail(list[i]["adhesion"], "blocks[" + std::to_string(i) + "].adhesion", problem);
+  const DomainDef& dom = s.world.domain;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    BlockDef& b = blocks[i];
+    const std::string path = "blocks[" + std::to_string(i) + "]";
+    Problem problem = blockProblem(b, s.world.block_contact.model);
+    if (problem.empty()) problem = domainProblem(b, dom.min, dom.max);
+    if (!problem.empty()) {
+      // The core's own keys, as this block's shape spells them.
+      std::string key = problem.key;
+      if (key == "rounding" && list[i]["radius"]) key = "radius";
+      if (key == "vertices" && list[i]["size"]) key = "size";
+      const YAML::Node at = list[i][key] ? list[i][key] : list[i];
+      ctx.fail(at, path + "." + key, problem.message);
+    }
+    makeCounterClockwise(b.core);
+    const std::vector<Vec2> core = placedCore(b);
+    for (const BlockDef& other : s.world.blocks) {
+      if (other.name == b.name)
+        ctx.fail(list[i], path, "a block named '" + b.name + "' exists already");
+      const std::vector<Vec2> co = placedCore(other);
+      const Real depth =
+          startingOverlap(core, b.rounding, co.data(), static_cast<int>(co.size()), other.rounding);
+      if (depth > 0) {
+        ctx.fail(list[i], path,
+                 "block '" + b.name + "' overlaps block '" + other.name + "' by " + num(depth) +
+                     " m; move it so that the rounded outlines at most touch");
+      }
+    }
+    for (const BodyDef& body : s.world.bodies) {
+      for (const Vec2& p :
+           fillPoints(body.shape, dom.min, s.world.cell_size, body.points_per_cell)) {
+        if (insideOutline(core, b.rounding, p)) {
+          ctx.fail(list[i], path,
+                   "block '" + b.name + "' overlaps the material of body '" + body.name +
+                       "'; move the block or shrink the body");
+        }
+      }
+    }
+    s.world.blocks.push_back(std::move(b));
   }
   if (top.has("coupling")) {
     MapReader r(ctx, top.node("coupling"), "coupling",
@@ -539,8 +531,10 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
     }
     if (r.has("verlet_distance")) {
       c.verlet_distance = r.number("verlet_distance", "m");
-      r.require(c.verlet_distance > 0, "verlet_distance",
-                "must be > 0 m, got " + num(c.verlet_distance));
+      r.require(c.verlet_distance > 0 && c.verlet_distance <= 5 * h, "verlet_distance",
+                "must be in (0, 5 cell sizes = " + num(5 * h) +
+                    "] m (a longer one lists far points every step), got " +
+                    num(c.verlet_distance));
     }
   }
 }
@@ -617,6 +611,16 @@ Scene parseScene(const std::string& yaml_text, const std::string& source_name,
 }
 
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+  // Only a regular file of bounded size: a FIFO would block for ever, /dev/zero never end.
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (error || !std::filesystem::exists(status)) throw SceneError(path + ": no such scene file");
+  if (!std::filesystem::is_regular_file(status))
+    throw SceneError(path + ": not a regular file (a scene is a YAML file)");
+  const auto bytes = std::filesystem::file_size(path, error);
+  if (error || bytes > limits::kMaxSceneBytes)
+    throw SceneError(path + ": " + std::to_string(bytes) + " bytes, more than a scene file's " +
+                     std::to_string(limits::kMaxSceneBytes) + "; is this the scene?");
   std::ifstream in(path);
   if (!in) throw SceneError(path + ": cannot open the scene file");
   std::stringstream text;

@@ -129,6 +129,21 @@ Real MapReader::number(const char* key, const char* unit, Real fallback) const {
   return has(key) ? number(key, unit) : fallback;
 }
 
+Real MapReader::number(const char* key, const limits::Range& range) const {
+  const Real v = number(key, *range.unit ? range.unit : "(dimensionless)");
+  require(limits::rangeProblem(v, range).empty(), key, limits::rangeProblem(v, range));
+  return v;
+}
+Real MapReader::number(const char* key, const limits::Range& range, Real fallback) const {
+  return has(key) ? number(key, range) : fallback;
+}
+
+std::string MapReader::name(const char* key) const {
+  const std::string n = text(key);
+  require(limits::nameProblem(n).empty(), key, limits::nameProblem(n));
+  return n;
+}
+
 int MapReader::integer(const char* key, int fallback) const {
   if (!has(key)) return fallback;
   const YAML::Node n = node(key);
@@ -163,6 +178,13 @@ Vec2 MapReader::vec2(const char* key, const char* unit) const {
 }
 Vec2 MapReader::vec2(const char* key, const char* unit, const Vec2& fallback) const {
   return has(key) ? vec2(key, unit) : fallback;
+}
+
+Vec2 MapReader::vec2(const char* key, const limits::Range& range) const {
+  const Vec2 v = vec2(key, range.unit);
+  for (int a = 0; a < 2; ++a)
+    require(limits::rangeProblem(v[a], range).empty(), key, limits::rangeProblem(v[a], range));
+  return v;
 }
 
 void MapReader::require(bool ok, const char* key, const std::string& what) const {

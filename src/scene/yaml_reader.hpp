@@ -8,6 +8,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/types.hpp"
 
 namespace mpm_sdem::scene {
@@ -42,12 +43,19 @@ class MapReader {
 
   Real number(const char* key, const char* unit) const;
   Real number(const char* key, const char* unit, Real fallback) const;
+  // A number that must lie in a range of limits.hpp (its unit too), refused at its line.
+  Real number(const char* key, const limits::Range& range) const;
+  Real number(const char* key, const limits::Range& range, Real fallback) const;
+  // A name (limits::nameProblem).
+  std::string name(const char* key) const;
   int integer(const char* key, int fallback) const;
   bool boolean(const char* key, bool fallback) const;
   std::string text(const char* key) const;
   std::string text(const char* key, const std::string& fallback) const;
   Vec2 vec2(const char* key, const char* unit) const;
   Vec2 vec2(const char* key, const char* unit, const Vec2& fallback) const;
+  // A pair whose both components lie in the range.
+  Vec2 vec2(const char* key, const limits::Range& range) const;
 
   // Interprets a scalar as one of the listed names.
   template <class E>

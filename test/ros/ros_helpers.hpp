@@ -2,8 +2,14 @@
 #pragma once
 
 #include <mpm_sdem/BlockStates.h>
+#include <mpm_sdem/ObstacleCommand.h>
 #include <mpm_sdem/SimStats.h>
+#include <mpm_sdem/SpawnObstacle.h>
 #include <ros/ros.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
 
 #include <chrono>
 #include <functional>
@@ -58,6 +64,58 @@ inline const mpm_sdem::RigidBlockState* findBlock(const mpm_sdem::BlockStates& s
   for (const auto& b : s.blocks)
     if (b.name == name) return &b;
   return nullptr;
+}
+
+inline const std::string kNs = "/mpm_sdem/";
+
+// A client of the node under test: its topics, tf and services.
+struct NodeClient {
+  ros::NodeHandle nh;
+  Latest<BlockStates> blocks{nh, kNs + "blocks"};
+  Latest<SimStats> stats{nh, kNs + "stats"};
+  Latest<sensor_msgs::PointCloud2> cloud{nh, kNs + "particles"};
+  ros::Publisher cmd = nh.advertise<ObstacleCommand>(kNs + "obstacle_cmd", 10);
+  tf2_ros::Buffer tf;
+  tf2_ros::TransformListener listener{tf};
+
+  template <class S>
+  S call(const std::string& name, S srv) {
+    EXPECT_TRUE(ros::service::waitForService(kNs + name, ros::Duration(10)));
+    EXPECT_TRUE(ros::service::call(kNs + name, srv)) << name;
+    return srv;
+  }
+  bool trigger(const std::string& name) {
+    std_srvs::Trigger t;
+    return call(name, t).response.success;
+  }
+  // The block's latest state; false when it is not there.
+  bool block(const std::string& name, RigidBlockState& out) {
+    const BlockStates s = blocks.get();
+    const RigidBlockState* b = findBlock(s, name);
+    if (b) out = *b;
+    return b != nullptr;
+  }
+};
+
+// A square block of half side half (m) at (x, y), rounding 2 mm, density 500 kg/m^3.
+inline SpawnObstacle square(const std::string& name, double x, double y, double half,
+                            uint8_t type) {
+  SpawnObstacle s;
+  s.request.name = name;
+  for (auto [vx, vy] : {std::pair{-half, -half}, {half, -half}, {half, half}, {-half, half}}) {
+    geometry_msgs::Point p;
+    p.x = vx;
+    p.y = vy;
+    s.request.vertices.push_back(p);
+  }
+  s.request.rounding = 0.002;
+  s.request.pose.x = x;
+  s.request.pose.y = y;
+  s.request.body_type = type;
+  s.request.density = 500;
+  s.request.friction = 0.5;
+  s.request.restitution = 0.5;
+  return s;
 }
 
 }  // namespace mpm_sdem::test

@@ -43,10 +43,6 @@ struct BlockContactDef {
   Real tangential_stiffness = 5e6;  // N/m per metre
 };
 
-// What is wrong with a block's adhesion (Pa) under a contact model, or "" (one rule for the scene
-// parser and Blocks): finite, >= 0, and only with the penalty springs.
-std::string adhesionProblem(Real adhesion, BlockContactModel model);
-
 // Where a block is: centre of mass, orientation and velocities, SI.
 struct BlockState {
   Vec2 position{0, 0};

@@ -11,6 +11,7 @@
 #include "mpm_sdem/core/coupling.hpp"
 #include "mpm_sdem/core/grid.hpp"
 #include "mpm_sdem/core/kernels.hpp"
+#include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/material.hpp"
 #include "mpm_sdem/core/particles.hpp"
 #include "mpm_sdem/core/profile.hpp"
@@ -64,6 +65,12 @@ struct WorldDef {
   CouplingDef coupling;  // contact between material and blocks (scheme and its settings)
 };
 
+// Whether a world of this domain, cell and bodies fits in memory (limits::memoryProblem, with
+// the bodies' points counted on their bounding boxes): "" or why not. Checked before anything
+// is allocated, by the scene parser and by World.
+std::string sizeProblem(const DomainDef& domain, Real cell_size,
+                        const std::vector<BodyDef>& bodies);
+
 // The step to take towards end_time given the stable step dt: lands exactly on end_time and
 // merges a sliver of a last step into the one before it (half of the remainder each).
 Real stepTowards(Real dt, Real end_time, Real time);
@@ -104,11 +111,12 @@ class World {
   void setPointLoad(int particle, const Vec2& force, const Vec2& offset = Vec2::Zero());
 
   // Blocks added and removed while running (obstacles commanded from outside). placementProblem
-  // says why a block cannot be added where it is (empty when it can): bad core or rounding,
-  // non-finite values, outside the domain, overlapping a block or, unless allow_overlap, the
-  // material. addBlock returns the new block's index; removeBlock shifts the later ones down.
-  // moving: index of a block being moved to def's pose (not compared with itself), or -1.
-  std::string placementProblem(const BlockDef& def, bool allow_overlap, int moving = -1) const;
+  // says why a block cannot be added where it is (empty when it can): its own values
+  // (blockProblem), its name taken, outside the domain (domainProblem), overlapping a block or,
+  // unless allow_overlap, the material. addBlock returns the new block's index; removeBlock shifts
+  // the later ones down. moving: index of a block being moved to def's pose (not compared with
+  // itself), or -1.
+  Problem placementProblem(const BlockDef& def, bool allow_overlap, int moving = -1) const;
   int addBlock(const BlockDef& def);
   void removeBlock(int index);
 

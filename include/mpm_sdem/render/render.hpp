@@ -22,8 +22,12 @@ struct RenderDef {
 // Draws the world into image (CV_8UC3, BGR), reallocated only when its size changes.
 void renderWorld(const World& world, const RenderDef& def, cv::Mat& image);
 
+// "" or why a video cannot be written there (limits::outputFileProblem: .avi, .mp4 or .mkv).
+std::string videoPathProblem(const std::string& path);
+
 // Writes frames every 1/fps s of simulation time, played back at fps: the video runs in
 // simulation time. The container follows the file name (.avi: MJPG, .mp4: mp4v, .mkv: FFV1).
+
 class VideoRecorder {
  public:
   // Throws std::runtime_error when OpenCV cannot open a writer for path.

@@ -26,6 +26,9 @@ struct RecordDef {
   std::string tf_prefix = "mpm_sdem";  // block frames: <tf_prefix>/<name>, as the node's
 };
 
+// "" or why a bag cannot be written there (limits::outputFileProblem: a .bag file).
+std::string bagPathProblem(const std::string& path);
+
 class BagRecorder {
  public:
   // Throws std::runtime_error with the reason when the file cannot be opened. scene_text is the

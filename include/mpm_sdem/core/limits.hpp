@@ -1,0 +1,73 @@
+// The ranges every input must lie in: one source for the scene parser, World, the runner and the
+// node's parameters and services (docs/scene_reference.md, "Ranges"). Each range is physical with
+// a wide margin and keeps the arithmetic sound: doubles in the material; single precision in
+// Box2D (masses and inertias far below float's 3e38); and a stable step of at least
+// kMinTimeStep, so that no accepted value can freeze simulated time.
+#pragma once
+
+#include <cstddef>
+#include <initializer_list>
+#include <string>
+
+#include "mpm_sdem/core/types.hpp"
+
+namespace mpm_sdem {
+
+// What is wrong with an input: the key it belongs to (as a scene file names it) and why.
+// Empty when nothing is.
+struct Problem {
+  std::string key;
+  std::string message;
+  bool empty() const { return message.empty(); }
+  std::string text() const { return key.empty() ? message : key + ": " + message; }
+};
+
+namespace limits {
+
+struct Range {
+  Real min, max;
+  const char* unit;       // "" when dimensionless
+  bool open_min = false;  // min itself excluded
+};
+
+inline constexpr Range kDensity{0.1, 1e5, "kg/m^3"};      // aerogel to four times osmium
+inline constexpr Range kModulus{1, 1e13, "Pa"};           // E, K, G: a soft gel to 10 x diamond
+inline constexpr Range kStrength{0, 1e12, "Pa"};          // cohesion, tensile strength, adhesion
+inline constexpr Range kStiffness{1, 1e13, "N/m per m"};  // contact springs
+inline constexpr Range kFriction{0, 10, ""};              // Coulomb coefficients
+inline constexpr Range kRestitution{0, 1, "", true};      // 0 would need an infinite damper
+inline constexpr Range kSpeed{0, 1e3, "m/s"};      // fastest point of a body, block or command
+inline constexpr Range kGravity{0, 1e4, "m/s^2"};  // magnitude: 1000 g, beyond any centrifuge
+inline constexpr Range kCellSize{1e-5, 1e3, "m"};
+inline constexpr Range kLength{1e-5, 1e3, "m"};      // block roundings and core extents
+inline constexpr Range kCoordinate{-1e5, 1e5, "m"};  // domain corners and positions
+inline constexpr Range kEndTime{0, 1e6, "s", true};  // time.end
+inline constexpr Range kTimeStep{1e-9, 1e3, "s"};    // fixed time.dt, time.dt_max
+// No chosen step may fall below this: a simulated second would take more than a billion steps.
+inline constexpr Real kMinTimeStep = kTimeStep.min;
+inline constexpr std::size_t kMaxNameLength = 64;
+inline constexpr std::size_t kMaxSceneBytes = 1 << 20;  // scene files are a few kB
+
+// "" when v lies in r, else "must be in [min, max] unit, got v" (NaN and infinity never lie).
+std::string rangeProblem(Real v, const Range& r);
+// A ROS graph base name, also usable as a tf frame and a file-name part: a letter, then letters,
+// digits or '_', at most kMaxNameLength characters.
+std::string nameProblem(const std::string& name);
+// OpenMP threads: 0 (automatic) to the machine's logical cores; more only spin against each
+// other (a request for 100000 used to crash the node).
+std::string threadsProblem(long threads);
+int logicalCores();
+
+// Bytes a world of this many grid nodes and material points holds, with the coupling's and the
+// tiles' share (an estimate, rounded up), and the problem when that exceeds half the machine's
+// physical memory. Checked before anything is allocated.
+double worldBytes(double nodes, double points);
+std::string memoryProblem(double nodes, double points);
+
+// An output file a run can write (a bag, a video): not a directory, in an existing writable
+// directory, ending in one of the extensions. "" or why not; checked before the run starts.
+std::string outputFileProblem(const std::string& path,
+                              std::initializer_list<const char*> extensions);
+
+}  // namespace limits
+}  // namespace mpm_sdem

@@ -1,0 +1,41 @@
+// Chooses the OpenMP thread count of a long run from measured step times. While another process
+// loads a core, every parallel region waits for the thread that shares it with that process: the
+// default scene ran at 0.006-0.06 x real time on two threads against 1.2 x on one (issue 16). So
+// the tuner keeps the fastest count it has measured and, every kPeriod seconds, tries the next
+// smaller or larger count for a few steps, and switches when that is at least 10% faster.
+// A trial that is clearly slower ends early, so a bad count costs little.
+#pragma once
+
+#include <chrono>
+
+namespace mpm_sdem {
+
+class ThreadTuner {
+ public:
+  static constexpr double kPeriod = 5;          // s of wall time between trials
+  static constexpr double kTrialSeconds = 0.2;  // a trial's length (at least kTrialSteps)
+  static constexpr int kTrialSteps = 4;
+  static constexpr double kGain = 0.9;  // a trial must take under this fraction of the time
+
+  // max_threads: the most to use (1 keeps one thread and never tries another count).
+  explicit ThreadTuner(int max_threads);
+  // Sets the OpenMP thread count for the coming step.
+  void beforeStep();
+  // The wall time the step took (s).
+  void afterStep(double seconds);
+  int threads() const { return current_; }
+  int best() const { return best_; }
+
+ private:
+  void startTrial();
+  void endTrial();
+
+  int max_, best_, current_;
+  bool trial_ = false;
+  bool trial_up_ = false;    // the next trial tries more threads
+  double best_seconds_ = 0;  // mean step time at the best count, recent window
+  double window_seconds_ = 0, window_steps_ = 0;
+  double since_trial_ = 0;  // wall s since the last trial ended
+};
+
+}  // namespace mpm_sdem

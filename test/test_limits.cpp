@@ -1,0 +1,169 @@
+// The robustness pieces of the core: ranges and names (limits.hpp), the block rules shared by the
+// parser and the node (block_checks.hpp), the real-time meter that leaves pauses out, and the
+// thread tuner that leaves a loaded core.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "mpm_sdem/core/block_checks.hpp"
+#include "mpm_sdem/core/limits.hpp"
+#include "mpm_sdem/core/real_time_meter.hpp"
+#include "mpm_sdem/core/thread_tuner.hpp"
+
+using namespace mpm_sdem;
+
+TEST(Limits, RangesRefuseNaNInfinityAndTheirEnds) {
+  using limits::kRestitution;
+  EXPECT_EQ(limits::rangeProblem(0.5, kRestitution), "");
+  EXPECT_EQ(limits::rangeProblem(1, kRestitution), "");
+  EXPECT_EQ(limits::rangeProblem(0, kRestitution), "must be in (0, 1], got 0");
+  EXPECT_NE(limits::rangeProblem(std::nan(""), limits::kDensity), "");
+  EXPECT_NE(limits::rangeProblem(INFINITY, limits::kDensity), "");
+  EXPECT_EQ(limits::rangeProblem(1e300, limits::kDensity),
+            "must be in [0.1, 100000] kg/m^3, got 1e+300");
+}
+
+TEST(Limits, NamesAreRosNamesOfBoundedLength) {
+  EXPECT_EQ(limits::nameProblem("block_1"), "");
+  EXPECT_EQ(limits::nameProblem(std::string(64, 'a')), "");
+  for (const std::string bad : {"", "1block", "block 1", "a/b", "../../etc/passwd", "a\nb", "_a"})
+    EXPECT_NE(limits::nameProblem(bad), "") << bad;
+  const std::string huge = limits::nameProblem(std::string(10 << 20, 'x'));
+  EXPECT_NE(huge.find("at most 64"), std::string::npos);
+  EXPECT_LT(huge.size(), 200u) << "the message must not echo the name";
+}
+
+TEST(Limits, ThreadsFromZeroToTheCores) {
+  EXPECT_EQ(limits::threadsProblem(0), "");
+  EXPECT_EQ(limits::threadsProblem(limits::logicalCores()), "");
+  EXPECT_NE(limits::threadsProblem(limits::logicalCores() + 1), "");
+  EXPECT_NE(limits::threadsProblem(100000), "");
+  EXPECT_NE(limits::threadsProblem(-1), "");
+}
+
+TEST(Limits, MemoryEstimateNamesTheSize) {
+  EXPECT_EQ(limits::memoryProblem(1e6, 1e6), "");  // a few hundred MB
+  const std::string p = limits::memoryProblem(1e12, 0);
+  EXPECT_NE(p.find("GiB"), std::string::npos) << p;
+  EXPECT_NE(limits::memoryProblem(INFINITY, 0), "");
+}
+
+TEST(Limits, OutputFilesMustBeFilesInAWritableDirectory) {
+  namespace fs = std::filesystem;
+  const fs::path tmp = fs::temp_directory_path();
+  EXPECT_EQ(limits::outputFileProblem((tmp / "run.bag").string(), {".bag"}), "");
+  EXPECT_NE(limits::outputFileProblem(tmp.string(), {".bag"}).find("directory"), std::string::npos);
+  EXPECT_NE(limits::outputFileProblem((tmp / "run.txt").string(), {".bag"}).find("end in .bag"),
+            std::string::npos);
+  EXPECT_NE(limits::outputFileProblem("/no/such/dir/run.bag", {".bag"}).find("does not exist"),
+            std::string::npos);
+  EXPECT_NE(limits::outputFileProblem("", {".bag"}), "");
+}
+
+namespace {
+
+BlockDef square(BodyType type) {
+  BlockDef b;
+  b.name = "box";
+  b.core = {Vec2(-0.01, -0.01), Vec2(0.01, -0.01), Vec2(0.01, 0.01), Vec2(-0.01, 0.01)};
+  b.rounding = 0.002;
+  b.position = Vec2(0.2, 0.1);
+  b.type = type;
+  return b;
+}
+
+}  // namespace
+
+TEST(BlockChecks, EachValueIsJudgedUnderItsKey) {
+  const auto key = [](BlockDef b) { return blockProblem(b, BlockContactModel::kPenalty).key; };
+  EXPECT_EQ(key(square(BodyType::kDynamic)), "");
+  BlockDef b = square(BodyType::kDynamic);
+  b.density = 1e300;  // overflowed Box2D's float mass (m_I > 0 assertion)
+  EXPECT_EQ(key(b), "density");
+  b.density = 1e-300;  // a zero step
+  EXPECT_EQ(key(b), "density");
+  b = square(BodyType::kStatic);
+  b.density = 0;  // unused for a static block
+  EXPECT_EQ(key(b), "");
+  b.velocity = Vec2(0.1, 0);
+  EXPECT_EQ(key(b), "velocity") << "a static block with a twist";
+  b = square(BodyType::kKinematic);
+  b.angular_velocity = 1e6;  // 1e6 rad/s at 16 mm reach: 16 km/s
+  EXPECT_EQ(key(b), "angular_velocity");
+  b = square(BodyType::kKinematic);
+  b.core[1].x() = 1e300;
+  EXPECT_EQ(key(b), "vertices");
+  b = square(BodyType::kKinematic);
+  b.name = "box 1";
+  EXPECT_EQ(key(b), "name");
+  b = square(BodyType::kDynamic);
+  b.adhesion = 30;
+  EXPECT_EQ(blockProblem(b, BlockContactModel::kBox2D).key, "adhesion");
+}
+
+TEST(BlockChecks, SpeedLimitCountsTheSpin) {
+  const BlockDef b = square(BodyType::kKinematic);
+  const Real reach = std::sqrt(2.0) * 0.01 + 0.002;
+  EXPECT_TRUE(twistProblem(b, Vec2(999, 0), 0).empty());
+  EXPECT_FALSE(twistProblem(b, Vec2(1001, 0), 0).empty());
+  EXPECT_TRUE(twistProblem(b, Vec2(0, 0), 999 / reach).empty());
+  EXPECT_FALSE(twistProblem(b, Vec2(0, 0), 1001 / reach).empty());
+  EXPECT_FALSE(twistProblem(b, Vec2(std::nan(""), 0), 0).empty());
+}
+
+TEST(BlockChecks, OnlyAStaticBlockMayReachOutsideTheDomain) {
+  const Vec2 lo(0, 0), hi(0.4, 0.2);
+  BlockDef b = square(BodyType::kDynamic);
+  EXPECT_TRUE(domainProblem(b, lo, hi).empty());
+  b.position = Vec2(0.4, 0.1);  // half outside
+  EXPECT_FALSE(domainProblem(b, lo, hi).empty());
+  b.type = BodyType::kStatic;
+  EXPECT_TRUE(domainProblem(b, lo, hi).empty()) << "a boundary block touching the domain";
+  b.position = Vec2(5, 0.1);
+  EXPECT_FALSE(domainProblem(b, lo, hi).empty()) << "a static block away from the domain";
+}
+
+TEST(RealTimeMeter, LeavesPausesOutAndSlidesItsWindow) {
+  using Clock = RealTimeMeter::Clock;
+  const Clock::time_point t0{};
+  const auto at = [&](double s) {
+    return t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+  };
+  RealTimeMeter m;
+  m.setRunning(true, at(0));
+  for (int k = 0; k <= 10; ++k) m.sample(0.1 * k, at(0.1 * k));  // 1 x real time for 1 s
+  EXPECT_NEAR(m.factor(), 1.0, 1e-9);
+  m.setRunning(false, at(1));
+  m.setRunning(true, at(101));  // a 100 s pause
+  m.sample(1.1, at(101.1));
+  EXPECT_NEAR(m.factor(), 1.0, 1e-9) << "the pause counted";
+  for (int k = 1; k <= 40; ++k) m.sample(1.1 + 0.05 * k, at(101.1 + 0.1 * k));  // 0.5 x
+  EXPECT_NEAR(m.factor(), 0.5, 1e-9) << "the window still holds the 1 x part";
+}
+
+TEST(ThreadTuner, LeavesACountThatIsSlowerAndComesBack) {
+  if (limits::logicalCores() < 2) GTEST_SKIP() << "one core: nothing to choose";
+  const int before = omp_get_max_threads();
+  ThreadTuner t(2);
+  // Loaded: two threads take 10 ms a step, one takes 2 ms.
+  auto run = [&](double two, double one, double seconds) {
+    for (double s = 0; s < seconds;) {
+      t.beforeStep();
+      const double step = t.threads() == 2 ? two : one;
+      t.afterStep(step);
+      s += step;
+    }
+  };
+  run(0.010, 0.002, 3 * ThreadTuner::kPeriod);
+  EXPECT_EQ(t.best(), 1);
+  // The load goes away: two threads now take 1 ms.
+  run(0.001, 0.002, 3 * ThreadTuner::kPeriod);
+  EXPECT_EQ(t.best(), 2);
+  // A trial of a count that is within kGain of the best does not switch.
+  run(0.0019, 0.002, 3 * ThreadTuner::kPeriod);
+  EXPECT_EQ(t.best(), 2);
+  omp_set_num_threads(before);
+}
