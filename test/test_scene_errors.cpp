@@ -318,6 +318,18 @@ INSTANTIATE_TEST_SUITE_P(
                                "--set grid.cell_size=1e-5",
                                "grid.cell_size",
                                "use larger cells or a smaller domain"},
+                      BadScene{"OutputIntervalBelowRoundOff",
+                               "valid.yaml",
+                               {"output.interval=1e-300"},
+                               "--set output.interval=1e-300",
+                               "output.interval",
+                               "must be in [1e-09, 1000] s"},
+                      BadScene{"SceneNameNotAName",
+                               "valid.yaml",
+                               {"name=../../etc/passwd"},
+                               "--set name=../../etc/passwd",
+                               "name",
+                               "must start with a letter"},
                       BadScene{"VerletDistanceListsEverything",
                                "valid_blocks.yaml",
                                {"coupling.verlet_distance=1e300"},
@@ -367,6 +379,17 @@ TEST(SceneErrors, AStepBelowTheFloorIsRefusedByTheWorld) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("a simulated second would take over"), std::string::npos)
         << e.what();
+  }
+}
+
+// A message never echoes a huge value back (a pasted file as an override, a 100 kB key).
+TEST(SceneErrors, MessagesCutHugeValues) {
+  const std::string huge(100000, 'x');
+  for (const std::vector<std::string>& set :
+       {std::vector<std::string>{huge}, {"time.end=" + huge}, {huge + "=1"}}) {
+    const std::string msg = errorOf("valid.yaml", set);
+    ASSERT_FALSE(msg.empty());
+    EXPECT_LT(msg.size(), 600u) << msg.substr(0, 300);
   }
 }
 

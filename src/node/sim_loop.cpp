@@ -198,7 +198,8 @@ int Simulation::run(const volatile std::sig_atomic_t& stop) {
       continue;
     }
     // ~step's steps run unpaced, one per pass, so that commands (~pause) come in between.
-    if (advance() && stepping && --pending_steps_ == 0) {
+    // (Reaching the scene's end, or failing, has already cleared pending_steps_.)
+    if (advance() && pending_steps_ > 0 && --pending_steps_ == 0) {
       ROS_INFO("took the %ld steps asked for; at step %ld, t = %.6g s", asked_steps_,
                world_->stepCount(), world_->time());
       publishers_.publish(*world_, status(), true);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -188,7 +189,9 @@ int main(int argc, char** argv) {
       }
       series.write(world, d, dt);
       if (block_series) block_series->write(world);
-      while (next_sample <= world.time() + eps) next_sample += scene.output.interval;
+      // The next multiple of the interval (a sum of intervals would stall below round-off).
+      next_sample =
+          (std::floor((world.time() + eps) / scene.output.interval) + 1) * scene.output.interval;
     }
     progress.update(world.stepCount(), world.time(), h,
                     static_cast<long>(world.particles().size()));

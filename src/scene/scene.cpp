@@ -28,10 +28,17 @@ std::string num(Real v) {
   return s.str();
 }
 
+// An override as messages show it: a long one (a pasted file, a 100 kB value) is cut.
+std::string shown(const std::string& spec) {
+  return spec.size() <= 120
+             ? spec
+             : spec.substr(0, 120) + "... (" + std::to_string(spec.size()) + " characters)";
+}
+
 void applyOverride(YAML::Node root, const std::string& spec, Context& ctx) {
   const auto eq = spec.find('=');
   if (eq == std::string::npos || eq == 0) {
-    throw SceneError("--set " + spec + ": expected key=value, e.g. --set time.end=0.5");
+    throw SceneError("--set " + shown(spec) + ": expected key=value, e.g. --set time.end=0.5");
   }
   std::vector<std::string> parts;
   std::stringstream keys(spec.substr(0, eq));
@@ -54,7 +61,7 @@ void applyOverride(YAML::Node root, const std::string& spec, Context& ctx) {
         }
       }
       if (!found || last) {
-        throw SceneError("--set " + spec + ": '" + walked + "' has no element '" + key +
+        throw SceneError("--set " + shown(spec) + ": '" + walked + "' has no element '" + key +
                          "' to set a key in (use an index or a name, then a key)");
       }
     } else if (cur.IsMap() || !cur.IsDefined() || cur.IsNull()) {
@@ -63,8 +70,8 @@ void applyOverride(YAML::Node root, const std::string& spec, Context& ctx) {
         cur[key] = value;
         for (const auto& kv : cur) {
           if (kv.first.Scalar() == key) {
-            ctx.addOverride(kv.first, spec);
-            ctx.addOverride(kv.second, spec);
+            ctx.addOverride(kv.first, shown(spec));
+            ctx.addOverride(kv.second, shown(spec));
           }
         }
         return;
@@ -73,7 +80,7 @@ void applyOverride(YAML::Node root, const std::string& spec, Context& ctx) {
       if (!const_cur[key]) cur[key] = YAML::Node(YAML::NodeType::Map);
       next.reset(cur[key]);
     } else {
-      throw SceneError("--set " + spec + ": '" + walked + "' is a value, not a section");
+      throw SceneError("--set " + shown(spec) + ": '" + walked + "' is a value, not a section");
     }
     walked += (walked.empty() ? "" : ".") + key;
     cur.reset(next);
@@ -545,8 +552,10 @@ Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& s
   MapReader top(ctx, root, "",
                 {"name", "description", "domain", "grid", "solver", "time", "materials", "bodies",
                  "output", "limits", "blocks", "block_contact", "coupling"});
-  s.name = top.text("name", "");
+  s.name = top.has("name") ? top.name("name") : "";
   s.description = top.text("description", "");
+  top.require(s.description.size() <= 4096, "description",
+              "must be at most 4096 characters, got " + std::to_string(s.description.size()));
   parseDomain(ctx, top, s);
   parseGrid(ctx, top, s);
   parseSolver(ctx, top, s);
@@ -570,9 +579,10 @@ Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& s
 
   if (top.has("output")) {
     MapReader o(ctx, top.node("output"), "output", {"interval", "particles"});
-    s.output.interval = o.number("interval", "s", 0);
-    o.require(s.output.interval > 0 && s.output.interval <= s.end_time, "interval",
-              "must be in (0, time.end] s, got " + num(s.output.interval));
+    s.output.interval = o.number("interval", limits::kTimeStep, 0);
+    o.require(
+        s.output.interval <= s.end_time, "interval",
+        "must be at most time.end = " + num(s.end_time) + " s, got " + num(s.output.interval));
     s.output.particles = o.boolean("particles", s.output.particles);
   }
   if (s.output.interval <= 0) s.output.interval = s.end_time / 100;
@@ -604,7 +614,7 @@ Scene parseScene(const std::string& yaml_text, const std::string& source_name,
     try {
       applyOverride(root, o, ctx);
     } catch (const YAML::Exception& e) {
-      throw SceneError("--set " + o + ": the value is not valid YAML: " + e.msg);
+      throw SceneError("--set " + shown(o) + ": the value is not valid YAML: " + e.msg);
     }
   }
   return parseTree(root, ctx, source_name);

@@ -73,7 +73,7 @@ MapReader::MapReader(const Context& ctx, const YAML::Node& node, std::string pat
       valid += (valid.empty() ? "" : ", ") + std::string(k);
     }
     if (known) continue;
-    ctx_.fail(kv.first, this->path(key.c_str()),
+    ctx_.fail(kv.first, this->path(describe(kv.first).c_str()),
               "unknown key" + (best.empty() ? std::string() : "; did you mean '" + best + "'?") +
                   " Valid keys here: " + valid);
   }
@@ -96,7 +96,8 @@ YAML::Node MapReader::node(const char* key) const {
 }
 
 std::string MapReader::describe(const YAML::Node& n) {
-  if (n.IsScalar()) return n.Scalar();
+  // Cut: a message must not echo a 100 kB value back.
+  if (n.IsScalar()) return n.Scalar().size() <= 80 ? n.Scalar() : n.Scalar().substr(0, 80) + "...";
   if (n.IsSequence()) return "a list";
   if (n.IsMap()) return "a map";
   return "nothing";
