@@ -97,6 +97,9 @@ TEST(BlockChecks, EachValueIsJudgedUnderItsKey) {
   b.core[1].x() = 1e300;
   EXPECT_EQ(key(b), "vertices");
   b = square(BodyType::kKinematic);
+  b.angle = 1e300;  // a float infinity in Box2D: b2IsValid(angle) aborted (found by fuzz_requests)
+  EXPECT_EQ(key(b), "angle");
+  b = square(BodyType::kKinematic);
   b.name = "box 1";
   EXPECT_EQ(key(b), "name");
   b = square(BodyType::kDynamic);

@@ -55,6 +55,11 @@ Problem blockProblem(const BlockDef& d, BlockContactModel model) {
   for (int a = 0; a < 2; ++a) {
     if (Problem p = rangeOf("position", d.position[a], limits::kCoordinate); !p.empty()) return p;
   }
+  // In radians here, whatever unit the caller's key has (the scene's is degrees).
+  if (!(std::abs(d.angle) <= limits::kAngle.max))
+    return {"angle", "must lie within +-" + num(limits::kAngle.max) + " rad (" +
+                         num(limits::kAngle.max * 180 / M_PI) +
+                         " deg; Box2D holds it in single precision), got " + num(d.angle) + " rad"};
   // Static and kinematic blocks have no mass to speak of; a density given must still be sane.
   if (d.type == BodyType::kDynamic || d.density != 0) {
     if (Problem p = rangeOf("density", d.density, limits::kDensity); !p.empty()) return p;

@@ -1,6 +1,7 @@
 // Shared pieces of the node tests: waiting on a condition while callbacks run, latest messages.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <mpm_sdem/BlockStates.h>
 #include <mpm_sdem/ObstacleCommand.h>
 #include <mpm_sdem/SimStats.h>
@@ -116,6 +117,20 @@ inline SpawnObstacle square(const std::string& name, double x, double y, double 
   s.request.friction = 0.5;
   s.request.restitution = 0.5;
   return s;
+}
+
+// The main of a node test: gtest, ROS on two spinner threads, and one client of the node under
+// test (node) for the whole run.
+inline int runNodeTests(int argc, char** argv, const char* name, NodeClient*& node) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, name);
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  NodeClient client;
+  node = &client;
+  const int status = RUN_ALL_TESTS();
+  spinner.stop();
+  return status;
 }
 
 }  // namespace mpm_sdem::test

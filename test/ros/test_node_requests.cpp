@@ -365,13 +365,5 @@ TEST(Requests, ResetsKeepOneRecording) {
 }
 
 int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_node_requests");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  Node node;
-  g_node = &node;
-  const int status = RUN_ALL_TESTS();
-  spinner.stop();
-  return status;
+  return test::runNodeTests(argc, argv, "test_node_requests", g_node);
 }

@@ -148,13 +148,5 @@ TEST(Node, PauseStepResumeReset) {
 }
 
 int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_node_services");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  Node node;
-  g_node = &node;
-  const int status = RUN_ALL_TESTS();
-  spinner.stop();
-  return status;
+  return test::runNodeTests(argc, argv, "test_node_services", g_node);
 }

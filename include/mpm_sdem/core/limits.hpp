@@ -41,6 +41,7 @@ inline constexpr Range kGravity{0, 1e4, "m/s^2"};  // magnitude: 1000 g, beyond 
 inline constexpr Range kCellSize{1e-5, 1e3, "m"};
 inline constexpr Range kLength{1e-5, 1e3, "m"};      // block roundings and core extents
 inline constexpr Range kCoordinate{-1e5, 1e5, "m"};  // domain corners and positions
+inline constexpr Range kAngle{-1e4, 1e4, "rad"};     // block angles (Box2D keeps a float)
 inline constexpr Range kEndTime{0, 1e6, "s", true};  // time.end
 inline constexpr Range kTimeStep{1e-9, 1e3, "s"};    // fixed time.dt, time.dt_max
 // No chosen step may fall below this: a simulated second would take more than a billion steps.
