@@ -5,7 +5,6 @@
 
 #include "mpm_sdem/core/block_checks.hpp"
 #include "mpm_sdem/core/limits.hpp"
-
 #include "mpm_sdem/ros/conversions.hpp"
 #include "sim_loop.hpp"
 
@@ -17,7 +16,8 @@ template <class Res>
 bool answer(Res& res, const Reply& r) {
   res.success = r.success;
   res.message = r.message;
-  if (!r.success) ROS_WARN("request refused: %s", r.message.c_str());
+  // Throttled: a caller looping on a bad request must not flood the log (it gets every reply).
+  if (!r.success) ROS_WARN_THROTTLE(1, "request refused: %s", r.message.c_str());
   return true;  // the call itself succeeded; success says whether the request did
 }
 
