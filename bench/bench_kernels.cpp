@@ -2,9 +2,9 @@
 // on the column scene (APIC, quadratic B-spline). Counters report particles per second.
 #include <benchmark/benchmark.h>
 
-#include "../src/core/transfer.hpp"
 #include "bench_scenes.hpp"
-#include "mpm_sdem/core/constitutive.hpp"
+#include "mpm/transfer.hpp"
+#include "mpm_sdem/core/mpm/constitutive.hpp"
 
 using namespace mpm_sdem;
 

@@ -9,8 +9,8 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "mpm_sdem/core/block_checks.hpp"
 #include "mpm_sdem/core/limits.hpp"
+#include "mpm_sdem/core/rigid/block_checks.hpp"
 #include "mpm_sdem/core/world.hpp"
 
 using namespace mpm_sdem;
@@ -82,13 +82,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!blockProblem(d, model).empty()) return 0;  // refused: the expected answer
   World world(smallWorld(model));
   if (!world.placementProblem(d, in.ConsumeBool()).empty()) return 0;
-  world.addBlock(d);
+  const BlockId id = world.addBlock(d);
   for (int step = 0; step < 3; ++step) {
     const TimeStepChoice dt = world.chooseTimeStep();
     if (!(dt.dt >= limits::kMinTimeStep)) return 0;  // the node undoes such a spawn
     if (!world.step(dt.dt).finite) finding("an accepted block made the state non-finite");
     if (step == 0 && twistProblem(world.blocks()->def(0), twist, spin).empty())
-      world.blocks()->setVelocity(0, twist, spin);
+      world.setBlockVelocity(id, twist, spin);
   }
   const BlockState& s = world.blocks()->state(0);
   if (!s.position.allFinite() || !std::isfinite(s.angle)) finding("a non-finite block pose");

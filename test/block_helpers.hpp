@@ -5,8 +5,8 @@
 #include <string>
 
 #include "cases.hpp"
+#include "coupling/imp_coupling.hpp"
 #include "helpers.hpp"
-#include "mpm_sdem/core/imp_coupling.hpp"
 
 namespace mpm_sdem::test {
 

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "block_helpers.hpp"
-#include "mpm_sdem/core/blocks.hpp"
+#include "mpm_sdem/core/rigid/blocks.hpp"
 
 using namespace mpm_sdem;
 
@@ -94,9 +94,9 @@ Real penaltyRestitution(Drop drop, Real e) {
   Blocks blocks({floor, block}, contact, Vec2(0, -9.81));
   auto normalSpeed = [&] {  // at the contact point: the lowest core vertex, or the apex
     const BlockState& s = blocks.state(1);
-    Vec2 p = drop == Drop::kEdge ? apex : blocks.vertices(1)[0];
-    for (int k = 1; k < blocks.vertexCount(1) && drop != Drop::kEdge; ++k)
-      if (blocks.vertices(1)[k].y() < p.y()) p = blocks.vertices(1)[k];
+    Vec2 p = drop == Drop::kEdge ? apex : blocks.coreVertices(1)[0];
+    for (int k = 1; k < blocks.coreVertexCount(1) && drop != Drop::kEdge; ++k)
+      if (blocks.coreVertices(1)[k].y() < p.y()) p = blocks.coreVertices(1)[k];
     return s.velocity.y() + s.angular_velocity * (p.x() - s.position.x());
   };
   // w dt <= 4.3e-3 (w = sqrt(n k_n / m_eff) <= 1.4e5 /s, the face's two springs): symplectic
@@ -236,8 +236,8 @@ std::pair<Real, Real> box2dRestingGap(std::vector<BlockDef> defs, Real drop) {
   Real worst = 0;
   for (int k = 1; k < blocks.count(); ++k) {
     const Real gap =
-        roundedGap(blocks.vertices(k - 1), blocks.vertexCount(k - 1), defs[k - 1].rounding,
-                   blocks.vertices(k), blocks.vertexCount(k), defs[k].rounding);
+        roundedGap(blocks.coreVertices(k - 1), blocks.coreVertexCount(k - 1), defs[k - 1].rounding,
+                   blocks.coreVertices(k), blocks.coreVertexCount(k), defs[k].rounding);
     if (std::abs(gap) > std::abs(worst)) worst = gap;
   }
   return {worst, 0.005 / blocks.lengthScale()};
@@ -334,7 +334,7 @@ Real adhesionRun(Real c, bool hanging, Real sideways, Real* weight = nullptr) {
                                   restitutionDampingRatio(defs[1].restitution), 4, 0.1);
   const Vec2 start = blocks.state(1).position;
   for (int n = 0; n < static_cast<int>(0.5 / dt); ++n) {
-    blocks.addMaterialForce(1, Vec2(sideways, 0), blocks.state(1).position);
+    blocks.applyForce(1, Vec2(sideways, 0), blocks.state(1).position);
     blocks.step(dt);
   }
   return (blocks.state(1).position - start).norm();

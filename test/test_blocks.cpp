@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "block_helpers.hpp"
-#include "mpm_sdem/core/blocks.hpp"
+#include "mpm_sdem/core/rigid/blocks.hpp"
 #include "mpm_sdem/core/world.hpp"
 #include "mpm_sdem/scene/scene.hpp"
 
@@ -174,7 +174,7 @@ TEST(RuntimeBlocks, AddedToASceneWithoutBlocksFallsAndIsRemoved) {
   EXPECT_NE(world.placementProblem(disk, false).text().find("domain"), std::string::npos);
   disk.position = Vec2(0.3, 0.15);
   ASSERT_EQ(world.placementProblem(disk, false).text(), "");
-  world.addBlock(disk);
+  const BlockId id = world.addBlock(disk);
   ASSERT_EQ(world.blocks()->count(), 1);
   EXPECT_EQ(world.chooseTimeStep().limit, StepLimit::kContact);
   Real y = 0.15, v = 0;
@@ -191,7 +191,7 @@ TEST(RuntimeBlocks, AddedToASceneWithoutBlocksFallsAndIsRemoved) {
   EXPECT_NEAR(world.blocks()->state(0).position.y(), y, 1e-5);
   EXPECT_NEAR(world.blocks()->state(0).position.x(), 0.3, 1e-6);
   EXPECT_LT(y, 0.15 - 1e-2);  // it did fall
-  world.removeBlock(0);
+  world.removeBlock(id);
   EXPECT_EQ(world.blocks()->count(), 0);
   EXPECT_EQ(world.chooseTimeStep().limit, StepLimit::kCfl);
   EXPECT_TRUE(world.step(world.chooseTimeStep().dt).finite);

@@ -9,7 +9,7 @@
 #include <random>
 
 #include "helpers.hpp"
-#include "mpm_sdem/core/constitutive.hpp"
+#include "mpm_sdem/core/mpm/constitutive.hpp"
 
 using namespace mpm_sdem;
 

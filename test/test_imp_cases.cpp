@@ -66,7 +66,8 @@ TEST(ImpCases, BlockThrownAt20MetresPerSecondDoesNotTunnel) {
     w.step(w.chooseTimeStep().dt);
     const Blocks& B = *w.blocks();
     for (std::size_t p = 0; p < P.size(); ++p) {
-      const Real d = closestOnCore(B.vertices(0), B.vertexCount(0), Vec2(P.x[p], P.y[p])).distance;
+      const Real d =
+          closestOnCore(B.coreVertices(0), B.coreVertexCount(0), Vec2(P.x[p], P.y[p])).distance;
       closest = std::min(closest, d);
     }
     ASSERT_GE(closest, a - rp) << "a point entered the block at t = " << w.time() << " s";
@@ -180,7 +181,7 @@ TEST(ImpCases, BlockComesToRestOnGranularBed) {
     if (c.force.isZero()) continue;
     const Vec2 x(w.particles().x[c.particle], w.particles().y[c.particle]);
     deepest = std::max(deepest, a + materialReach(w.particles(), c.particle, rp) -
-                                    closestOnCore(w.blocks()->vertices(0), 4, x).distance);
+                                    closestOnCore(w.blocks()->coreVertices(0), 4, x).distance);
   }
   EXPECT_LE(deepest, 2 * weight / (n * def.coupling.normal_stiffness));
 }

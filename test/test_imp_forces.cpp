@@ -15,7 +15,7 @@
 
 #include "block_helpers.hpp"
 #include "cases.hpp"
-#include "mpm_sdem/core/imp_coupling.hpp"
+#include "coupling/imp_coupling.hpp"
 
 using namespace mpm_sdem;
 
@@ -92,7 +92,7 @@ TEST(ImpForces, StiffnessPerLengthGivesTheSameOverlapAtEveryResolution) {
       if (c.force.isZero()) continue;
       const Vec2 x(w.particles().x[c.particle], w.particles().y[c.particle]);
       sum += a + materialReach(w.particles(), c.particle, rp) -
-             closestOnCore(w.blocks()->vertices(0), 4, x).distance;
+             closestOnCore(w.blocks()->coreVertices(0), 4, x).distance;
       ++n;
     }
     overlap.push_back(sum / n);

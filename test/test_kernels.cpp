@@ -6,7 +6,7 @@
 
 #include <random>
 
-#include "mpm_sdem/core/kernels.hpp"
+#include "mpm_sdem/core/mpm/kernels.hpp"
 
 using namespace mpm_sdem;
 

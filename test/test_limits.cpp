@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <limits>
 
-#include "mpm_sdem/core/block_checks.hpp"
 #include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/real_time_meter.hpp"
+#include "mpm_sdem/core/rigid/block_checks.hpp"
 #include "mpm_sdem/core/thread_tuner.hpp"
 
 using namespace mpm_sdem;

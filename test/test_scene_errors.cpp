@@ -38,6 +38,19 @@ void expectError(const std::string& msg, const std::string& where, const std::st
 TEST(SceneErrors, ValidBaseSceneParses) {
   EXPECT_EQ(errorOf("valid.yaml"), "");
   EXPECT_EQ(errorOf("valid_blocks.yaml"), "");
+  EXPECT_EQ(errorOf("valid_cluster.yaml"), "");
+}
+
+// A cluster of discs listed, or a shape filled with discs (the wedge's 2.2 cm outline takes
+// 2 x 2 discs of 4 mm at the default pitch of 8 mm).
+TEST(SceneErrors, ClustersParse) {
+  const Scene listed = loadScene(test::sourcePath("test/data/valid_cluster.yaml"));
+  ASSERT_EQ(listed.world.blocks[1].discs.size(), 3u);
+  EXPECT_DOUBLE_EQ(listed.world.blocks[1].discs[2].centre.y(), 0.007);
+  const Scene filled = loadScene(test::sourcePath("test/data/valid_blocks.yaml"),
+                                 {"blocks.wedge.disc_radius=0.004"});
+  EXPECT_EQ(filled.world.blocks[1].discs.size(), 4u);
+  EXPECT_TRUE(filled.world.blocks[1].core.empty());
 }
 
 struct BadScene {
@@ -154,6 +167,24 @@ INSTANTIATE_TEST_SUITE_P(
                                "--set blocks.wedge.adhesion=30",
                                "blocks[1].adhesion",
                                "needs block_contact.model: penalty"},
+                      BadScene{"ClusterDiscsApart",
+                               "valid_blocks.yaml",
+                               {"blocks.wedge.disc_radius=0.004", "blocks.wedge.disc_pitch=0.009"},
+                               "--set blocks.wedge.disc_pitch=0.009",
+                               "blocks[1].disc_pitch",
+                               "must lie in (0, 2 disc_radius]"},
+                      BadScene{"ClusterDiscTooLarge",
+                               "valid_blocks.yaml",
+                               {"blocks.wedge.disc_radius=0.05"},
+                               "--set blocks.wedge.disc_radius=0.05",
+                               "blocks[1].disc_radius",
+                               "not one disc of radius 0.05 m fits"},
+                      BadScene{"ClusterDiscRadiusNotPositive",
+                               "valid_cluster.yaml",
+                               {"blocks.wedge.discs=[[0, 0, -0.005]]"},
+                               "--set blocks.wedge.discs",
+                               "blocks[1].discs",
+                               "disc 0: its radius must be positive"},
                       BadScene{"BlockPointsPerCellOutOfRange",
                                "valid_blocks.yaml",
                                {"coupling.block_points_per_cell=0"},

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "mpm_sdem/core/shapes.hpp"
+#include "mpm_sdem/core/mpm/shapes.hpp"
 
 using namespace mpm_sdem;
 

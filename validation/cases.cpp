@@ -23,6 +23,19 @@ BlockDef boxBlock(const std::string& name, const Vec2& center, Real w, Real h, R
   return b;
 }
 
+BlockDef discRow(const std::string& name, const Vec2& from, const Vec2& to, Real r, Real p,
+                 BodyType type) {
+  BlockDef b;
+  b.name = name;
+  const Real length = (to - from).norm();
+  const int n = static_cast<int>(std::floor(length / p + 1e-9)) + 1;
+  for (int k = 0; k < n; ++k) b.discs.push_back({Vec2(-length / 2 + k * length / (n - 1), 0), r});
+  b.position = (from + to) / 2;
+  b.angle = std::atan2(to.y() - from.y(), to.x() - from.x());
+  b.type = type;
+  return b;
+}
+
 BodyDef diskBody(const Vec2& center, Real radius, int ppc) {
   BodyDef b;
   b.name = "disk";
@@ -118,7 +131,7 @@ WorldDef rodCollision(CouplingScheme scheme, Real h, Real& end_of_approach) {
   return def;
 }
 
-WorldDef restingSquare(Real h, Real friction, CouplingScheme scheme) {
+WorldDef restingSquare(Real h, Real friction, CouplingScheme scheme, Real disc_pitch) {
   const Real side = 0.1, rho = 2500, g = 1.0, a = 0.005;
   WorldDef def;
   def.domain.min = Vec2(0, 0);
@@ -134,7 +147,10 @@ WorldDef restingSquare(Real h, Real friction, CouplingScheme scheme) {
   m.shear_modulus = 3.5e6;
   def.materials.push_back(m);
   // Top surface at y = 0.05.
-  BlockDef floor = boxBlock("floor", Vec2(0.3, 0.025), 0.58, 0.05, a, BodyType::kStatic);
+  BlockDef floor = disc_pitch > 0
+                       ? discRow("floor", Vec2(0.01 + a, 0.05 - a), Vec2(0.59 - a, 0.05 - a), a,
+                                 disc_pitch, BodyType::kStatic)
+                       : boxBlock("floor", Vec2(0.3, 0.025), 0.58, 0.05, a, BodyType::kStatic);
   floor.friction = friction;
   floor.restitution = 0.5;
   def.blocks.push_back(floor);
@@ -198,7 +214,8 @@ MaterialDef elasticDisk() {
   return m;
 }
 
-// Least-squares acceleration of x(t) = x0 + v0 t + a t^2 / 2 over the samples with t >= t0.
+}  // namespace
+
 Real fittedAcceleration(const std::vector<Real>& t, const std::vector<Real>& x, Real t0) {
   Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
@@ -211,14 +228,12 @@ Real fittedAcceleration(const std::vector<Real>& t, const std::vector<Real>& x, 
   return M.ldlt().solve(b)(2);
 }
 
-}  // namespace
-
 Real inclineAnalytic(Real mu) {
   const Real th = M_PI / 4, g = 9.81;
   return std::tan(th) > 3 * mu ? g * (std::sin(th) - mu * std::cos(th)) : g * std::sin(th) * 2 / 3;
 }
 
-Real inclineAcceleration(Real mu, Real h, CouplingScheme scheme, Real segment) {
+Real inclineAcceleration(Real mu, Real h, CouplingScheme scheme, Real segment, Real disc_pitch) {
   const Real th = M_PI / 4, R = 0.05, a = 0.005;
   WorldDef def;
   def.domain.min = Vec2(0, 0);
@@ -232,7 +247,14 @@ Real inclineAcceleration(Real mu, Real h, CouplingScheme scheme, Real segment) {
       boxBlock("incline", top0 + 0.5 * t - 0.025 * n, 1.2, 0.05, a, BodyType::kStatic);
   incline.angle = -th;
   incline.friction = mu;
-  if (segment <= 0) {
+  if (disc_pitch > 0) {
+    // The same face as discs along the line a below the surface, 1.2 m long from 0.1 m above
+    // top0 (as the segments).
+    const Vec2 from = top0 - 0.1 * t - a * n;
+    BlockDef row = discRow("incline", from, from + 1.2 * t, a, disc_pitch, BodyType::kStatic);
+    row.friction = mu;
+    def.blocks.push_back(row);
+  } else if (segment <= 0) {
     def.blocks.push_back(incline);
   } else {
     // Segments swept by the same disk a, end to end along the line a below the surface: their
@@ -388,7 +410,7 @@ WorldDef dropDisk(CouplingScheme scheme) {
   return def;
 }
 
-WorldDef rockIntoBed(CouplingScheme scheme) {
+WorldDef rockIntoBed(CouplingScheme scheme, Real disc_radius) {
   WorldDef def;
   def.domain.min = Vec2(0, 0);
   def.domain.max = Vec2(0.3, 0.2);
@@ -412,6 +434,10 @@ WorldDef rockIntoBed(CouplingScheme scheme) {
   def.bodies.push_back(bed);
   BlockDef rock = boxBlock("rock", Vec2(0.15, 0.08 + 0.005 + 0.015 + 0.003), 0.03, 0.03, 0.005,
                            BodyType::kDynamic, 2500);
+  if (disc_radius > 0) {
+    rock.discs = fillWithDiscs({rock.core, rock.rounding}, disc_radius, disc_radius);
+    rock.core.clear();
+  }
   rock.velocity = Vec2(3, -20);
   rock.restitution = 0.2;
   def.blocks.push_back(rock);
@@ -711,7 +737,7 @@ WorldDef granularMatrix(Real fines_content, bool fine, unsigned seed, int& plate
       bool clear = true;
       for (std::size_t k = 3; k < def.blocks.size() && clear; ++k) {
         const BlockDef& b = def.blocks[k];
-        const std::vector<Vec2> core = placedCore(b);
+        const std::vector<Vec2> core = placedParts(b)[0].core;
         const Vec2 cell[4] = {Vec2(cx, cy), Vec2(cx + s, cy), Vec2(cx + s, cy + s),
                               Vec2(cx, cy + s)};
         clear = roundedGap(core.data(), static_cast<int>(core.size()), b.rounding, cell, 4, 0) > rp;
@@ -746,7 +772,7 @@ WorldDef granularMatrix(Real fines_content, bool fine, unsigned seed, int& plate
 
 Compression compressMatrix(World& w, int plate, Real speed, Real max_settlement) {
   Compression out;
-  Blocks& B = *w.blocks();
+  const Blocks& B = *w.blocks();
   for (int i = 0; i < B.count(); ++i)
     if (B.def(i).type == BodyType::kDynamic) out.solids_mass += B.massProperties(i).mass;
   out.fines_mass = measure(w).mass;
@@ -757,14 +783,15 @@ Compression compressMatrix(World& w, int plate, Real speed, Real max_settlement)
   Real top = 0;
   for (int i = 0; i < B.count(); ++i) {
     if (B.def(i).type != BodyType::kDynamic) continue;
-    for (int k = 0; k < B.vertexCount(i); ++k)
-      top = std::max(top, B.vertices(i)[k].y() + B.def(i).rounding);
+    for (int s = B.firstShape(i); s < B.firstShape(i) + B.shapesOf(i); ++s)
+      top = std::max(top, B.bounds(s).max.y());
   }
   const Particles& P = w.particles();
   for (std::size_t p = 0; p < P.size(); ++p) top = std::max(top, P.y[p]);
-  const Real half = 0.5 * (B.vertices(plate)[2].y() - B.vertices(plate)[0].y());
-  B.setPose(plate, Vec2(B.origin(plate).x(), top + 0.005 + half + B.def(plate).rounding), 0);
-  B.setVelocity(plate, Vec2(0, -speed), 0);
+  const Real half = 0.5 * (B.coreVertices(plate)[2].y() - B.coreVertices(plate)[0].y());
+  w.setBlockPose(B.id(plate), Vec2(B.origin(plate).x(), top + 0.005 + half + B.def(plate).rounding),
+                 0);
+  w.setBlockVelocity(B.id(plate), Vec2(0, -speed), 0);
   const Real weight = 9.81 * out.solids_mass;
   Real contact_y = std::numeric_limits<Real>::quiet_NaN(), next = 0;
   const Real give_up = w.time() + (0.01 + max_settlement) / speed;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "mpm_sdem/core/diagnostics.hpp"
 #include "mpm_sdem/core/world.hpp"
@@ -13,8 +14,16 @@ namespace mpm_sdem::cases {
 // A rounded box block of outer size w x h (rounding a included), centred at center (m).
 BlockDef boxBlock(const std::string& name, const Vec2& center, Real w, Real h, Real a,
                   BodyType type, Real density = 1000);
+// A rigid cluster of discs (seed 003) standing for a flat face: a row of discs of radius r at
+// pitch p (< 2 r: overlapping) with centres on the segment from..to (m), the block frame at its
+// middle and along it. The face is bumpy by r - sqrt(r^2 - p^2 / 4) (0.16 mm for r = 5 mm,
+// p = 2.5 mm).
+BlockDef discRow(const std::string& name, const Vec2& from, const Vec2& to, Real r, Real p,
+                 BodyType type);
 // A disk of material filled at ppc x ppc points per cell (material 0).
 BodyDef diskBody(const Vec2& center, Real radius, int ppc);
+// Least-squares acceleration of x(t) = x0 + v0 t + a t^2 / 2 over the samples with t >= t0.
+Real fittedAcceleration(const std::vector<Real>& t, const std::vector<Real>& x, Real t0 = 0);
 
 // Seed 000 sec. 5.1.1 (Table 1): an elastic disk of radius 2 cm at 2 m/s towards an equal free
 // rigid disk 4 mm away; no gravity; GIMP, APIC. Stiffnesses in N/m per metre (Table 1 read in
@@ -43,7 +52,10 @@ WorldDef rodCollision(CouplingScheme scheme, Real cell_size, Real& end_of_approa
 // restitution 0.5, friction mu) whose top is at y = 5 cm, the square's lowest points just
 // touching; GIMP with PIC (which, with the contact damping, settles it); IMP springs as in
 // Table 2 read in cgs (6e3, 3e2 N/m), r_p = 1 mm, V_d = 2 mm.
-WorldDef restingSquare(Real cell_size, Real friction, CouplingScheme scheme = CouplingScheme::kImp);
+// disc_pitch > 0: the block's top face is a static cluster, one row of 5 mm discs at that
+// pitch (discRow) whose tops are at y = 5 cm.
+WorldDef restingSquare(Real cell_size, Real friction, CouplingScheme scheme = CouplingScheme::kImp,
+                       Real disc_pitch = 0);
 
 // The forces on the resting square's block: runs until every point is slower than 0.1 mm/s for
 // 0.25 s on end (the soft contact rings with a period of about 0.2 s, seed 000 Fig. 12), or 3 s;
@@ -65,8 +77,10 @@ RestingForces restingSquareForces(World& w, Real slide_speed);
 // segment > 0 builds the incline's surface from collinear static segment blocks of that length
 // (m) instead of one box: seed 002 Table 1 varies R = element size / cell size from 1 to 8, and
 // our analogue of a surface element is a block.
+// disc_pitch > 0 builds it as a static cluster instead: one row of discs of radius a at that
+// pitch along the same line (discRow).
 Real inclineAcceleration(Real mu, Real cell_size, CouplingScheme scheme = CouplingScheme::kImp,
-                         Real segment = 0);
+                         Real segment = 0, Real disc_pitch = 0);
 // The analytic acceleration of inclineAcceleration's disk (m/s^2).
 Real inclineAnalytic(Real mu);
 
@@ -114,7 +128,9 @@ Rebound dropRebound(World& w);
 // A 3 cm rounded box (a = 5 mm, 2500 kg/m^3, restitution 0.2) thrown at (3, -20) m/s into a
 // 30 x 8 cm granular bed (Drucker-Prager, rho = 1500 kg/m^3, E = 1 MPa, nu = 0.3, phi = 30 deg,
 // sticky floor), 5 mm cells; contact springs 1e7 and 5e6 N/m.
-WorldDef rockIntoBed(CouplingScheme scheme = CouplingScheme::kImp);
+// disc_radius > 0: the rock is a cluster of discs of that radius filling the same outline at a
+// pitch of one radius (seed 003's rock as DEM discs).
+WorldDef rockIntoBed(CouplingScheme scheme = CouplingScheme::kImp, Real disc_radius = 0);
 
 // Seed 001 sec. 5.1 (Table 1, copper: rho = 8790 kg/m^3, E = 128 GPa; nu = 0 keeps the strip
 // one-dimensional): v = 0.01 c sin(10 pi x) on a 1 m bar between sticky walls, 1 cm cells, 2 x 2

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "mpm_sdem/core/constitutive.hpp"
+#include "mpm_sdem/core/mpm/constitutive.hpp"
 
 namespace mpm_sdem {
 

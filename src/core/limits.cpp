@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <thread>
 
-#include "mpm_sdem/core/grid.hpp"
-#include "mpm_sdem/core/particles.hpp"
+#include "mpm_sdem/core/mpm/grid.hpp"
+#include "mpm_sdem/core/mpm/particles.hpp"
 
 namespace mpm_sdem::limits {
 

@@ -6,11 +6,11 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "mpm_sdem/core/block_checks.hpp"
-#include "mpm_sdem/core/constitutive.hpp"
-#include "mpm_sdem/core/imp_coupling.hpp"
+#include "coupling/imp_coupling.hpp"
+#include "mpm/transfer.hpp"
 #include "mpm_sdem/core/limits.hpp"
-#include "transfer.hpp"
+#include "mpm_sdem/core/mpm/constitutive.hpp"
+#include "mpm_sdem/core/rigid/block_checks.hpp"
 
 namespace mpm_sdem {
 
@@ -163,51 +163,56 @@ void World::initCoupling() {
                            def_.bodies);
 }
 
-Problem World::placementProblem(const BlockDef& d, bool allow_overlap, int moving) const {
+Problem World::placementProblem(const BlockDef& d, bool allow_overlap, BlockId moving) const {
   if (Problem own = blockProblem(d, def_.block_contact.model); !own.empty()) return own;
   if (!coupling_ && def_.coupling.scheme == CouplingScheme::kPartitioned && steps_ > 0)
     return {"",
             "the partitioned coupling builds its wall from the material's initial outline: "
             "give the scene a block from the start, or use another coupling scheme"};
-  if (moving < 0 && blocks_ && blocks_->find(d.name) >= 0)
+  if (moving.isNull() && blocks_ && !blocks_->find(d.name).isNull())
     return {"name", "a block named '" + d.name + "' exists"};
   if (Problem where = domainProblem(d, def_.domain.min, def_.domain.max); !where.empty())
     return where;
   if (allow_overlap) return {};
-  const std::vector<Vec2> core = placedCore(d);
+  const std::vector<Spheropolygon> parts = placedParts(d);
   if (blocks_) {
     for (int i = 0; i < blocks_->count(); ++i) {
-      if (i == moving) continue;
-      const Real depth = startingOverlap(core, d.rounding, blocks_->vertices(i),
-                                         blocks_->vertexCount(i), blocks_->def(i).rounding);
-      if (depth > 0)
+      if (blocks_->id(i) == moving) continue;
+      if (const Real depth = startingOverlap(parts, blocks_->currentParts(i)); depth > 0)
         return {"position", "it overlaps block '" + blocks_->def(i).name + "' by " +
                                 std::to_string(depth) + " m"};
     }
   }
   const Particles& P = particles_;
   for (std::size_t p = 0; p < P.size(); ++p) {
-    if (insideOutline(core, d.rounding, Vec2(P.x[p], P.y[p])))
+    if (insideOutline(parts, Vec2(P.x[p], P.y[p])))
       return {"position", "it overlaps the material (point " + std::to_string(p) + " is inside)"};
   }
   return {};
 }
 
-int World::addBlock(const BlockDef& d) {
+BlockId World::addBlock(const BlockDef& d) {
   if (!blocks_) {
-    blocks_ =
-        std::make_unique<Blocks>(std::vector<BlockDef>{}, def_.block_contact, def_.solver.gravity,
-                                 std::sqrt(spheropolygonMass(d.core, d.rounding, 1).area));
+    blocks_ = std::make_unique<Blocks>(std::vector<BlockDef>{}, def_.block_contact,
+                                       def_.solver.gravity, std::sqrt(blockMass(d).area));
     initCoupling();
   }
-  const int i = blocks_->add(d);
-  coupling_->blockAdded();
-  return i;
+  const BlockId id = blocks_->add(d);
+  coupling_->bodiesChanged();
+  return id;
 }
 
-void World::removeBlock(int index) {
-  blocks_->remove(index);
-  coupling_->blockRemoved(index);
+void World::removeBlock(BlockId id) {
+  blocks_->remove(id);
+  coupling_->bodiesChanged();
+}
+
+void World::setBlockPose(BlockId id, const Vec2& origin, Real angle) {
+  blocks_->setPose(id, origin, angle);
+}
+
+void World::setBlockVelocity(BlockId id, const Vec2& origin_velocity, Real angular_velocity) {
+  blocks_->setVelocity(id, origin_velocity, angular_velocity);
 }
 
 World::Memory World::memory() const {
@@ -260,11 +265,12 @@ TimeStepChoice World::stepBound(Real cfl, Real kappa2) const {
   const Real cfl_dt = fastest > 0 ? cfl * grid_.h / fastest : std::numeric_limits<Real>::infinity();
   TimeStepChoice choice{def_.time_step.max, StepLimit::kMax};
   if (cfl_dt < choice.dt) choice = {cfl_dt, StepLimit::kCfl};
-  if (hasBlocks() && coupling_->hasSprings()) {
-    // Eq. 51, second term, for the coupling springs (lightest point or block). The block-block
-    // springs do not bound this step: the blocks take substeps within their own bound.
-    const Real zeta = blocks_->maxDampingRatio();  // the most damped contact bounds the step
-    const Real block = blocks_->lightestDynamicMass();
+  if (hasContactBodies() && coupling_->hasSprings()) {
+    // Eq. 51, second term, for the coupling springs (lightest point or body). The springs
+    // between bodies do not bound this step: the bodies take substeps within their own bound.
+    const ContactBodies& bodies = *contactBodies();
+    const Real zeta = bodies.maxDampingRatio();  // the most damped contact bounds the step
+    const Real block = bodies.lightestMass();
     const Real dt = contactTimeStep(std::fmin(lightest_point_, block / largest_spring_scale_),
                                     coupling_->def().normal_stiffness, zeta, 1, kappa2);
     if (dt < choice.dt) choice = {dt, StepLimit::kContact};
@@ -281,8 +287,9 @@ StepInfo World::step(Real dt) {
   // Seed 000 sec. 4.2: contact forces from the state at the start of the step, the MPM step with
   // them on the grid (eq. 48), then the blocks with the reactions. Each coupling scheme does its
   // part in the stages of coupling.hpp.
-  const bool coupled = hasBlocks();
+  const bool coupled = hasContactBodies();
   const bool corrected = coupled && coupling_->correctsVelocities();
+  if (coupled) contactBodies()->beginCoupling(dt);
   auto stage = [&](void (Coupling::*f)(CouplingStep&)) {
     if (coupled) couplingStage(dt, kick, f);
   };
@@ -313,7 +320,7 @@ StepInfo World::step(Real dt) {
     stress_lag_ = 0;
   }
   stage(&Coupling::afterMaterialStep);
-  if (coupled) stepBlocks(dt);
+  if (coupled) stepBodies(dt);
   velocity_lag_ = Real(0.5) * dt;
   time_ += dt;
   ++steps_;
@@ -332,14 +339,15 @@ void World::reverseVelocities() {
 
 void World::couplingStage(Real dt, Real kick, void (Coupling::*stage)(CouplingStep&)) {
   StageTimer timer(profile_, Stage::kContact);
-  CouplingStep s{particles_,          grid_, tiles_, *blocks_, def_.solver.kernel,
+  CouplingStep s{particles_,          grid_, tiles_, *contactBodies(), def_.solver.kernel,
                  def_.solver.gravity, dt,    kick};
   ((*coupling_).*stage)(s);
 }
 
-void World::stepBlocks(Real dt) {
+void World::stepBodies(Real dt) {
   StageTimer timer(profile_, Stage::kBlocks);
-  blocks_->step(dt, blocks_->stableStep(def_.time_step.contact_factor));
+  ContactBodies& bodies = *contactBodies();
+  bodies.step(dt, bodies.stableStep(def_.time_step.contact_factor));
 }
 
 void World::setPointLoad(int particle, const Vec2& force, const Vec2& offset) {

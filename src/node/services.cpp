@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "mpm_sdem/core/block_checks.hpp"
 #include "mpm_sdem/core/limits.hpp"
+#include "mpm_sdem/core/rigid/block_checks.hpp"
 #include "mpm_sdem/ros/conversions.hpp"
 #include "sim_loop.hpp"
 
@@ -37,12 +37,12 @@ std::string inRequestTerms(const Problem& p) {
 
 // Sets a block's velocity from a twist of its frame origin: refused for a static block and
 // for a twist that would collapse the step (twistProblem).
-Reply applyTwist(World& w, int i, const geometry_msgs::Twist& t) {
-  const BlockDef& def = w.blocks()->def(i);
+Reply applyTwist(World& w, BlockId id, const geometry_msgs::Twist& t) {
+  const BlockDef& def = w.blocks()->def(w.blocks()->indexOf(id));
   const Vec2 v(t.linear.x, t.linear.y);
   if (const Problem p = twistProblem(def, v, t.angular.z); !p.empty())
     return {false, "block '" + def.name + "': " + inRequestTerms(p)};
-  w.blocks()->setVelocity(i, v, t.angular.z);
+  w.setBlockVelocity(id, v, t.angular.z);
   return {true, ""};
 }
 
@@ -52,8 +52,9 @@ std::string describe(const geometry_msgs::Twist& t) {
   return s;
 }
 
-int findBlock(World& w, const std::string& name) {
-  return w.blocks() ? w.blocks()->find(name) : -1;
+// The block of that name, or the null id.
+BlockId findBlock(World& w, const std::string& name) {
+  return w.blocks() ? w.blocks()->find(name) : BlockId();
 }
 
 }  // namespace
@@ -94,10 +95,10 @@ bool Services::spawn(mpm_sdem::SpawnObstacle::Request& req,
     const Problem problem = w.placementProblem(def, s.params().allow_overlap);
     const std::string name = limits::nameProblem(def.name).empty() ? def.name : "(bad name)";
     if (!problem.empty()) return {false, "cannot spawn '" + name + "': " + inRequestTerms(problem)};
-    const int i = w.addBlock(def);
+    const BlockId id = w.addBlock(def);
     // A block so light or small that its springs' stable step would stop the clock.
     if (const TimeStepChoice dt = w.chooseTimeStep(); !(dt.dt >= limits::kMinTimeStep)) {
-      w.removeBlock(i);
+      w.removeBlock(id);
       return {false, "cannot spawn '" + def.name + "': the time step would fall to " +
                          std::to_string(dt.dt) + " s (" + stepLimitName(dt.limit) +
                          " term); make it heavier or larger"};
@@ -114,9 +115,9 @@ bool Services::remove(mpm_sdem::RemoveObstacle::Request& req,
     return answer(res, {false, "name " + p});
   const std::string name = req.name;
   return answer(res, queue_.call([name](Simulation& s) -> Reply {
-    const int i = findBlock(s.world(), name);
-    if (i < 0) return {false, "no block named '" + name + "'"};
-    s.world().removeBlock(i);
+    const BlockId id = findBlock(s.world(), name);
+    if (id.isNull()) return {false, "no block named '" + name + "'"};
+    s.world().removeBlock(id);
     s.blocksChanged();
     s.noteRequest("~remove_obstacle '" + name + "'");
     return {true, "removed '" + name + "'"};
@@ -132,25 +133,26 @@ bool Services::setState(mpm_sdem::SetObstacleState::Request& req,
   const mpm_sdem::SetObstacleState::Request r = req;
   return answer(res, queue_.call([r](Simulation& s) -> Reply {
     World& w = s.world();
-    const int i = findBlock(w, r.name);
-    if (i < 0) return {false, "no block named '" + r.name + "'"};
+    const BlockId id = findBlock(w, r.name);
+    if (id.isNull()) return {false, "no block named '" + r.name + "'"};
+    const BlockDef& def = w.blocks()->def(w.blocks()->indexOf(id));
     // Both checked before either is applied: a refused request changes nothing.
     if (r.set_twist) {
-      const Problem p = twistProblem(w.blocks()->def(i), Vec2(r.twist.linear.x, r.twist.linear.y),
-                                     r.twist.angular.z);
+      const Problem p =
+          twistProblem(def, Vec2(r.twist.linear.x, r.twist.linear.y), r.twist.angular.z);
       if (!p.empty())
         return {false, "cannot set the twist of '" + r.name + "': " + inRequestTerms(p)};
     }
     if (r.set_pose) {
-      BlockDef moved = w.blocks()->def(i);
+      BlockDef moved = def;
       moved.position = Vec2(r.pose.x, r.pose.y);
       moved.angle = r.pose.theta;
-      const Problem problem = w.placementProblem(moved, s.params().allow_overlap, i);
+      const Problem problem = w.placementProblem(moved, s.params().allow_overlap, id);
       if (!problem.empty())
         return {false, "cannot move '" + r.name + "' there: " + inRequestTerms(problem)};
-      w.blocks()->setPose(i, moved.position, moved.angle);
+      w.setBlockPose(id, moved.position, moved.angle);
     }
-    if (r.set_twist) applyTwist(w, i, r.twist);
+    if (r.set_twist) applyTwist(w, id, r.twist);
     s.blocksChanged();
     s.noteRequest("~set_obstacle_state '" + r.name + "'" +
                   (r.set_twist ? " with twist " + describe(r.twist) : std::string()));
@@ -198,9 +200,9 @@ void Services::obstacleCommand(const mpm_sdem::ObstacleCommand::ConstPtr& msg) {
   const std::string name = msg->name;
   const geometry_msgs::Twist twist = msg->twist;
   queue_.post([name, twist](Simulation& s) -> Reply {
-    const int i = findBlock(s.world(), name);
-    const Reply r =
-        i < 0 ? Reply{false, "no block named '" + name + "'"} : applyTwist(s.world(), i, twist);
+    const BlockId id = findBlock(s.world(), name);
+    const Reply r = id.isNull() ? Reply{false, "no block named '" + name + "'"}
+                                : applyTwist(s.world(), id, twist);
     if (!r.success)
       ROS_WARN_THROTTLE(1, "~obstacle_cmd ignored: %s", r.message.c_str());
     else

@@ -3,8 +3,8 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
-#include "mpm_sdem/core/constitutive.hpp"
 #include "mpm_sdem/core/limits.hpp"
+#include "mpm_sdem/core/mpm/constitutive.hpp"
 
 namespace mpm_sdem::render {
 
@@ -68,13 +68,12 @@ void renderWorld(const World& world, const RenderDef& def, cv::Mat& image) {
                cv::FILLED);
   }
   if (const Blocks* B = world.blocks()) {
-    for (int i = 0; i < B->count(); ++i) {
-      const cv::Scalar colour = B->def(i).type == BodyType::kDynamic ? cv::Scalar(90, 170, 230)
-                                                                     : cv::Scalar(170, 170, 170);
-      const std::vector<Vec2> core(B->vertices(i), B->vertices(i) + B->vertexCount(i));
+    for (int s = 0; s < B->shapeCount(); ++s) {  // a cluster drawn disc by disc
+      const cv::Scalar colour =
+          B->movable(s) ? cv::Scalar(90, 170, 230) : cv::Scalar(170, 170, 170);
+      const std::vector<Vec2> core(B->coreVertices(s), B->coreVertices(s) + B->coreVertexCount(s));
       std::vector<cv::Point> outline;
-      for (const Vec2& p : roundedOutline(core, B->def(i).rounding, 6))
-        outline.push_back(toPixel(p));
+      for (const Vec2& p : roundedOutline(core, B->rounding(s), 6)) outline.push_back(toPixel(p));
       cv::fillConvexPoly(image, outline, colour, cv::LINE_AA);
     }
   }

@@ -3,8 +3,9 @@
 #include <sensor_msgs/point_cloud2_iterator.h>
 
 #include <cmath>
+#include <limits>
 
-#include "mpm_sdem/core/constitutive.hpp"
+#include "mpm_sdem/core/mpm/constitutive.hpp"
 
 namespace mpm_sdem::conversions {
 
@@ -143,6 +144,7 @@ visualization_msgs::MarkerArray toMarkers(const World& world, const std::string&
   out.markers.push_back(clear);
   const Blocks* B = world.blocks();
   if (!B) return out;
+  int id = 0;
   for (int i = 0; i < B->count(); ++i) {
     const BlockDef& d = B->def(i);
     visualization_msgs::Marker m;
@@ -150,27 +152,33 @@ visualization_msgs::MarkerArray toMarkers(const World& world, const std::string&
     m.header.stamp = stamp;
     m.frame_locked = true;
     m.ns = "outline";
-    m.id = i;
     m.type = visualization_msgs::Marker::LINE_STRIP;
     m.pose.orientation.w = 1;
-    m.scale.x = 0.25 * d.rounding;
     m.color.a = 1;
     m.color.r = d.type == BodyType::kDynamic ? 0.9f : 0.5f;
     m.color.g = d.type == BodyType::kKinematic ? 0.8f : 0.5f;
     m.color.b = 0.5f;
-    for (const Vec2& p : roundedOutline(d.core, d.rounding, 6)) {
-      geometry_msgs::Point q;
-      q.x = p.x();
-      q.y = p.y();
-      m.points.push_back(q);
+    Real smallest = std::numeric_limits<Real>::infinity();
+    for (const Spheropolygon& part : B->parts(i)) {  // one outline per disc of a cluster
+      m.id = id++;
+      m.scale.x = 0.25 * part.rounding;
+      m.points.clear();
+      for (const Vec2& p : roundedOutline(part.core, part.rounding, 6)) {
+        geometry_msgs::Point q;
+        q.x = p.x();
+        q.y = p.y();
+        m.points.push_back(q);
+      }
+      out.markers.push_back(m);
+      smallest = std::min(smallest, part.rounding);
     }
-    out.markers.push_back(m);
     visualization_msgs::Marker label = m;
     label.ns = "name";
+    label.id = i;
     label.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
     label.points.clear();
     label.text = d.name;
-    label.scale.z = std::max(0.01, 4 * d.rounding);
+    label.scale.z = std::max(0.01, 4 * smallest);
     label.pose.position.x = B->massProperties(i).centroid.x();
     label.pose.position.y = B->massProperties(i).centroid.y();
     label.color.r = label.color.g = label.color.b = 1;

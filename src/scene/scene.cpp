@@ -7,10 +7,10 @@
 #include <map>
 #include <sstream>
 
-#include "mpm_sdem/core/block_checks.hpp"
 #include "mpm_sdem/core/limits.hpp"
-#include "mpm_sdem/core/shapes.hpp"
-#include "mpm_sdem/core/spheropolygon.hpp"
+#include "mpm_sdem/core/mpm/shapes.hpp"
+#include "mpm_sdem/core/rigid/block_checks.hpp"
+#include "mpm_sdem/core/rigid/spheropolygon.hpp"
 #include "yaml_reader.hpp"
 
 namespace mpm_sdem {
@@ -384,20 +384,30 @@ void parseBodies(const Context& ctx, const MapReader& top, Scene& s,
 }
 
 BlockDef parseBlock(const Context& ctx, const YAML::Node& n, const std::string& path) {
-  MapReader r(
-      ctx, n, path,
-      {"name", "type", "shape", "size", "vertices", "radius", "rounding", "position", "angle",
-       "velocity", "angular_velocity", "density", "friction", "restitution", "adhesion"});
+  MapReader r(ctx, n, path,
+              {"name", "type", "shape", "size", "vertices", "radius", "rounding", "discs",
+               "disc_radius", "disc_pitch", "position", "angle", "velocity", "angular_velocity",
+               "density", "friction", "restitution", "adhesion"});
   BlockDef b;
   b.name = r.text("name");
   b.type = r.choiceOf<BodyType>(r.node("type"), r.path("type"),
                                 {{"static", BodyType::kStatic},
                                  {"kinematic", BodyType::kKinematic},
                                  {"dynamic", BodyType::kDynamic}});
-  enum class Kind { kBox, kPolygon, kDisk };
-  const Kind kind =
-      r.choiceOf<Kind>(r.node("shape"), r.path("shape"),
-                       {{"box", Kind::kBox}, {"polygon", Kind::kPolygon}, {"disk", Kind::kDisk}});
+  enum class Kind { kBox, kPolygon, kDisk, kCluster };
+  const Kind kind = r.choiceOf<Kind>(r.node("shape"), r.path("shape"),
+                                     {{"box", Kind::kBox},
+                                      {"polygon", Kind::kPolygon},
+                                      {"disk", Kind::kDisk},
+                                      {"cluster", Kind::kCluster}});
+  r.require(kind == Kind::kCluster || !r.has("discs"), "discs", "applies only to shape: cluster");
+  r.require(
+      kind == Kind::kCluster || kind == Kind::kDisk || !r.has("disc_pitch") || r.has("disc_radius"),
+      "disc_pitch", "needs disc_radius (the discs that fill the shape)");
+  r.require((kind != Kind::kCluster && kind != Kind::kDisk) ||
+                (!r.has("disc_radius") && !r.has("disc_pitch")),
+            r.has("disc_radius") ? "disc_radius" : "disc_pitch",
+            "applies only to shape: box or polygon (filled with discs)");
   r.require(kind == Kind::kBox || !r.has("size"), "size", "applies only to shape: box");
   r.require(kind == Kind::kPolygon || !r.has("vertices"), "vertices",
             "applies only to shape: polygon");
@@ -405,9 +415,24 @@ BlockDef parseBlock(const Context& ctx, const YAML::Node& n, const std::string& 
   r.require(kind != Kind::kDisk || !r.has("rounding"), "rounding",
             "a disk is a point swept by its radius: give radius only");
   // The values' ranges are checked with the contact model, in parseBlocks (blockProblem).
+  r.require(kind != Kind::kCluster || !r.has("rounding"), "rounding",
+            "a cluster's outline is its discs: give discs only");
   if (kind == Kind::kDisk) {
     b.rounding = r.number("radius", "m");
     b.core = {Vec2(0, 0)};
+  } else if (kind == Kind::kCluster) {
+    // Seed 003 sec. 2.2: a rigid cluster of discs, each [x, y, radius] in the block frame (m).
+    const YAML::Node v = r.node("discs");
+    if (!v.IsSequence() || v.size() == 0)
+      ctx.fail(v, r.path("discs"), "expected a list of discs, each [x, y, radius] in m");
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const std::string at = r.path("discs") + "[" + std::to_string(i) + "]";
+      if (!v[i].IsSequence() || v[i].size() != 3)
+        ctx.fail(v[i], at, "expected [x, y, radius] in m");
+      Real x[3];
+      for (int k = 0; k < 3; ++k) x[k] = MapReader::toNumber(ctx, v[i][k], at, "m");
+      b.discs.push_back({Vec2(x[0], x[1]), x[2]});
+    }
   } else {
     b.rounding = r.number("rounding", "m");
   }
@@ -424,6 +449,24 @@ BlockDef parseBlock(const Context& ctx, const YAML::Node& n, const std::string& 
     for (std::size_t i = 0; i < v.size(); ++i) {
       b.core.push_back(
           MapReader::toVec2(ctx, v[i], r.path("vertices") + "[" + std::to_string(i) + "]", "m"));
+    }
+  }
+  if (r.has("disc_radius")) {
+    // The shape filled with discs on a square lattice (seed 003's 8 x 8 wooden blocks): the
+    // block becomes their cluster.
+    const Real radius = r.number("disc_radius", "m");
+    const Real pitch = r.number("disc_pitch", "m", 2 * radius);
+    r.require(radius > 0 && std::isfinite(radius), "disc_radius", "must be a positive length");
+    r.require(pitch > 0 && pitch <= 2 * radius, "disc_pitch",
+              "must lie in (0, 2 disc_radius]: the discs touch or overlap, so the cluster holds "
+              "together");
+    std::vector<Vec2> core = b.core;
+    makeCounterClockwise(core);
+    if (coreProblem(core).empty()) {
+      b.discs = fillWithDiscs({core, b.rounding}, radius, pitch);
+      r.require(!b.discs.empty(), "disc_radius",
+                "not one disc of radius " + num(radius) + " m fits inside the shape");
+      b.core.clear();
     }
   }
   b.position = r.vec2("position", "m");
@@ -472,18 +515,16 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
       std::string key = problem.key;
       if (key == "rounding" && list[i]["radius"]) key = "radius";
       if (key == "vertices" && list[i]["size"]) key = "size";
+      if (key == "discs" && list[i]["disc_radius"]) key = "disc_radius";
       const YAML::Node at = list[i][key] ? list[i][key] : list[i];
       ctx.fail(at, path + "." + key, problem.message);
     }
     makeCounterClockwise(b.core);
-    const std::vector<Vec2> core = placedCore(b);
+    const std::vector<Spheropolygon> parts = placedParts(b);
     for (const BlockDef& other : s.world.blocks) {
       if (other.name == b.name)
         ctx.fail(list[i], path, "a block named '" + b.name + "' exists already");
-      const std::vector<Vec2> co = placedCore(other);
-      const Real depth =
-          startingOverlap(core, b.rounding, co.data(), static_cast<int>(co.size()), other.rounding);
-      if (depth > 0) {
+      if (const Real depth = startingOverlap(parts, placedParts(other)); depth > 0) {
         ctx.fail(list[i], path,
                  "block '" + b.name + "' overlaps block '" + other.name + "' by " + num(depth) +
                      " m; move it so that the rounded outlines at most touch");
@@ -492,7 +533,7 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
     for (const BodyDef& body : s.world.bodies) {
       for (const Vec2& p :
            fillPoints(body.shape, dom.min, s.world.cell_size, body.points_per_cell)) {
-        if (insideOutline(core, b.rounding, p)) {
+        if (insideOutline(parts, p)) {
           ctx.fail(list[i], path,
                    "block '" + b.name + "' overlaps the material of body '" + body.name +
                        "'; move the block or shrink the body");

@@ -9,6 +9,7 @@ namespace mpm_sdem {
 // precision trade-off is measured before it is changed (issue 5).
 using Real = double;
 using Vec2 = Eigen::Matrix<Real, 2, 1>;
+using Mat2 = Eigen::Matrix<Real, 2, 2>;
 
 // The z component of a x b: the moment of a force b at lever a (N m/m), twice a triangle's area.
 inline Real cross(const Vec2& a, const Vec2& b) {

@@ -6,17 +6,17 @@
 #include <string>
 #include <vector>
 
-#include "mpm_sdem/core/blocks.hpp"
-#include "mpm_sdem/core/boundary.hpp"
-#include "mpm_sdem/core/coupling.hpp"
-#include "mpm_sdem/core/grid.hpp"
-#include "mpm_sdem/core/kernels.hpp"
+#include "mpm_sdem/core/coupling/coupling.hpp"
 #include "mpm_sdem/core/limits.hpp"
-#include "mpm_sdem/core/material.hpp"
-#include "mpm_sdem/core/particles.hpp"
+#include "mpm_sdem/core/mpm/boundary.hpp"
+#include "mpm_sdem/core/mpm/grid.hpp"
+#include "mpm_sdem/core/mpm/kernels.hpp"
+#include "mpm_sdem/core/mpm/material.hpp"
+#include "mpm_sdem/core/mpm/particles.hpp"
+#include "mpm_sdem/core/mpm/shapes.hpp"
+#include "mpm_sdem/core/mpm/tiles.hpp"
 #include "mpm_sdem/core/profile.hpp"
-#include "mpm_sdem/core/shapes.hpp"
-#include "mpm_sdem/core/tiles.hpp"
+#include "mpm_sdem/core/rigid/blocks.hpp"
 #include "mpm_sdem/core/types.hpp"
 
 namespace mpm_sdem {
@@ -110,22 +110,27 @@ class World {
   // internal force; scenes without loads do no work for them.
   void setPointLoad(int particle, const Vec2& force, const Vec2& offset = Vec2::Zero());
 
-  // Blocks added and removed while running (obstacles commanded from outside). placementProblem
-  // says why a block cannot be added where it is (empty when it can): its own values
-  // (blockProblem), its name taken, outside the domain (domainProblem), overlapping a block or,
-  // unless allow_overlap, the material. addBlock returns the new block's index; removeBlock shifts
-  // the later ones down. moving: index of a block being moved to def's pose (not compared with
-  // itself), or -1.
-  Problem placementProblem(const BlockDef& def, bool allow_overlap, int moving = -1) const;
-  int addBlock(const BlockDef& def);
-  void removeBlock(int index);
+  // Blocks added and removed while running (obstacles commanded from outside), named by their
+  // ids (Blocks::find gives a name's). placementProblem says why a block cannot be added where
+  // it is (empty when it can): its own values (blockProblem), its name taken, outside the domain
+  // (domainProblem), overlapping a block or, unless allow_overlap, the material. moving: the
+  // block being moved to def's pose (not compared with itself), or the null id. removeBlock,
+  // setBlockPose and setBlockVelocity throw std::invalid_argument on an id that names no block.
+  Problem placementProblem(const BlockDef& def, bool allow_overlap, BlockId moving = {}) const;
+  BlockId addBlock(const BlockDef& def);
+  void removeBlock(BlockId id);
+  // Moves the block's frame to origin and angle, and sets its frame's velocity and angular
+  // velocity (Blocks::setPose, setVelocity).
+  void setBlockPose(BlockId id, const Vec2& origin, Real angle);
+  void setBlockVelocity(BlockId id, const Vec2& origin_velocity, Real angular_velocity);
 
   const WorldDef& def() const { return def_; }
   const std::vector<MaterialParams>& materialParams() const { return params_; }
   // The rigid blocks, or nullptr in a scene without any (no block or coupling work is done).
+  // Changed only through World (addBlock, removeBlock, setBlockPose, setBlockVelocity), which
+  // keeps the coupling in step.
   const Blocks* blocks() const { return blocks_.get(); }
-  Blocks* blocks() { return blocks_.get(); }
-  // The material-block coupling, or nullptr while there are no blocks.
+  // The material-body coupling, or nullptr while there are no contact bodies.
   const Coupling* coupling() const { return coupling_.get(); }
   // The coupling settings with their defaults resolved (r_p, V_d in metres).
   CouplingDef resolvedCoupling() const;
@@ -158,10 +163,12 @@ class World {
   void constitutiveUpdate(Real dt);
   void applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const;
   void couplingStage(Real dt, Real kick, void (Coupling::*stage)(CouplingStep&));
-  void stepBlocks(Real dt);
+  void stepBodies(Real dt);
   void initCoupling();
   void spreadPointLoads();
-  bool hasBlocks() const { return blocks_ && blocks_->count() > 0; }
+  // Everything solid the material meets (today the rigid blocks), or nullptr.
+  ContactBodies* contactBodies() const { return blocks_.get(); }
+  bool hasContactBodies() const { return contactBodies() && contactBodies()->shapeCount() > 0; }
 
   WorldDef def_;
   std::vector<MaterialParams> params_;

@@ -1,0 +1,109 @@
+// Material-body coupling: one interface, five schemes picked per scene. Every scheme works on
+// ContactBodies alone (whatever kind of solid) and gives the same outputs: forces or impulses on
+// the bodies (ContactBodies::applyForce, applyImpulse), forces or momentum on the grid, and a
+// count of active contacts. World calls the stages in this order each step:
+//   [bodies.beginCoupling] -> beforeStep -> [P2G, internal force] -> addGridForces
+//   -> [velocity update] -> correctGridVelocity -> [G2P] -> afterMaterialStep -> [bodies.step]
+#pragma once
+
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "mpm_sdem/core/coupling/contact_bodies.hpp"
+#include "mpm_sdem/core/mpm/grid.hpp"
+#include "mpm_sdem/core/mpm/kernels.hpp"
+#include "mpm_sdem/core/mpm/particles.hpp"
+#include "mpm_sdem/core/mpm/shapes.hpp"
+#include "mpm_sdem/core/mpm/tiles.hpp"
+#include "mpm_sdem/core/types.hpp"
+
+namespace mpm_sdem {
+
+enum class CouplingScheme {
+  kImp,              // seed 000 sec. 4: DEM springs between blocks and identified material points
+  kImpGrid,          // seed 000 sec. 5.4 "MPM-GRID": the same springs, force put on the grid
+                     // nodes around the contact point instead of on the material point
+  kMultiVelocity,    // seed 002 sec. 2.4: the block's own velocity field on the grid, nodal
+                     // stick/slip contact (eq. 22-32)
+  kParticleSurface,  // seed 002 sec. 3: particle-to-surface contact, no penalty stiffness
+                     // (eq. 42-54 with the block's effective mass at the contact point)
+  kPartitioned,      // seed 003 Algorithm 1: blocks meet a wall of segments through boundary
+                     // particles; the wall forces go to the MPM side as point loads
+};
+const char* couplingSchemeName(CouplingScheme s);
+
+// What the IMP spring constants are given for.
+enum class SpringBasis {
+  kPerPoint,   // seed 000: one spring k per IMP (N/m per metre of thickness); a face's
+               // stiffness grows with the number of points along it
+  kPerLength,  // k per metre of contact length (Pa): each IMP's spring is k times its point
+               // spacing, so a face is as stiff at every resolution
+};
+
+struct CouplingDef {
+  CouplingScheme scheme = CouplingScheme::kImp;
+  // Spring schemes (kImp, kImpGrid, kPartitioned).
+  Real normal_stiffness = 1e6;      // k_n of one contact (N/m per metre of thickness)
+  Real tangential_stiffness = 5e5;  // k_t (N/m per metre)
+  SpringBasis stiffness_per = SpringBasis::kPerPoint;  // kImp and kImpGrid
+  Real contact_radius = 0;   // r_p (m); 0: h / sqrt(points per cell), inside eq. 45
+  Real verlet_distance = 0;  // V_d (m); 0: half a cell
+  // kMultiVelocity: the block's points per cell side (its nodal mass and normal, eq. 23).
+  int block_points_per_cell = 2;
+  // kPartitioned: how far inside each body's initial outline the boundary particles start (m);
+  // 0: a third of the point spacing (seed 003, the wooden-block case).
+  Real boundary_inset = 0;
+};
+
+// What a stage may read and change.
+struct CouplingStep {
+  Particles& particles;
+  Grid& grid;
+  const Tiles& tiles;
+  ContactBodies& bodies;
+  KernelType kernel;
+  Vec2 gravity;  // m/s^2
+  Real dt;       // s, the step
+  Real kick;     // s, the grid velocity update's span (dt, half of it on the first step)
+};
+
+class Coupling {
+ public:
+  virtual ~Coupling() = default;
+  // Contact forces from the state at the start of the step (spring schemes).
+  virtual void beforeStep(CouplingStep&) {}
+  // Nodal forces, added to the internal forces before the velocity update.
+  virtual void addGridForces(CouplingStep&) {}
+  // Momentum exchange on the updated (trial) grid velocities (penalty-free schemes).
+  virtual void correctGridVelocity(CouplingStep&) {}
+  // After the points moved.
+  virtual void afterMaterialStep(CouplingStep&) {}
+  // True when contacts are springs, which bound the time step (seed 000 eq. 51, second term).
+  virtual bool hasSprings() const = 0;
+  // True when correctGridVelocity changes nodal velocities (the walls are then applied again).
+  virtual bool correctsVelocities() const { return false; }
+  // A body was added or removed: the shapes are numbered afresh (rebuild what is indexed by
+  // them; shape keys still name the ones that stayed).
+  virtual void bodiesChanged() {}
+
+  CouplingScheme scheme() const { return def_.scheme; }
+  // Settings with defaults resolved (r_p, V_d, inset in metres).
+  const CouplingDef& def() const { return def_; }
+  long activeContacts() const { return active_; }
+  // Sum of what the last step gave the material (N/m): impulses are divided by dt.
+  Vec2 forceOnMaterial() const { return on_material_; }
+
+ protected:
+  explicit Coupling(const CouplingDef& def) : def_(def) {}
+  CouplingDef def_;
+  long active_ = 0;
+  Vec2 on_material_{0, 0};
+};
+
+// def must have its defaults resolved (World does it from the cell size and points per cell).
+std::unique_ptr<Coupling> makeCoupling(const CouplingDef& def, const Vec2& domain_min,
+                                       const Vec2& domain_max, Real cell_size,
+                                       const std::vector<BodyDef>& bodies);
+
+}  // namespace mpm_sdem

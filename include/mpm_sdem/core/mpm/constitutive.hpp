@@ -1,0 +1,102 @@
+// Constitutive updates as small pure functions of one material point (plane strain, tension
+// positive). The stress keeps its out-of-plane component sigma_zz, which plane strain makes
+// non-zero and which enters the invariants of the Drucker-Prager criterion.
+#pragma once
+
+#include <cmath>
+
+#include "mpm_sdem/core/mpm/material.hpp"
+#include "mpm_sdem/core/types.hpp"
+
+namespace mpm_sdem {
+
+struct Stress {
+  Real xx = 0, yy = 0, xy = 0, zz = 0;  // Pa
+};
+
+// L_ij = d v_i / d x_j (1/s).
+struct VelocityGradient {
+  Real xx = 0, xy = 0, yx = 0, yy = 0;
+};
+
+// Hypoelastic update with the Jaumann rate over a time dt (seed 000 eq. 21-25 with C of eq. 36):
+// sigma += dt (C : D + W sigma - sigma W), D and W the symmetric and skew parts of L. Plane
+// strain: D_zz = 0, so sigma_zz changes only through lambda tr(D).
+inline Stress jaumannElasticUpdate(const MaterialParams& m, const Stress& s,
+                                   const VelocityGradient& L, Real dt) {
+  const Real dxx = L.xx * dt, dyy = L.yy * dt, dxy = Real(0.5) * (L.xy + L.yx) * dt;
+  const Real w = Real(0.5) * (L.xy - L.yx) * dt;  // W_xy dt
+  const Real tr = dxx + dyy;
+  Stress r;
+  r.xx = s.xx + m.lame * tr + 2 * m.shear * dxx + 2 * w * s.xy;
+  r.yy = s.yy + m.lame * tr + 2 * m.shear * dyy - 2 * w * s.xy;
+  r.xy = s.xy + 2 * m.shear * dxy + w * (s.yy - s.xx);
+  r.zz = s.zz + m.lame * tr;
+  return r;
+}
+
+// Stress invariants of seed 000 eq. 33-34: mean stress sigma_m and tau = sqrt(J2).
+inline Real meanStress(const Stress& s) {
+  return (s.xx + s.yy + s.zz) / 3;
+}
+inline Real equivalentShear(const Stress& s) {
+  const Real m = meanStress(s);
+  const Real ax = s.xx - m, ay = s.yy - m, az = s.zz - m;
+  return std::sqrt(Real(0.5) * (ax * ax + ay * ay + az * az) + s.xy * s.xy);
+}
+
+enum class PlasticMode { kElastic, kShear, kTension };
+
+struct PlasticReturn {
+  PlasticMode mode = PlasticMode::kElastic;
+  Real multiplier = 0;  // shear: Delta lambda of the return (dimensionless strain increment)
+};
+
+// Drucker-Prager with tension cut-off (seed 000 eq. 31-35, Fig. 2), return mapping of the trial
+// stress in the (sigma_m, tau) plane. Shear failure returns along the non-associated flow
+// potential g = tau + q_psi sigma_m: tau drops by G dl and sigma_m by K q_psi dl, with
+// dl = f^s / (G + K q_phi q_psi), so the plastic volume strain is q_psi dl (dilation angle).
+// Beyond the cut-off the line h = 0 through the corner (sigma^t, tau^P) with slope
+// alpha^P = sqrt(1 + q_phi^2) - q_phi splits shear returns from tensile returns; a tensile return
+// sets sigma_m = sigma^t and caps tau at the corner.
+inline PlasticReturn druckerPragerReturn(const MaterialParams& m, Stress& s) {
+  PlasticReturn out;
+  const Real sm = meanStress(s);
+  const Real tau = equivalentShear(s);
+  const Real fs = tau + m.q_phi * sm - m.k_phi;  // eq. 31
+  const Real ft = sm - m.tension;                // eq. 32
+  if (fs <= 0 && ft <= 0) return out;
+
+  const Real tau_corner = m.tau_corner;
+  const bool shear = ft <= 0 || tau - tau_corner - m.alpha_p * (sm - m.tension) > 0;
+  Real sm_new, tau_new;
+  if (shear) {
+    out.mode = PlasticMode::kShear;
+    out.multiplier = fs * m.inv_return_modulus;
+    sm_new = sm - m.bulk * m.q_psi * out.multiplier;
+    tau_new = m.k_phi - m.q_phi * sm_new;
+    if (sm_new > m.tension) {  // the return overshot the cut-off: land on the corner
+      sm_new = m.tension;
+      tau_new = tau_corner;
+    }
+  } else {
+    out.mode = PlasticMode::kTension;
+    sm_new = m.tension;
+    tau_new = std::fmin(tau, tau_corner);
+  }
+  const Real scale = tau > 0 ? std::fmax(tau_new, Real(0)) / tau : Real(0);
+  s.xx = (s.xx - sm) * scale + sm_new;
+  s.yy = (s.yy - sm) * scale + sm_new;
+  s.zz = (s.zz - sm) * scale + sm_new;
+  s.xy *= scale;
+  return out;
+}
+
+// Recoverable (elastic) energy density of a stress state, sigma_m^2 / (2K) + J2 / (2G) (J/m^3).
+inline Real elasticEnergyDensity(const MaterialParams& m, const Stress& s) {
+  const Real sm = meanStress(s);
+  const Real tau = equivalentShear(s);
+  return sm * sm / (2 * m.bulk) + tau * tau / (2 * m.shear);
+}
+
+}  // namespace mpm_sdem

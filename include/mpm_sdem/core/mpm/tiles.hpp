@@ -1,0 +1,52 @@
+// Particles binned by square tiles of grid cells. The bins serve two purposes:
+// - race-free parallel P2G: tiles are coloured like a 2x2 checkerboard; a particle writes only to
+//   nodes within one node of its tile, so two tiles of one colour never write the same node and
+//   can be processed by different threads. The result does not depend on the thread count:
+//   every node sums its contributions colour by colour and, inside a tile, in particle order.
+// - a sparse grid: only node tiles next to an occupied tile are cleared and updated, so empty
+//   domain costs nothing per step (the node arrays stay dense in memory).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "mpm_sdem/core/mpm/grid.hpp"
+#include "mpm_sdem/core/mpm/particles.hpp"
+
+namespace mpm_sdem {
+
+struct Tiles {
+  // Cells per tile side. A particle in cell c touches nodes c-1 .. c+2 with every kernel (3 or 4
+  // nodes), so tiles two apart must not share a node: needs kSize >= 3. Small tiles give two
+  // threads enough tiles of each colour to share in small scenes.
+  static constexpr int kSize = 3;
+
+  int nx = 0, ny = 0;                      // tiles per axis; tile (a, b) holds nodes a*kSize ...
+  std::vector<int> start;                  // per tile, its first entry in order (size tiles+1)
+  std::vector<int> order;                  // particle indices grouped by tile, ascending in a tile
+  std::array<std::vector<int>, 4> colour;  // occupied tiles of each colour, ascending
+  std::vector<int> active;                 // node tiles within reach of a particle, ascending
+  std::vector<int> previous;               // active tiles of the previous binning
+  std::vector<int> retired;                // tiles in previous but no longer active
+
+  void init(const Grid& g);
+  // Bytes of the per-particle arrays (sort keys and order).
+  std::size_t particleBytes() const { return (key_.capacity() + order.capacity()) * sizeof(int); }
+  // Bin the particles by the cell they are in (stable counting sort, O(N + tiles)).
+  void bin(const Particles& P, const Grid& g);
+  // Call f(first_node, count) for each row segment of nodes in tile t.
+  template <class F>
+  void forRows(const Grid& g, int t, F&& f) const {
+    const int a = t % nx, b = t / nx;
+    const int i0 = a * kSize, i1 = i0 + kSize < g.nx ? i0 + kSize : g.nx;
+    const int j0 = b * kSize, j1 = j0 + kSize < g.ny ? j0 + kSize : g.ny;
+    for (int j = j0; j < j1; ++j) f(j * g.nx + i0, i1 - i0);
+  }
+
+ private:
+  std::vector<int> key_;              // per particle, its tile
+  std::vector<int> counts_;           // per thread and tile: count, then write position
+  std::vector<unsigned char> reach_;  // per tile, 1 if within reach of a particle
+};
+
+}  // namespace mpm_sdem

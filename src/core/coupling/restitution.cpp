@@ -1,0 +1,60 @@
+#include "mpm_sdem/core/coupling/restitution.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace mpm_sdem {
+
+// The overlap x obeys x'' + 2 zeta w x' + w^2 x = 0 from x = 0, x' = v0 > 0, and the contact
+// ends when the force k x + c x' (proportional to w x + 2 zeta x') reaches zero, before the
+// overlap does; from then on nothing acts, so e = -x'(end) / v0. Both regimes give
+// e = exp(-zeta w t_end), the factor in front of the exponential being exactly 1:
+//  - zeta < 1, s = sqrt(1 - zeta^2): x = v0 / (w s) exp(-zeta w t) sin(theta), theta = w s t.
+//    The force vanishes at tan(theta) = -2 zeta s / (1 - 2 zeta^2), i.e. at
+//    theta = pi - atan2(2 zeta s, 1 - 2 zeta^2) = 2 atan2(s, zeta) (cos = 2 zeta^2 - 1,
+//    sin = 2 zeta s), where x' = v0 exp(-zeta theta / s) (cos theta - zeta / s sin theta) and the
+//    bracket is -1. The half-angle form has no cancellation as zeta -> 1 (theta / s -> 2).
+//  - zeta > 1, q = sqrt(zeta^2 - 1): x is a difference of exp(w (-zeta +- q) t); the force
+//    vanishes at w t = 2 atanh(q / zeta) / q, where again x' = -v0 exp(-zeta w t).
+//  - zeta = 1: the limit of both, w t = 2 and e = exp(-2).
+// Without the clipping (force allowed to pull until x = 0) the under-damped contact would end at
+// theta = pi, the textbook e = exp(-zeta pi / s), which is lower: the clipped contact gives back
+// the speed it still has when the dashpot would start to pull.
+Real clippedRestitution(Real zeta) {
+  if (!(zeta > 0)) return 1;
+  if (zeta < 1) {
+    const Real s = std::sqrt(1 - zeta * zeta);
+    return std::exp(-2 * zeta * std::atan2(s, zeta) / s);
+  }
+  if (zeta == 1) return std::exp(Real(-2));
+  const Real q = std::sqrt(zeta * zeta - 1);
+  return std::exp(-2 * zeta * std::atanh(q / zeta) / q);
+}
+
+Real restitutionDampingRatio(Real e) {
+  if (!(e > 0 && e <= 1))
+    throw std::invalid_argument("restitution must be in (0, 1], got " + std::to_string(e));
+  if (e == 1) return 0;
+  // clippedRestitution falls monotonically from 1 to 0: bracket e, then bisect to round-off.
+  Real lo = 0, hi = 1;
+  while (clippedRestitution(hi) > e) {
+    lo = hi;
+    hi *= 2;
+  }
+  for (int k = 0; k < 200 && hi - lo > 1e-15 * hi; ++k) {
+    const Real mid = 0.5 * (lo + hi);
+    (clippedRestitution(mid) > e ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// Symplectic Euler (Box2D's, and the MPM's kick then drift) on x'' = -w^2 x - 2 zeta w x' has
+// the amplification matrix of trace 2 - 2 zeta w h - (w h)^2 and determinant 1 - 2 zeta w h; it
+// is stable while (w h)^2 + 4 zeta (w h) <= 4, i.e. w h <= 2 (sqrt(1 + zeta^2) - zeta).
+Real contactTimeStep(Real m, Real k, Real zeta, int n, Real kappa2) {
+  const Real w = std::sqrt(n * k / m);
+  return M_PI * kappa2 * 2 / w * (std::sqrt(1 + zeta * zeta) - zeta);
+}
+
+}  // namespace mpm_sdem

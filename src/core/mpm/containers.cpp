@@ -1,0 +1,47 @@
+#include "mpm_sdem/core/mpm/grid.hpp"
+#include "mpm_sdem/core/mpm/particles.hpp"
+
+#include <type_traits>
+
+namespace mpm_sdem {
+
+void Particles::resize(std::size_t n) {
+  const std::size_t old = size();
+  forEachColumn([n](auto& column) { column.resize(n, 0); });
+  for (std::size_t p = old; p < n; ++p) J[p] = 1;  // a new point is undeformed
+}
+
+namespace {
+
+template <class T>
+void gather(std::vector<T>& column, const std::vector<int>& order, std::vector<T>& scratch) {
+  scratch.resize(column.size());
+  for (std::size_t k = 0; k < order.size(); ++k) scratch[k] = column[order[k]];
+  column.swap(scratch);
+}
+
+}  // namespace
+
+void Particles::permute(const std::vector<int>& order) {
+  std::vector<Real> real_scratch;
+  std::vector<std::uint16_t> int_scratch;
+  forEachColumn([&](auto& column) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(column[0])>, Real>)
+      gather(column, order, real_scratch);
+    else
+      gather(column, order, int_scratch);
+  });
+}
+
+void Grid::init(const Vec2& domain_min, int domain_cells_x, int domain_cells_y, Real cell_size) {
+  h = cell_size;
+  inv_h = 1 / cell_size;
+  cells_x = domain_cells_x;
+  cells_y = domain_cells_y;
+  nx = domain_cells_x + 1 + 2 * kPad;
+  ny = domain_cells_y + 1 + 2 * kPad;
+  origin = domain_min - Vec2(kPad * h, kPad * h);
+  forEachField([this](std::vector<Real>& a) { a.assign(nodeCount(), Real(0)); });
+}
+
+}  // namespace mpm_sdem

@@ -1,0 +1,86 @@
+#include "mpm_sdem/core/mpm/tiles.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <omp.h>
+
+namespace mpm_sdem {
+
+void Tiles::init(const Grid& g) {
+  nx = (g.nx + kSize - 1) / kSize;
+  ny = (g.ny + kSize - 1) / kSize;
+  const std::size_t n = static_cast<std::size_t>(nx) * ny;
+  start.assign(n + 1, 0);
+  reach_.assign(n, 0);
+  order.clear();
+  for (auto& c : colour) c.clear();
+  active.clear();
+  previous.clear();
+  retired.clear();
+}
+
+void Tiles::bin(const Particles& P, const Grid& g) {
+  const long n = static_cast<long>(P.size());
+  key_.resize(n);
+  order.resize(n);
+  const int tiles = nx * ny;
+  counts_.resize(static_cast<std::size_t>(omp_get_max_threads()) * tiles);
+  const Real inv_h = g.inv_h, ox = g.origin.x(), oy = g.origin.y();
+  const int last_x = nx - 1, last_y = ny - 1;
+  // Counting sort in parallel: each thread counts its own contiguous range of points per tile,
+  // then writes them after the lower threads' points of the same tile. The order is the serial
+  // stable one whatever the thread count.
+#pragma omp parallel
+  {
+    const int threads = omp_get_num_threads(), me = omp_get_thread_num();
+    const long lo = n * me / threads, hi = n * (me + 1) / threads;
+    int* count = counts_.data() + static_cast<std::size_t>(me) * tiles;
+    std::fill(count, count + tiles, 0);
+    for (long p = lo; p < hi; ++p) {
+      // Points are kept inside the domain, so their cell lies inside the grid; the clamps only
+      // guard against a non-finite position, which the step reports separately.
+      const int a = static_cast<int>((P.x[p] - ox) * inv_h) / kSize;
+      const int b = static_cast<int>((P.y[p] - oy) * inv_h) / kSize;
+      key_[p] = std::clamp(a, 0, last_x) + std::clamp(b, 0, last_y) * nx;
+      ++count[key_[p]];
+    }
+#pragma omp barrier
+#pragma omp single
+    {
+      int next = 0;
+      for (int t = 0; t < tiles; ++t) {
+        start[t] = next;
+        for (int k = 0; k < threads; ++k) {
+          int& c = counts_[static_cast<std::size_t>(k) * tiles + t];
+          const int m = c;
+          c = next;  // becomes this thread's write position in the tile
+          next += m;
+        }
+      }
+      start[tiles] = next;
+    }
+    for (long p = lo; p < hi; ++p) order[count[key_[p]]++] = static_cast<int>(p);
+  }
+
+  for (auto& c : colour) c.clear();
+  previous.swap(active);
+  active.clear();
+  std::fill(reach_.begin(), reach_.end(), 0);
+  for (int t = 0; t < tiles; ++t) {
+    if (start[t + 1] == start[t]) continue;
+    const int a = t % nx, b = t / nx;
+    colour[(a & 1) | ((b & 1) << 1)].push_back(t);
+    // A particle writes nodes from one before its tile to two past it: the neighbouring tiles.
+    for (int j = std::max(b - 1, 0); j <= std::min(b + 1, last_y); ++j) {
+      for (int i = std::max(a - 1, 0); i <= std::min(a + 1, last_x); ++i) reach_[i + j * nx] = 1;
+    }
+  }
+  for (int t = 0; t < tiles; ++t)
+    if (reach_[t]) active.push_back(t);
+  retired.clear();
+  for (int t : previous)
+    if (!reach_[t]) retired.push_back(t);
+}
+
+}  // namespace mpm_sdem

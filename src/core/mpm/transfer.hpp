@@ -1,0 +1,443 @@
+// Particle-grid transfers, one template instance per kernel so that the inner loops have fixed
+// trip counts and no calls. Internal header of the core library.
+#pragma once
+
+#include <cmath>
+#include <optional>
+
+#include "mpm_sdem/core/mpm/constitutive.hpp"
+#include "mpm_sdem/core/mpm/grid.hpp"
+#include "mpm_sdem/core/mpm/kernels.hpp"
+#include "mpm_sdem/core/mpm/particles.hpp"
+#include "mpm_sdem/core/mpm/tiles.hpp"
+#include "mpm_sdem/core/world.hpp"
+
+namespace mpm_sdem::detail {
+
+template <class K>
+inline void stencils(const Grid& g, Real x, Real y, Real lp, Real& xg, Real& yg, Stencil1D& sx,
+                     Stencil1D& sy) {
+  xg = (x - g.origin.x()) * g.inv_h;
+  yg = (y - g.origin.y()) * g.inv_h;
+  K::stencil(xg, lp, sx);
+  K::stencil(yg, lp, sy);
+}
+
+// Run body(p) for every particle, tile colour by tile colour; the tiles of one colour are shared
+// among the threads (see Tiles: no two of them write the same node).
+template <class Body>
+void forEachParticleByColour(const Tiles& T, Body&& body) {
+  for (const std::vector<int>& tiles : T.colour) {
+    const long count = static_cast<long>(tiles.size());
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < count; ++k) {
+      const int t = tiles[k];
+      for (int q = T.start[t]; q < T.start[t + 1]; ++q) body(T.order[q]);
+    }
+  }
+}
+
+// P2G: nodal mass (eq. 18), momentum (eq. 19, or eq. 30 with the APIC affine term) and internal
+// force f_I = -sum_p V_p sigma_p grad S_Ip (eq. 13). Gravity is added on the grid (eq. 14 with a
+// uniform body force equals m_I g).
+template <class K, bool kApic, bool kMomentum, bool kForce>
+void particleToGrid(const Particles& P, Grid& G, const Tiles& T) {
+  constexpr int S = K::kSupport;
+  const Real inv_h = G.inv_h;
+  const int nx = G.nx;
+  Real* gm = G.mass.data();
+  Real* gpx = G.mom_x.data();
+  Real* gpy = G.mom_y.data();
+  Real* gfx = G.force_x.data();
+  Real* gfy = G.force_y.data();
+  forEachParticleByColour(T, [&](int p) {
+    Real xg, yg;
+    Stencil1D sx, sy;
+    stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+    const Real m = P.mass[p];
+    const Real mvx = m * P.vx[p], mvy = m * P.vy[p];
+    // m B D^-1 (x_I - x_p) with D = diag(second moments) h^2 and offsets in grid units r h.
+    Real cxx = 0, cxy = 0, cyx = 0, cyy = 0;
+    if (kApic) {
+      const Real ax = m * inv_h / sx.second_moment, ay = m * inv_h / sy.second_moment;
+      cxx = P.bxx[p] * ax;
+      cxy = P.bxy[p] * ay;
+      cyx = P.byx[p] * ax;
+      cyy = P.byy[p] * ay;
+    }
+    Real sxx = 0, syy = 0, sxy = 0;
+    if (kForce) {
+      const Real vol = P.volume0[p] * P.J[p] * inv_h;
+      sxx = vol * P.sxx[p];
+      syy = vol * P.syy[p];
+      sxy = vol * P.sxy[p];
+    }
+    for (int j = 0; j < S; ++j) {
+      const Real wy = sy.w[j], dwy = sy.dw[j];
+      const Real ry = (sy.base + j) - yg;
+      const int row = (sy.base + j) * nx + sx.base;
+      for (int i = 0; i < S; ++i) {
+        const int node = row + i;
+        const Real wx = sx.w[i];
+        const Real w = wx * wy;
+        if (kMomentum) {
+          const Real rx = (sx.base + i) - xg;
+          gm[node] += w * m;
+          gpx[node] += w * (mvx + cxx * rx + cxy * ry);
+          gpy[node] += w * (mvy + cyx * rx + cyy * ry);
+        }
+        if (kForce) {
+          const Real gx = sx.dw[i] * wy, gy = wx * dwy;
+          gfx[node] -= sxx * gx + sxy * gy;
+          gfy[node] -= sxy * gx + syy * gy;
+        }
+      }
+    }
+  });
+}
+
+// The stress and volume of one point over dt with its velocity gradient L_p: Jaumann-rate
+// elasticity (eq. 21-25), the Drucker-Prager return for granular points only (eq. 31-35), and
+// V^{n+1} = det(I + dt L) V^n.
+inline void updatePointStress(const MaterialParams& m, Particles& P, long p, Real dt) {
+  const VelocityGradient L{P.lxx[p], P.lxy[p], P.lyx[p], P.lyy[p]};
+  Stress s{P.sxx[p], P.syy[p], P.sxy[p], P.szz[p]};
+  s = jaumannElasticUpdate(m, s, L, dt);
+  if (m.model == MaterialModel::kDruckerPrager) druckerPragerReturn(m, s);
+  P.sxx[p] = s.xx;
+  P.syy[p] = s.yy;
+  P.sxy[p] = s.xy;
+  P.szz[p] = s.zz;
+  P.J[p] *= (1 + dt * L.xx) * (1 + dt * L.yy) - dt * dt * L.xy * L.yx;
+  if (P.J[p] > m.separation) P.sxx[p] = P.syy[p] = P.sxy[p] = P.szz[p] = 0;
+}
+
+// The middle of a USF step (seed 000 sec. 2.2) in one sweep per point, coloured like P2G: the
+// velocity gradient L_p = sum_I v_I (grad S_Ip)^T from the pre-kick grid velocity (eq. 21-22),
+// the stress update over dt with it (skipped when dt = 0, the first step), then the internal
+// force of the new stress onto the same nodes (eq. 13).
+template <class K>
+void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
+                            const std::vector<MaterialParams>& materials, Real dt) {
+  constexpr int S = K::kSupport;
+  const Real inv_h = G.inv_h;
+  const int nx = G.nx;
+  const Real* vx0 = G.vel0_x.data();
+  const Real* vy0 = G.vel0_y.data();
+  Real* gfx = G.force_x.data();
+  Real* gfy = G.force_y.data();
+  forEachParticleByColour(T, [&](int p) {
+    Real xg, yg;
+    Stencil1D sx, sy;
+    stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+    Real lxx = 0, lxy = 0, lyx = 0, lyy = 0;
+    for (int j = 0; j < S; ++j) {
+      const int row = (sy.base + j) * nx + sx.base;
+      for (int i = 0; i < S; ++i) {
+        const Real gx = sx.dw[i] * sy.w[j], gy = sx.w[i] * sy.dw[j];
+        const Real vx = vx0[row + i], vy = vy0[row + i];
+        lxx += vx * gx;
+        lxy += vx * gy;
+        lyx += vy * gx;
+        lyy += vy * gy;
+      }
+    }
+    P.lxx[p] = lxx * inv_h;
+    P.lxy[p] = lxy * inv_h;
+    P.lyx[p] = lyx * inv_h;
+    P.lyy[p] = lyy * inv_h;
+    if (dt != 0) updatePointStress(materials[P.material[p]], P, p, dt);
+    const Real vol = P.volume0[p] * P.J[p] * inv_h;
+    const Real sxx = vol * P.sxx[p], syy = vol * P.syy[p], sxy = vol * P.sxy[p];
+    for (int j = 0; j < S; ++j) {
+      const int row = (sy.base + j) * nx + sx.base;
+      for (int i = 0; i < S; ++i) {
+        const Real gx = sx.dw[i] * sy.w[j], gy = sx.w[i] * sy.dw[j];
+        gfx[row + i] -= sxx * gx + sxy * gy;
+        gfy[row + i] -= sxy * gx + syy * gy;
+      }
+    }
+  });
+}
+
+struct G2PSettings {
+  Real pic_fraction;
+  Real dt;
+  Vec2 lo, hi;  // domain box: points are kept inside it
+};
+
+// G2P: PIC velocity (eq. 26), FLIP blend (eq. 28) or APIC affine matrix (eq. 31), then
+// x_p += dt sum_I S_Ip v_I (the PIC velocity moves the point in every scheme). kGradient (USL):
+// also L_p from the post-kick velocity.
+template <class K, TransferScheme kScheme, bool kGradient>
+void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& clamped,
+                    bool& finite) {
+  constexpr int S = K::kSupport;
+  const long n = static_cast<long>(P.size());
+  const Real h = G.h, inv_h = G.inv_h;
+  long clamped_count = 0;
+  int bad = 0;
+#pragma omp parallel for schedule(static) reduction(+ : clamped_count) reduction(| : bad)
+  for (long p = 0; p < n; ++p) {
+    Real xg, yg;
+    Stencil1D sx, sy;
+    stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+    Real vx = 0, vy = 0, dvx = 0, dvy = 0;
+    Real bxx = 0, bxy = 0, byx = 0, byy = 0;
+    Real lxx = 0, lxy = 0, lyx = 0, lyy = 0;
+    for (int j = 0; j < S; ++j) {
+      const Real ry = ((sy.base + j) - yg) * h;
+      const int row = (sy.base + j) * G.nx + sx.base;
+      for (int i = 0; i < S; ++i) {
+        const int node = row + i;
+        const Real w = sx.w[i] * sy.w[j];
+        const Real gvx = G.vel_x[node], gvy = G.vel_y[node];
+        vx += w * gvx;
+        vy += w * gvy;
+        if (kScheme == TransferScheme::kFlip) {
+          dvx += w * (gvx - G.vel0_x[node]);
+          dvy += w * (gvy - G.vel0_y[node]);
+        } else if (kScheme == TransferScheme::kApic) {
+          const Real rx = ((sx.base + i) - xg) * h;
+          bxx += w * gvx * rx;
+          bxy += w * gvx * ry;
+          byx += w * gvy * rx;
+          byy += w * gvy * ry;
+        }
+        if (kGradient) {
+          const Real gx = sx.dw[i] * sy.w[j] * inv_h, gy = sx.w[i] * sy.dw[j] * inv_h;
+          lxx += gvx * gx;
+          lxy += gvx * gy;
+          lyx += gvy * gx;
+          lyy += gvy * gy;
+        }
+      }
+    }
+    if (kScheme == TransferScheme::kFlip) {
+      const Real a = s.pic_fraction;
+      P.vx[p] = a * vx + (1 - a) * (P.vx[p] + dvx);
+      P.vy[p] = a * vy + (1 - a) * (P.vy[p] + dvy);
+    } else {
+      P.vx[p] = vx;
+      P.vy[p] = vy;
+    }
+    if (kScheme == TransferScheme::kApic) {
+      P.bxx[p] = bxx;
+      P.bxy[p] = bxy;
+      P.byx[p] = byx;
+      P.byy[p] = byy;
+    }
+    if (kGradient) {
+      P.lxx[p] = lxx;
+      P.lxy[p] = lxy;
+      P.lyx[p] = lyx;
+      P.lyy[p] = lyy;
+    }
+    Real x = P.x[p] + s.dt * vx, y = P.y[p] + s.dt * vy;
+    if (!std::isfinite(x) || !std::isfinite(y)) {
+      bad = 1;  // keep the last finite position so that no stencil ever leaves the grid
+      continue;
+    }
+    if (x < s.lo.x() || x > s.hi.x() || y < s.lo.y() || y > s.hi.y()) {
+      ++clamped_count;
+      x = std::fmin(std::fmax(x, s.lo.x()), s.hi.x());
+      y = std::fmin(std::fmax(y, s.lo.y()), s.hi.y());
+    }
+    P.x[p] = x;
+    P.y[p] = y;
+  }
+  clamped += clamped_count;
+  if (bad) finite = false;
+}
+
+// Eq. 47: the contact force of each IMP goes to the grid like an external point load,
+// f_I += S_Ip f for a force f on particle p (seed 000 eq. 48). With an offset d the force acts
+// at x_p + d: the same f_I plus the couple d x f on the same nodes, as forces S_Ip (d x f) r_I^perp
+// / D_p with r_I = x_I - x_p and D_p = sum S_Ip |r_I|^2. They sum to zero (sum S_Ip r_I = 0) and
+// their moment about x_p is d x f, so a contact force and its reaction on a block act at one
+// point and keep angular momentum. Every part is weighted by S_Ip, so no node gets more than a
+// few times f S_Ip / m_I, whatever its mass.
+template <class K>
+void spreadParticleForce(Grid& G, const Particles& P, int p, const Vec2& f,
+                         const Vec2& offset = Vec2(0, 0)) {
+  constexpr int S = K::kSupport;
+  Real xg, yg;
+  Stencil1D sx, sy;
+  stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+  Real second = 0;  // D_p / h^2
+  for (int j = 0; j < S; ++j) {
+    const Real ry = (sy.base + j) - yg;
+    for (int i = 0; i < S; ++i) {
+      const Real rx = (sx.base + i) - xg;
+      second += sx.w[i] * sy.w[j] * (rx * rx + ry * ry);
+    }
+  }
+  // (d x f) / D_p in grid units: the couple's force per unit S_Ip r_I^perp (r in cells).
+  const Real c = second > 0 ? cross(offset, f) * G.inv_h / second : 0;
+  for (int j = 0; j < S; ++j) {
+    const int row = (sy.base + j) * G.nx + sx.base;
+    const Real ry = (sy.base + j) - yg;
+    for (int i = 0; i < S; ++i) {
+      const Real rx = (sx.base + i) - xg;
+      const Real w = sx.w[i] * sy.w[j];
+      G.force_x[row + i] += w * (f.x() - c * ry);
+      G.force_y[row + i] += w * (f.y() + c * rx);
+    }
+  }
+}
+
+// A point load at x on the nodes that carry mass, the weights renormalised over them (seed 003
+// eq. 14), so that all of it reaches the material; it acts at the weights' centroid xbar (x
+// itself where every node around x has mass). With a couple (N m/m, counter-clockwise) the nodes
+// also get w_I c r_I^perp, r_I from xbar: these sum to zero and their moment is the couple (as
+// spreadParticleForce's offset), so a contact force that reaches the material inside its outline
+// keeps the lever it has on the body at the contact point. Where few nodes around x carry mass
+// (the ragged edge of a flow) their second moment about xbar can be tiny and c huge on a node of
+// little mass; the divisor is therefore at least the whole stencil's, as if every node had mass,
+// and such a load hands on only part of its couple. (Moving f itself from xbar to x as well
+// spun up torn-off bits of the wooden-block flow: its partitioned wall, split as they flew,
+// slowed the step to 11 ms.)
+// Returns false, adding nothing, when no node around x has mass.
+// half_size: GIMP's half width of the load's area, in cells (> 0).
+template <class K>
+bool spreadPointLoad(Grid& G, const Vec2& x, Real half_size, const Vec2& f,
+                     std::optional<Real> couple = std::nullopt) {
+  constexpr int S = K::kSupport;
+  Real xg, yg;
+  Stencil1D sx, sy;
+  stencils<K>(G, x.x(), x.y(), half_size, xg, yg, sx, sy);
+  Real sum = 0;
+  Vec2 mean(0, 0);  // the weights' centroid relative to x, in cells
+  for (int j = 0; j < S; ++j) {
+    const int row = (sy.base + j) * G.nx + sx.base;
+    for (int i = 0; i < S; ++i) {
+      if (!(G.mass[row + i] > 0)) continue;
+      const Real w = sx.w[i] * sy.w[j];
+      sum += w;
+      mean += w * Vec2((sx.base + i) - xg, (sy.base + j) - yg);
+    }
+  }
+  if (!(sum > 0)) return false;
+  mean /= sum;
+  Real c = 0;  // the couple's force per unit w_I r_I^perp (r in cells)
+  if (couple) {
+    Real second = 0;
+    for (int j = 0; j < S; ++j) {
+      const int row = (sy.base + j) * G.nx + sx.base;
+      for (int i = 0; i < S; ++i) {
+        if (!(G.mass[row + i] > 0)) continue;
+        const Vec2 r = Vec2((sx.base + i) - xg, (sy.base + j) - yg) - mean;
+        second += sx.w[i] * sy.w[j] / sum * r.squaredNorm();
+      }
+    }
+    c = *couple * G.inv_h / std::max(second, sx.second_moment + sy.second_moment);
+  }
+  for (int j = 0; j < S; ++j) {
+    const int row = (sy.base + j) * G.nx + sx.base;
+    for (int i = 0; i < S; ++i) {
+      if (!(G.mass[row + i] > 0)) continue;
+      const Real w = sx.w[i] * sy.w[j] / sum;
+      const Vec2 r = Vec2((sx.base + i) - xg, (sy.base + j) - yg) - mean;
+      G.force_x[row + i] += w * (f.x() - c * r.y());
+      G.force_y[row + i] += w * (f.y() + c * r.x());
+    }
+  }
+  return true;
+}
+
+// The grid velocity (vel_x, vel_y) at x as G2P interpolates it: sum_I S_I(x) v_I (nodes
+// without mass carry zero).
+template <class K>
+Vec2 gridVelocityAt(const Grid& G, const Vec2& x, Real half_size) {
+  constexpr int S = K::kSupport;
+  Real xg, yg;
+  Stencil1D sx, sy;
+  stencils<K>(G, x.x(), x.y(), half_size, xg, yg, sx, sy);
+  Vec2 v(0, 0);
+  for (int j = 0; j < S; ++j) {
+    const int row = (sy.base + j) * G.nx + sx.base;
+    for (int i = 0; i < S; ++i) v += sx.w[i] * sy.w[j] * Vec2(G.vel_x[row + i], G.vel_y[row + i]);
+  }
+  return v;
+}
+
+// The material's velocity at x for a massless tracer: sum_I S_I m_I v_I / sum_I S_I m_I. A node
+// that holds only a sliver of mass at the edge of the material can carry a wild velocity
+// (force over a tiny mass) that the points there barely see; weighting by mass keeps it out.
+template <class K>
+Vec2 materialVelocityAt(const Grid& G, const Vec2& x, Real half_size) {
+  constexpr int S = K::kSupport;
+  Real xg, yg;
+  Stencil1D sx, sy;
+  stencils<K>(G, x.x(), x.y(), half_size, xg, yg, sx, sy);
+  Real sum = 0;
+  Vec2 p(0, 0);
+  for (int j = 0; j < S; ++j) {
+    const int row = (sy.base + j) * G.nx + sx.base;
+    for (int i = 0; i < S; ++i) {
+      const Real w = sx.w[i] * sy.w[j] * G.mass[row + i];
+      sum += w;
+      p += w * Vec2(G.vel_x[row + i], G.vel_y[row + i]);
+    }
+  }
+  return sum > 0 ? Vec2(p / sum) : Vec2(0, 0);
+}
+
+// An impulse J on particle p (N s/m) onto the updated grid velocities: v_I += S_Ip J / m_I
+// (seed 002 eq. 54 times the step).
+template <class K>
+void addParticleImpulse(Grid& G, const Particles& P, int p, const Vec2& J) {
+  constexpr int S = K::kSupport;
+  Real xg, yg;
+  Stencil1D sx, sy;
+  stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+  for (int j = 0; j < S; ++j) {
+    const int row = (sy.base + j) * G.nx + sx.base;
+    for (int i = 0; i < S; ++i) {
+      const Real m = G.mass[row + i];
+      if (!(m > 0)) continue;
+      const Real w = sx.w[i] * sy.w[j] / m;
+      G.vel_x[row + i] += w * J.x();
+      G.vel_y[row + i] += w * J.y();
+    }
+  }
+}
+
+// How fast particle p's interpolated velocity responds to an impulse on it spread by
+// addParticleImpulse: sum_I S_Ip^2 / m_I (per kg per metre); below 1 / m_p wherever other
+// points share p's nodes.
+template <class K>
+Real particleGridInverseMass(const Grid& G, const Particles& P, int p) {
+  constexpr int S = K::kSupport;
+  Real xg, yg;
+  Stencil1D sx, sy;
+  stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+  Real sum = 0;
+  for (int j = 0; j < S; ++j) {
+    const int row = (sy.base + j) * G.nx + sx.base;
+    for (int i = 0; i < S; ++i) {
+      const Real m = G.mass[row + i];
+      const Real w = sx.w[i] * sy.w[j];
+      if (m > 0) sum += w * w / m;
+    }
+  }
+  return sum;
+}
+
+// Call f(Kernel{}) for the scene's kernel: one dispatch per stage, none per particle.
+template <class F>
+void withKernel(KernelType k, F&& f) {
+  switch (k) {
+    case KernelType::kQuadraticBSpline:
+      f(QuadraticBSpline{});
+      break;
+    case KernelType::kCubicBSpline:
+      f(CubicBSpline{});
+      break;
+    case KernelType::kGimp:
+      f(Gimp{});
+      break;
+  }
+}
+
+}  // namespace mpm_sdem::detail

@@ -1,0 +1,247 @@
+#include "rigid/box2d_bodies.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "rigid/box2d_shapes.hpp"
+#include "rigid/penalty_contacts.hpp"
+
+namespace mpm_sdem {
+
+namespace detail {
+
+Real box2dLengthScale(const std::vector<BlockDef>& defs, BlockContactModel model,
+                      Real length_hint) {
+  // The median block size (square root of its area) becomes one Box2D unit; with no block yet,
+  // the caller's typical length does.
+  std::vector<Real> sizes;
+  Real rounding = std::numeric_limits<Real>::infinity(), moving = 0;
+  for (const BlockDef& d : defs) {
+    sizes.push_back(std::sqrt(blockMass(d).area));
+    for (const Spheropolygon& part : blockParts(d)) rounding = std::fmin(rounding, part.rounding);
+    if (d.type != BodyType::kStatic) moving = std::fmax(moving, sizes.back());
+  }
+  Real scale = 1;
+  if (!sizes.empty()) {
+    std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
+    scale = 1 / sizes[sizes.size() / 2];
+  } else if (length_hint > 0) {
+    scale = 1 / length_hint;
+  }
+  // Box2D's contacts rest up to half a slop off touching (box2dReach): a finer scale makes that
+  // 0.5% of the smallest rounding, as far as Box2D's tuning allows (moving bodies up to 10
+  // units; b2_maxTranslation, 2 units, caps a step's travel).
+  if (model == BlockContactModel::kBox2D && std::isfinite(rounding)) {
+    const Real fine = 0.5 * b2_linearSlop / (0.005 * rounding);
+    scale = std::fmax(scale, moving > 0 ? std::fmin(fine, 10 / moving) : fine);
+  }
+  return scale;
+}
+
+struct Box2DBodies::World {
+  explicit World(const b2Vec2& g) : world(g) { world.SetContactListener(&rule); }
+  SmallerOfTwo rule;  // declared before the world, so destroyed after it
+  b2World world;
+  std::vector<b2Body*> bodies;
+};
+
+Box2DBodies::Box2DBodies(const Vec2& gravity, Real scale, BlockContactModel model)
+    : w_(std::make_unique<World>(toB2(gravity, scale))), scale_(scale), model_(model) {}
+
+Box2DBodies::~Box2DBodies() = default;
+
+void Box2DBodies::add(const BlockDef& d, const std::vector<Spheropolygon>& parts,
+                      const MassProperties& m) {
+  // The Box2D outlines first: they may refuse the block, before anything is created.
+  const bool box2d = model_ == BlockContactModel::kBox2D;
+  std::vector<std::vector<b2Vec2>> outlines(parts.size());
+  for (std::size_t k = 0; k < parts.size(); ++k)
+    if (box2d && parts[k].core.size() > 1) outlines[k] = box2dPolygon(parts[k], d.name, scale_);
+  b2BodyDef bd;
+  bd.type = d.type == BodyType::kStatic      ? b2_staticBody
+            : d.type == BodyType::kKinematic ? b2_kinematicBody
+                                             : b2_dynamicBody;
+  bd.position = toB2(d.position, scale_);
+  bd.angle = static_cast<float>(d.angle);
+  bd.allowSleep = false;  // a sleeping body ignores the coupling forces
+  bd.bullet = d.type == BodyType::kDynamic && box2d;
+  b2Body* body = w_->world.CreateBody(&bd);
+  for (std::size_t k = 0; box2d && k < parts.size(); ++k) {
+    b2FixtureDef fd;
+    fd.friction = static_cast<float>(d.friction);
+    fd.restitution = static_cast<float>(d.restitution);
+    // Box2D bounces only above this approach speed (default 1 unit/s): keep it a physical
+    // 1 cm/s at every length scale.
+    fd.restitutionThreshold = static_cast<float>(0.01 * scale_);
+    fd.density = 0;  // mass set below, from the rounded outline
+    b2CircleShape circle;
+    b2PolygonShape polygon;
+    if (parts[k].core.size() == 1) {
+      // A circle has no skin: its radius reaches past the outline like a polygon's skin.
+      circle.m_p = toB2(parts[k].core[0], scale_);
+      circle.m_radius = static_cast<float>((parts[k].rounding + box2dReach(scale_)) * scale_);
+      fd.shape = &circle;
+    } else {
+      polygon.Set(outlines[k].data(), static_cast<int32>(outlines[k].size()));
+      fd.shape = &polygon;
+    }
+    body->CreateFixture(&fd);
+  }
+  if (d.type == BodyType::kDynamic) {
+    // Box2D's own mass ignores the rounding and counts overlapping discs twice: set the
+    // outline's (inertia about the body origin, in Box2D units).
+    b2MassData md;
+    md.mass = static_cast<float>(m.mass);
+    md.center = toB2(m.centroid, scale_);
+    md.I = static_cast<float>((m.inertia + m.mass * m.centroid.squaredNorm()) * scale_ * scale_);
+    body->SetMassData(&md);
+  }
+  if (d.type != BodyType::kStatic) {
+    body->SetLinearVelocity(toB2(d.velocity, scale_));
+    body->SetAngularVelocity(static_cast<float>(d.angular_velocity));
+  }
+  w_->bodies.push_back(body);
+}
+
+void Box2DBodies::remove(int i) {
+  w_->world.DestroyBody(w_->bodies[i]);
+  w_->bodies.erase(w_->bodies.begin() + i);
+}
+
+Vec2 Box2DBodies::origin(int i) const {
+  return fromB2(w_->bodies[i]->GetPosition(), scale_);
+}
+Real Box2DBodies::angle(int i) const {
+  return w_->bodies[i]->GetAngle();
+}
+Vec2 Box2DBodies::velocity(int i) const {
+  return fromB2(w_->bodies[i]->GetLinearVelocity(), scale_);
+}
+Real Box2DBodies::angularVelocity(int i) const {
+  return w_->bodies[i]->GetAngularVelocity();
+}
+
+void Box2DBodies::setTransform(int i, const Vec2& origin, Real angle) {
+  w_->bodies[i]->SetTransform(toB2(origin, scale_), static_cast<float>(angle));
+}
+
+void Box2DBodies::setVelocity(int i, const Vec2& v, Real w) {
+  w_->bodies[i]->SetLinearVelocity(toB2(v, scale_));
+  w_->bodies[i]->SetAngularVelocity(static_cast<float>(w));
+}
+
+void Box2DBodies::applyForce(int i, const Vec2& f, Real torque) {
+  // F (N/m) and tau (N m/m) into Box2D units: lengths scale by s, masses do not.
+  w_->bodies[i]->ApplyForceToCenter(toB2(f, scale_), true);
+  w_->bodies[i]->ApplyTorque(static_cast<float>(torque * scale_ * scale_), true);
+}
+
+void Box2DBodies::step(Real h) {
+  w_->world.Step(static_cast<float>(h), 8, 3);
+}
+
+}  // namespace detail
+
+namespace {
+
+Vec2 rotated(Real angle, const Vec2& v) {
+  const Real c = std::cos(angle), s = std::sin(angle);
+  return Vec2(c * v.x() - s * v.y(), s * v.x() + c * v.y());
+}
+
+}  // namespace
+
+Vec2 Blocks::origin(int i) const {
+  return b2_->origin(i);
+}
+
+void Blocks::setPose(BlockId id, const Vec2& origin, Real angle) {
+  const int i = checkedIndex(id);
+  b2_->setTransform(i, origin, angle);
+  refresh();
+  Body& b = bodies_[i];
+  b.kinematic_centre = origin + rotated(angle, b.mass.centroid);
+  b.kinematic_angle = angle;
+}
+
+void Blocks::setVelocity(BlockId id, const Vec2& origin_velocity, Real angular_velocity) {
+  const int i = checkedIndex(id);
+  // Box2D's linear velocity is that of the centre of mass.
+  const Vec2 r = bodies_[i].state.position - origin(i);
+  const Vec2 v = origin_velocity + angular_velocity * Vec2(-r.y(), r.x());
+  b2_->setVelocity(i, v, angular_velocity);
+  bodies_[i].kinematic_velocity = v;
+  bodies_[i].kinematic_angular_velocity = angular_velocity;
+  refresh();
+}
+
+void Blocks::refresh() {
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    Body& b = bodies_[i];
+    BlockState& s = b.state;
+    s.angle = b2_->angle(static_cast<int>(i));
+    s.velocity = b2_->velocity(static_cast<int>(i));
+    s.angular_velocity = b2_->angularVelocity(static_cast<int>(i));
+    const Vec2 origin = b2_->origin(static_cast<int>(i));
+    const Real c = std::cos(s.angle), sn = std::sin(s.angle);
+    auto toWorld = [&](const Vec2& v) {
+      return Vec2(origin.x() + c * v.x() - sn * v.y(), origin.y() + sn * v.x() + c * v.y());
+    };
+    s.position = toWorld(b.mass.centroid);
+    for (int k = 0; k < b.shape_count; ++k) {
+      const Shape& shape = shapes_[b.first_shape + k];
+      const std::vector<Vec2>& core = parts_[i][k].core;
+      for (int v = 0; v < shape.vertex_count; ++v)
+        world_vertices_[shape.first_vertex + v] = toWorld(core[v]);
+    }
+  }
+}
+
+int Blocks::step(Real dt, Real max_substep) {
+  if (bodies_.empty()) return 0;
+  // The blocks' own springs are stiffer than the material's: the blocks take several steps for
+  // one MPM step (multi-rate explicit integration), each within the block-block bound.
+  const int substeps = dt > max_substep ? static_cast<int>(std::ceil(dt / max_substep)) : 1;
+  const Real h = dt / substeps;
+  for (Body& b : bodies_) {
+    b.held_force = b.force;
+    b.held_torque = b.torque;
+  }
+  for (Vec2& f : block_force_) f.setZero();
+  for (int s = 0; s < substeps; ++s) {
+    for (Body& b : bodies_) {
+      b.force = b.held_force;
+      b.torque = b.held_torque;
+    }
+    if (contact_.model == BlockContactModel::kPenalty) {
+      penalty_->apply(*this, h);
+      for (std::size_t i = 0; i < bodies_.size(); ++i)
+        block_force_[i] += (bodies_[i].force - bodies_[i].held_force) / substeps;
+    }
+    for (std::size_t i = 0; i < bodies_.size(); ++i)
+      if (bodies_[i].type == BodyType::kDynamic)
+        b2_->applyForce(static_cast<int>(i), bodies_[i].force, bodies_[i].torque);
+    b2_->step(h);
+    // A kinematic block moves with its twist exactly: Box2D's single-precision sum of small
+    // steps drifts (93 um over 10,000 steps, RuntimeBlocks.KinematicBlockFollowsItsTwist), so
+    // its pose is summed here in double and set.
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      Body& b = bodies_[i];
+      if (b.type != BodyType::kKinematic) continue;
+      b.kinematic_centre += h * b.kinematic_velocity;
+      b.kinematic_angle += h * b.kinematic_angular_velocity;
+      b2_->setTransform(static_cast<int>(i),
+                        b.kinematic_centre - rotated(b.kinematic_angle, b.mass.centroid),
+                        b.kinematic_angle);
+    }
+    refresh();
+  }
+  for (Body& b : bodies_) {
+    b.force.setZero();
+    b.torque = 0;
+  }
+  return substeps;
+}
+
+}  // namespace mpm_sdem

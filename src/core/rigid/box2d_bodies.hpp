@@ -1,0 +1,45 @@
+// The blocks' bodies in Box2D: creation with the mass of the rounded outline, forces in, one
+// step, poses out, all in SI across this class (Box2D units inside). Internal header.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mpm_sdem/core/rigid/blocks.hpp"
+
+namespace mpm_sdem::detail {
+
+// Box2D units per metre for these blocks: the median block one unit across (length_hint when
+// there is none); finer with Box2D's own contacts (see the definition).
+Real box2dLengthScale(const std::vector<BlockDef>& defs, BlockContactModel model, Real length_hint);
+
+// Box2D's bodies of the listed blocks, in the same order.
+class Box2DBodies {
+ public:
+  Box2DBodies(const Vec2& gravity, Real scale, BlockContactModel model);
+  ~Box2DBodies();
+  // Appends the body of a block (with a fixture per part when Box2D does the contacts). Throws
+  // std::invalid_argument, before anything is created, when Box2D cannot take the outline.
+  void add(const BlockDef& def, const std::vector<Spheropolygon>& parts,
+           const MassProperties& mass);
+  void remove(int i);
+  // Frame origin and angle, velocity of the centre of mass and angular velocity.
+  Vec2 origin(int i) const;
+  Real angle(int i) const;
+  Vec2 velocity(int i) const;
+  Real angularVelocity(int i) const;
+  void setTransform(int i, const Vec2& origin, Real angle);
+  void setVelocity(int i, const Vec2& velocity, Real angular_velocity);
+  // A force at the centre of mass (N/m) and a torque (N m/m) for the next step (dynamic bodies).
+  void applyForce(int i, const Vec2& force, Real torque);
+  void step(Real h);
+
+ private:
+  struct World;
+  std::unique_ptr<World> w_;
+  Real scale_;
+  BlockContactModel model_;
+};
+
+}  // namespace mpm_sdem::detail

@@ -1,0 +1,158 @@
+#include "rigid/penalty_contacts.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+namespace mpm_sdem::detail {
+
+namespace {
+
+bool overlap(const Box& a, const Box& b) {
+  return a.min.x() <= b.max.x() && b.min.x() <= a.max.x() && a.min.y() <= b.max.y() &&
+         b.min.y() <= a.max.y();
+}
+
+}  // namespace
+
+bool PenaltyContacts::Key::operator<(const Key& o) const {
+  return std::tie(first, second, vertex, side) < std::tie(o.first, o.second, o.vertex, o.side);
+}
+
+bool PenaltyContacts::Key::operator==(const Key& o) const {
+  return first == o.first && second == o.second && vertex == o.vertex && side == o.side;
+}
+
+void PenaltyContacts::apply(Blocks& B, Real h) {
+  next_history_.clear();
+  const int n = B.count();
+  boxes_.resize(n);
+  for (int i = 0; i < n; ++i) boxes_[i] = B.blockBounds(i);
+  // Two outlines can overlap only where their boxes do: blocks first, then their shapes.
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      if (!B.movable(B.firstShape(i)) && !B.movable(B.firstShape(j))) continue;
+      if (!overlap(boxes_[i], boxes_[j])) continue;
+      const bool single = B.shapesOf(i) == 1 && B.shapesOf(j) == 1;
+      for (int p = B.firstShape(i); p < B.firstShape(i) + B.shapesOf(i); ++p)
+        for (int q = B.firstShape(j); q < B.firstShape(j) + B.shapesOf(j); ++q)
+          if (single || overlap(B.bounds(p), B.bounds(q))) pair(B, p, q, h);
+    }
+  }
+  std::sort(next_history_.begin(), next_history_.end(),
+            [](const auto& x, const auto& y) { return x.first < y.first; });
+  history_.swap(next_history_);
+}
+
+void PenaltyContacts::pair(Blocks& B, int i, int j, Real h) {
+  // Seed 000 eq. 38 and 41: the overlapping vertex-edge pairs, vertices of shape i against the
+  // edges of j, then vertices of j against i.
+  springs_.clear();
+  for (int side = 0; side < 2; ++side) {
+    const int a = side == 0 ? i : j, b = side == 0 ? j : i;
+    const int nb = B.coreVertexCount(b);
+    // A disk has no edges: its centre meets the other's edges in the other pass.
+    if (nb == 1 && (B.coreVertexCount(a) > 1 || side == 1)) continue;
+    const Real reach = B.rounding(a) + B.rounding(b);
+    for (int k = 0; k < B.coreVertexCount(a); ++k) {
+      const Vec2 X = B.coreVertices(a)[k];
+      const CoreDistance c = closestOnCore(B.coreVertices(b), nb, X);
+      const Real xi = reach - c.distance;  // eq. 38
+      if (xi <= 0) continue;
+      // Eq. 41: the middle of the overlap along the normal (which points from b to a).
+      springs_.push_back({X - (B.rounding(a) - xi / 2) * c.normal, c.normal, xi, k, side});
+    }
+  }
+  if (springs_.empty()) return;
+  // Two convex outlines touch in one place: the pair's springs are one contact (a face gives
+  // two or four, eq. 39). Its dashpot is sized for the restitution on the pair's effective
+  // normal mass at the contact's centre (1/m = sum over the movable sides of 1/M + (r x n)^2 /
+  // I), so that the springs together, n k_n on m, rebound with e; each takes an equal share.
+  // Normals are counted from j towards i.
+  Vec2 centre(0, 0), normal(0, 0);
+  for (const Spring& s : springs_) {
+    centre += s.point / static_cast<Real>(springs_.size());
+    normal += s.side == 0 ? s.normal : Vec2(-s.normal);
+  }
+  normal = normal.norm() > 0 ? Vec2(normal.normalized()) : springs_[0].normal;
+  const Real inverse_mass =
+      normal.dot((B.inverseMass(i, centre) + B.inverseMass(j, centre)) * normal);
+  const Real count = static_cast<Real>(springs_.size());
+  // The less elastic side sets the damping (the smaller restitution, the larger ratio).
+  const Real gamma = 2 * std::max(B.dampingRatio(i), B.dampingRatio(j)) *
+                     std::sqrt(count * def_.normal_stiffness / inverse_mass) / count;
+  const Real mu = std::min(B.friction(i), B.friction(j));
+  // Adhesion (seed 003 sec. 4.3): c over the length the outlines touch, the spread of the
+  // springs' points across the normal (a face's length; zero on a vertex or a disk), shared by
+  // the springs and pulling. Friction stays capped by what the springs push, which includes the
+  // adhesion they balance.
+  Real pull = 0;
+  const Real c = std::max(B.def(B.owner(i)).adhesion, B.def(B.owner(j)).adhesion);
+  if (c > 0) {
+    const Vec2 t(-normal.y(), normal.x());
+    Real lo = std::numeric_limits<Real>::infinity(), hi = -lo;
+    for (const Spring& s : springs_) {
+      lo = std::fmin(lo, s.point.dot(t));
+      hi = std::fmax(hi, s.point.dot(t));
+    }
+    pull = c * (hi - lo) / count;
+  }
+  const std::uint64_t key_i = B.shapeKey(i), key_j = B.shapeKey(j);
+  for (const Spring& s : springs_) {
+    const int a = s.side == 0 ? i : j, b = s.side == 0 ? j : i;
+    const Vec2 v = B.velocityAt(a, s.point) - B.velocityAt(b, s.point);
+    const Real vn = v.dot(s.normal);
+    const Real push = std::fmax(def_.normal_stiffness * s.xi - gamma * vn, Real(0));
+    const Key key{key_i, key_j, s.vertex, s.side};
+    Vec2 delta(0, 0);
+    const auto it =
+        std::lower_bound(history_.begin(), history_.end(), std::make_pair(key, Vec2(0, 0)),
+                         [](const auto& x, const auto& y) { return x.first < y.first; });
+    if (it != history_.end() && it->first == key) delta = it->second;
+    // Eq. 43: tangential spring on the accumulated sliding, capped by Coulomb.
+    delta += (v - vn * s.normal) * h;
+    delta -= delta.dot(s.normal) * s.normal;
+    Vec2 ft = -def_.tangential_stiffness * delta;
+    if (ft.norm() > mu * push) {
+      ft *= mu * push / ft.norm();
+      delta = -ft / def_.tangential_stiffness;
+    }
+    next_history_.emplace_back(key, delta);
+    const Vec2 f = (push - pull) * s.normal + ft;
+    B.addForce(B.owner(a), f, s.point);
+    B.addForce(B.owner(b), -f, s.point);
+  }
+}
+
+Real PenaltyContacts::stableStep(const Blocks& B, Real kappa2) const {
+  if (B.count() < 2) return std::numeric_limits<Real>::infinity();  // no spring can form
+  // The fastest motion a contact's springs drive. For kinetic energy E, a block's normal
+  // velocity at a contact point, v_n + w (r x n), squared is at most 2 E (1/M + (r x n)^2 / I)
+  // <= 2 E / m_c (Cauchy-Schwarz), |r x n| being at most the distance to the farthest core vertex
+  // (the contact point lies off the core only along n). So n springs between blocks a and b
+  // vibrate at w^2 <= n k_n (1/m_c,a + 1/m_c,b). Their dashpots are in proportion to the
+  // springs (apply: c / k_n = 2 zeta / w_c, w_c the contact's own frequency, at least that of
+  // the blocks translating), so a mode w has the damping ratio zeta w / w_c, at most
+  // zeta sqrt(rho) with rho = M / m_c. The bound: n springs between two of the blocks with the
+  // smallest m_c, with the largest rho and damping ratio. Two spheropolygons meet with at most
+  // four springs (a face, eq. 39); a cluster with at most one per disc pair, and a disc of one
+  // cluster meets at most two discs of another along a face (staggered), so twice its discs.
+  Real m_c = std::numeric_limits<Real>::infinity(), rho = 1;
+  int springs = 4;
+  for (int b = 0; b < B.count(); ++b) {
+    if (!B.movable(B.firstShape(b))) continue;
+    const MassProperties& m = B.massProperties(b);
+    Real r2 = 0;
+    for (const Spheropolygon& part : B.parts(b))
+      for (const Vec2& v : part.core) r2 = std::fmax(r2, (v - m.centroid).squaredNorm());
+    m_c = std::fmin(m_c, 1 / (1 / m.mass + r2 / m.inertia));
+    rho = std::fmax(rho, 1 + m.mass * r2 / m.inertia);
+    if (B.shapesOf(b) > 1) springs = std::max(springs, 2 * B.shapesOf(b));
+  }
+  if (!std::isfinite(m_c)) return std::numeric_limits<Real>::infinity();
+  return contactTimeStep(0.5 * m_c, def_.normal_stiffness, B.maxDampingRatio() * std::sqrt(rho),
+                         springs, kappa2);
+}
+
+}  // namespace mpm_sdem::detail
