@@ -43,6 +43,9 @@ CASES = [
     ("rolling", "Rotation under friction: a disk thrown without spin on a floor block, every "
                 "coupling and transfer scheme (rigid cylinder: spin-up 2 mu g / R, rolls at 2/3 v0"
                 " from v0 / (3 mu g))", True),
+    ("clusters", "Seed 003 sec. 2.2: rigid clusters of discs - a rock of 25 discs thrown into a "
+                 "granular bed against the spheropolygon of the same outline (depth, velocity "
+                 "after, cost), and the incline's disk on an incline made of discs", True),
     ("compression", "Seed 000 sec. 7: granular matrix compression", True),
     ("incline", "Seed 002 sec. 4.1: disk rolling on an incline", True),
     ("bar", "Seed 001: 1D reversibility and bar under a stress boundary condition", True),
