@@ -1,7 +1,10 @@
 #include "cases.hpp"
 
+#include "mpm_sdem/mesh/mesher.hpp"
+
 #include <Eigen/Dense>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -807,6 +810,113 @@ Compression compressMatrix(World& w, int plate, Real speed, Real max_settlement)
     if (contact_y - y >= max_settlement) break;
   }
   return out;
+}
+
+Real femInclineAcceleration(Real mu, Real h, Real element_size, CouplingScheme scheme) {
+  const Real th = M_PI / 4, R = 0.05, g = 9.81, top = 0.1;
+  WorldDef def;
+  def.domain.min = Vec2(0, 0);
+  def.domain.max = Vec2(std::round(1.4 / h) * h, std::round(0.3 / h) * h);
+  def.cell_size = h;
+  def.solver.kernel = KernelType::kGimp;
+  def.solver.gravity = g * Vec2(std::sin(th), -std::cos(th));
+  def.materials.push_back(elasticDisk());
+  FemBodyDef plate;
+  plate.name = "plate";
+  plate.mesh =
+      meshPolygon({{0.1, top - 0.05}, {1.3, top - 0.05}, {1.3, top}, {0.1, top}}, element_size);
+  plate.youngs_modulus = 1e8;
+  plate.density = 1e4;
+  plate.poisson_ratio = 0.3;
+  plate.friction = mu;
+  plate.held = {Box{Vec2(0, 0), Vec2(2, top - 0.05 + 1e-9)}};
+  def.fem_bodies.push_back(plate);
+  def.coupling.scheme = scheme;
+  def.coupling.normal_stiffness = 1e7;
+  def.coupling.tangential_stiffness = 5e6;
+  // Released half a millimetre above contact, as inclineAcceleration's.
+  const Real rp = h / std::sqrt(2.0);
+  def.bodies.push_back(diskBody(Vec2(0.25, top + R + rp - 0.25 * h + 0.0005), R, 2));
+  World w(def);
+  std::vector<Real> ts, xs;
+  const Real x0 = measure(w).center_of_mass.x();
+  while (w.time() < 0.3) {
+    w.step(w.chooseTimeStep().dt);
+    ts.push_back(w.time());
+    xs.push_back(measure(w).center_of_mass.x() - x0);
+  }
+  return fittedAcceleration(ts, xs, 0.05);
+}
+
+Cantilever cantilever(Real element_size, FemModel model) {
+  const Real L = 1, H = 0.05, E = 1e9, nu = 0.3, rho = 1000, g = 9.81;
+  const Real Ep = E / (1 - nu * nu), I = H * H * H / 12;
+  const Real w1 = 1.8751 * 1.8751 * std::sqrt(Ep * I / (rho * H * L * L * L * L));
+  Cantilever c;
+  c.euler_bernoulli = rho * g * H * L * L * L * L / (8 * Ep * I);
+  c.frequency_eb = w1 / (2 * M_PI);
+  WorldDef def;
+  def.domain.min = Vec2(-0.5, -0.5);
+  def.domain.max = Vec2(1.5, 0.5);
+  def.cell_size = 0.1;
+  def.solver.gravity = Vec2(0, -g);
+  def.time_step.cfl = 0.9;  // of the element step h / c_p: no material here
+  FemBodyDef beam;
+  beam.name = "beam";
+  beam.mesh = meshPolygon({{0, -H / 2}, {L, -H / 2}, {L, H / 2}, {0, H / 2}}, element_size);
+  beam.youngs_modulus = E;
+  beam.poisson_ratio = nu;
+  beam.density = rho;
+  beam.model = model;
+  beam.held = {Box{Vec2(-1, -1), Vec2(1e-9, 1)}};
+  const auto start = std::chrono::steady_clock::now();
+  auto tipDeflection = [&](const World& w) {
+    const FemBodies& F = *w.femBodies();
+    Real sum = 0;
+    int n = 0;
+    for (int k = 0; k < F.totalNodes(); ++k) {
+      if (F.reference(k).x() < L - 1e-9) continue;
+      sum += F.reference(k).y() - F.position(k).y();
+      ++n;
+    }
+    return sum / n;
+  };
+  {
+    // Dynamic relaxation: mass damping at the first mode's critical value, alpha = 2 w1, leaves
+    // exp(-7) of the initial error after 7 / w1.
+    FemBodyDef damped = beam;
+    damped.mass_damping = 2 * w1;
+    WorldDef d = def;
+    d.fem_bodies = {damped};
+    World w(d);
+    while (w.time() < 7 / w1) {
+      w.step(w.chooseTimeStep().dt);
+      c.element_steps += w.femBodies()->totalElements();
+    }
+    c.static_tip = tipDeflection(w);
+    c.elements = w.femBodies()->totalElements();
+  }
+  {
+    // Released from rest, undamped: the tip swings about its static deflection, mostly in the
+    // first mode; the period is the mean spacing of its downward crossings of that deflection.
+    def.fem_bodies = {beam};
+    World w(def);
+    std::vector<Real> crossings;
+    Real before = -c.static_tip, t_before = 0;
+    while (w.time() < 3.3 * 2 * M_PI / w1) {
+      w.step(w.chooseTimeStep().dt);
+      c.element_steps += w.femBodies()->totalElements();
+      const Real now = tipDeflection(w) - c.static_tip;
+      if (before < 0 && now >= 0)
+        crossings.push_back(t_before + (w.time() - t_before) * (-before) / (now - before));
+      before = now;
+      t_before = w.time();
+    }
+    if (crossings.size() >= 2)
+      c.frequency = (crossings.size() - 1) / (crossings.back() - crossings.front());
+  }
+  c.seconds = std::chrono::duration<Real>(std::chrono::steady_clock::now() - start).count();
+  return c;
 }
 
 }  // namespace mpm_sdem::cases

@@ -84,6 +84,27 @@ Real inclineAcceleration(Real mu, Real cell_size, CouplingScheme scheme = Coupli
 // The analytic acceleration of inclineAcceleration's disk (m/s^2).
 Real inclineAnalytic(Real mu);
 
+// Seed 002 sec. 4.1 itself in 2D: the same disk on a deformable FEM plate (1.2 x 0.05 m, linear
+// triangles of edge element_size, E = 100 MPa, rho = 10000 kg/m^3, nu = 0.3: ten times the
+// disk's, as the seed's plate; its bottom face held) instead of a rigid incline. The plate lies
+// level and gravity is tilted by 45 deg, which is the same problem. R = element_size / cell_size.
+// Returns the fitted acceleration along the plate as inclineAcceleration does.
+Real femInclineAcceleration(Real mu, Real cell_size, Real element_size,
+                            CouplingScheme scheme = CouplingScheme::kParticleSurface);
+
+// A plane-strain cantilever of FEM triangles under its own weight (1 x 0.05 m, E = 1 GPa,
+// rho = 1000 kg/m^3, nu = 0.3, clamped at x = 0), meshed at element_size.
+struct Cantilever {
+  Real static_tip = 0;       // tip deflection after dynamic relaxation (m, downwards positive)
+  Real euler_bernoulli = 0;  // q L^4 / (8 E' I), E' = E / (1 - nu^2) (m)
+  Real frequency = 0;        // first natural frequency from the undamped release (Hz)
+  Real frequency_eb = 0;     // 1.8751^2 / (2 pi) sqrt(E' I / (rho A L^4)) (Hz)
+  int elements = 0;
+  long element_steps = 0;
+  Real seconds = 0;  // wall time of both runs
+};
+Cantilever cantilever(Real element_size, FemModel model = FemModel::kCorotational);
+
 // Rotation under friction: the incline's elastic disk (R = 5 cm, 10 MPa, nu = 0.3, GIMP) thrown
 // along a static floor block at v0 without spin. While it slides, friction mu g decelerates its
 // centre and spins it up at 2 mu g / R (I = M R^2 / 2); it rolls from t = v0 / (3 mu g) at

@@ -22,6 +22,8 @@ const char* stepLimitName(StepLimit limit) {
       return "cfl";
     case StepLimit::kContact:
       return "contact";
+    case StepLimit::kElement:
+      return "element";
     case StepLimit::kMax:
       return "max";
   }
@@ -110,8 +112,19 @@ World::World(const WorldDef& def) : def_(def) {
   }
   if (!(largest_spring_scale_ > 0)) largest_spring_scale_ = 1;
 
-  if (!def.blocks.empty()) {
+  if (!def.blocks.empty())
     blocks_ = std::make_unique<Blocks>(def.blocks, def.block_contact, def.solver.gravity);
+  if (!def.fem_bodies.empty()) {
+    if (def.coupling.scheme == CouplingScheme::kMultiVelocity ||
+        def.coupling.scheme == CouplingScheme::kPartitioned)
+      throw std::invalid_argument(
+          std::string("coupling.scheme ") + couplingSchemeName(def.coupling.scheme) +
+          " cannot meet FEM bodies (it needs a body's interior lattice or a wall of its own); "
+          "use particle_surface (seed 002's) or imp");
+    fem_ = std::make_unique<FemBodies>(def.fem_bodies, def.solver.gravity);
+  }
+  if (blocks_ || fem_) {
+    linkContactBodies();
     initCoupling();
   }
   if (!def.time_step.automatic) {
@@ -192,19 +205,33 @@ Problem World::placementProblem(const BlockDef& d, bool allow_overlap, BlockId m
 }
 
 BlockId World::addBlock(const BlockDef& d) {
-  if (!blocks_) {
+  if (!blocks_)
     blocks_ = std::make_unique<Blocks>(std::vector<BlockDef>{}, def_.block_contact,
                                        def_.solver.gravity, std::sqrt(blockMass(d).area));
-    initCoupling();
-  }
   const BlockId id = blocks_->add(d);
+  linkContactBodies();
+  if (!coupling_) initCoupling();
   coupling_->bodiesChanged();
   return id;
 }
 
 void World::removeBlock(BlockId id) {
+  if (!blocks_) throw std::invalid_argument("removeBlock: the world has no blocks");
   blocks_->remove(id);
+  linkContactBodies();
   coupling_->bodiesChanged();
+}
+
+void World::linkContactBodies() {
+  if (!fem_) return;
+  const WallDef walls[4] = {def_.domain.left, def_.domain.right, def_.domain.bottom,
+                            def_.domain.top};
+  fem_->setSurroundings(def_.domain.min, def_.domain.max, walls, blocks_.get());
+  if (!blocks_) return;
+  if (set_)
+    set_->refresh();
+  else
+    set_ = std::make_unique<ContactSet>(std::vector<ContactBodies*>{blocks_.get(), fem_.get()});
 }
 
 void World::setBlockPose(BlockId id, const Vec2& origin, Real angle) {
@@ -265,6 +292,8 @@ TimeStepChoice World::stepBound(Real cfl, Real kappa2) const {
   const Real cfl_dt = fastest > 0 ? cfl * grid_.h / fastest : std::numeric_limits<Real>::infinity();
   TimeStepChoice choice{def_.time_step.max, StepLimit::kMax};
   if (cfl_dt < choice.dt) choice = {cfl_dt, StepLimit::kCfl};
+  if (fem_ && cfl * fem_->elementStep() < choice.dt)
+    choice = {cfl * fem_->elementStep(), StepLimit::kElement};
   if (hasContactBodies() && coupling_->hasSprings()) {
     // Eq. 51, second term, for the coupling springs (lightest point or body). The springs
     // between bodies do not bound this step: the bodies take substeps within their own bound.

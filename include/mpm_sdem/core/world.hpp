@@ -6,7 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "mpm_sdem/core/coupling/contact_set.hpp"
 #include "mpm_sdem/core/coupling/coupling.hpp"
+#include "mpm_sdem/core/fem/fem_bodies.hpp"
 #include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/mpm/boundary.hpp"
 #include "mpm_sdem/core/mpm/grid.hpp"
@@ -62,6 +64,7 @@ struct WorldDef {
   std::vector<BodyDef> bodies;
   std::vector<BlockDef> blocks;
   BlockContactDef block_contact;
+  std::vector<FemBodyDef> fem_bodies;  // deformable bodies (seed 002), fixed for the world's life
   CouplingDef coupling;  // contact between material and blocks (scheme and its settings)
 };
 
@@ -76,7 +79,8 @@ std::string sizeProblem(const DomainDef& domain, Real cell_size,
 Real stepTowards(Real dt, Real end_time, Real time);
 
 // Which term set the time step.
-enum class StepLimit { kFixed, kCfl, kContact, kMax };
+// kElement: the FEM bodies' elements (FemBodies::elementStep times kappa_1).
+enum class StepLimit { kFixed, kCfl, kContact, kElement, kMax };
 const char* stepLimitName(StepLimit limit);
 
 struct TimeStepChoice {
@@ -130,6 +134,8 @@ class World {
   // Changed only through World (addBlock, removeBlock, setBlockPose, setBlockVelocity), which
   // keeps the coupling in step.
   const Blocks* blocks() const { return blocks_.get(); }
+  // The deformable bodies, or nullptr in a scene without any.
+  const FemBodies* femBodies() const { return fem_.get(); }
   // The material-body coupling, or nullptr while there are no contact bodies.
   const Coupling* coupling() const { return coupling_.get(); }
   // The coupling settings with their defaults resolved (r_p, V_d in metres).
@@ -165,9 +171,17 @@ class World {
   void couplingStage(Real dt, Real kick, void (Coupling::*stage)(CouplingStep&));
   void stepBodies(Real dt);
   void initCoupling();
+  // Whenever the blocks come or go: the set of every kind of contact body, and what the FEM
+  // bodies meet.
+  void linkContactBodies();
   void spreadPointLoads();
-  // Everything solid the material meets (today the rigid blocks), or nullptr.
-  ContactBodies* contactBodies() const { return blocks_.get(); }
+  // Everything solid the material meets: the rigid blocks, the FEM bodies, both (the set), or
+  // nullptr.
+  ContactBodies* contactBodies() const {
+    if (set_) return set_.get();
+    if (blocks_) return blocks_.get();
+    return fem_.get();
+  }
   bool hasContactBodies() const { return contactBodies() && contactBodies()->shapeCount() > 0; }
 
   WorldDef def_;
@@ -177,6 +191,8 @@ class World {
   Tiles tiles_;
   Profile profile_;
   std::unique_ptr<Blocks> blocks_;
+  std::unique_ptr<FemBodies> fem_;
+  std::unique_ptr<ContactSet> set_;  // when there are blocks and FEM bodies
   std::unique_ptr<Coupling> coupling_;
   // For the contact term of the time step: the smallest mass per spring scale of a point
   // (kg/m; impSpringScale) and the largest scale.

@@ -28,10 +28,12 @@ struct Box {
   Vec2 min{0, 0}, max{0, 0};
 };
 
-// Where a body was, for telling how far it has moved since (the contact search's Verlet list).
+// Where a shape was, for telling how far it has moved since (the contact search's Verlet list):
+// a rigid body's centre of mass and angle, or a deformable segment's two ends.
 struct BodyPose {
-  Vec2 position{0, 0};  // centre of mass (m)
+  Vec2 position{0, 0};  // centre of mass, or a segment's first end (m)
   Real angle = 0;       // rad
+  Vec2 other{0, 0};     // a segment's second end (m)
 };
 
 // The mass a contact between a point of mass m and a body of mass M moves, m M / (m + M); m

@@ -1,0 +1,462 @@
+#include "mpm_sdem/core/fem/fem_bodies.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "mpm_sdem/core/coupling/restitution.hpp"
+
+namespace mpm_sdem {
+
+namespace {
+
+constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
+
+Problem rangeOf(const char* key, Real v, const limits::Range& r) {
+  std::string p = limits::rangeProblem(v, r);
+  return p.empty() ? Problem{} : Problem{key, p};
+}
+
+// The rotation of a triangle's deformation gradient, R of F = R S with S symmetric (2D polar
+// decomposition); the identity for the linear model.
+Mat2 corotation(const Mat2& F, FemModel model) {
+  if (model != FemModel::kCorotational) return Mat2::Identity();
+  const Real angle = std::atan2(F(1, 0) - F(0, 1), F(0, 0) + F(1, 1));
+  const Real c = std::cos(angle), s = std::sin(angle);
+  return (Mat2() << c, -s, s, c).finished();
+}
+
+// Outward normal of a boundary segment a -> b (the body on its left), unit.
+Vec2 outwardNormal(const Vec2& a, const Vec2& b) {
+  const Vec2 e = b - a;
+  return Vec2(e.y(), -e.x()) / e.norm();
+}
+
+}  // namespace
+
+const char* femModelName(FemModel m) {
+  return m == FemModel::kLinear ? "linear" : "corotational";
+}
+
+Problem femBodyProblem(const FemBodyDef& d) {
+  if (std::string p = limits::nameProblem(d.name); !p.empty()) return {"name", p};
+  if (std::string p = meshProblem(d.mesh); !p.empty()) return {"mesh", p};
+  for (const Vec2& v : d.mesh.nodes) {
+    for (int a = 0; a < 2; ++a)
+      if (Problem p = rangeOf("outline", v[a], limits::kCoordinate); !p.empty()) return p;
+  }
+  if (Problem p = rangeOf("density", d.density, limits::kDensity); !p.empty()) return p;
+  if (Problem p = rangeOf("youngs_modulus", d.youngs_modulus, limits::kModulus); !p.empty())
+    return p;
+  if (!(d.poisson_ratio >= 0 && d.poisson_ratio <= 0.49))
+    return {"poisson_ratio", "must be in [0, 0.49] (plane strain locks towards 0.5), got " +
+                                 std::to_string(d.poisson_ratio)};
+  if (!(d.mass_damping >= 0 && d.mass_damping <= 1e6))
+    return {"mass_damping", "must be in [0, 1e6] 1/s, got " + std::to_string(d.mass_damping)};
+  if (!(d.stiffness_damping >= 0 && d.stiffness_damping <= 1))
+    return {"stiffness_damping", "must be in [0, 1] s, got " + std::to_string(d.stiffness_damping)};
+  if (Problem p = rangeOf("friction", d.friction, limits::kFriction); !p.empty()) return p;
+  if (Problem p = rangeOf("restitution", d.restitution, limits::kRestitution); !p.empty()) return p;
+  if (!(std::abs(d.angular_velocity) <= 1e4))
+    return {"angular_velocity", "must be finite, at most 1e4 rad/s"};
+  for (const Vec2* v : {&d.velocity, &d.held_velocity}) {
+    if (!(v->allFinite() && v->norm() <= limits::kSpeed.max))
+      return {v == &d.velocity ? "velocity" : "held_velocity",
+              "must be finite and at most " + std::to_string(limits::kSpeed.max) + " m/s"};
+  }
+  for (const Box& b : d.held)
+    if (!(b.min.allFinite() && b.max.allFinite() && (b.min.array() <= b.max.array()).all()))
+      return {"held", "each box needs finite corners with min <= max"};
+  return {};
+}
+
+Real FemBodies::vonMises(const Stress& s) {
+  // Three-dimensional: plane strain carries sigma_zz.
+  const Real a = s.xx - s.yy, b = s.yy - s.zz, c = s.zz - s.xx;
+  return std::sqrt(Real(0.5) * (a * a + b * b + c * c) + 3 * s.xy * s.xy);
+}
+
+FemBodies::FemBodies(const std::vector<FemBodyDef>& defs, const Vec2& gravity)
+    : defs_(defs), gravity_(gravity) {
+  for (std::size_t i = 0; i < defs.size(); ++i) {
+    const FemBodyDef& d = defs[i];
+    if (Problem p = femBodyProblem(d); !p.empty())
+      throw std::invalid_argument("fem_bodies[" + std::to_string(i) + "] '" + d.name +
+                                  "': " + p.text());
+    const int body = static_cast<int>(i);
+    Body b;
+    b.first_node = totalNodes();
+    b.node_count = static_cast<int>(d.mesh.nodes.size());
+    b.first_element = totalElements();
+    b.element_count = static_cast<int>(d.mesh.triangles.size());
+    b.zeta = restitutionDampingRatio(d.restitution);
+    max_zeta_ = std::max(max_zeta_, b.zeta);
+    bodies_.push_back(b);
+    for (const Vec2& v : d.mesh.nodes) {
+      X_.push_back(v.x());
+      Y_.push_back(v.y());
+      vx_.push_back(d.velocity.x());
+      vy_.push_back(d.velocity.y());
+      node_body_.push_back(body);
+      mass_.push_back(0);
+      bool held = false;
+      for (const Box& box : d.held)
+        held =
+            held || ((v.array() >= box.min.array()).all() && (v.array() <= box.max.array()).all());
+      inv_mass_.push_back(held ? 0 : 1);  // 1: set from the mass below
+      held_velocity_.push_back(held ? d.held_velocity : Vec2(0, 0));
+      alpha_.push_back(d.mass_damping);
+    }
+    // Plane strain Lame constants.
+    const Real E = d.youngs_modulus, nu = d.poisson_ratio;
+    const Real lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+    const Real wave = std::sqrt((lambda + 2 * mu) / d.density);  // c_p
+    for (const auto& t : d.mesh.triangles) {
+      Element e;
+      for (int k = 0; k < 3; ++k) e.node[k] = b.first_node + t[k];
+      e.body = body;
+      const Vec2 p0 = d.mesh.nodes[t[0]], p1 = d.mesh.nodes[t[1]], p2 = d.mesh.nodes[t[2]];
+      const Real twice = cross(p1 - p0, p2 - p0);
+      e.area = Real(0.5) * twice;
+      // grad N_k = perp(x_{k+2} - x_{k+1}) / 2A, perp(v) = (v.y, -v.x) rotated inwards.
+      const Vec2 p[3] = {p0, p1, p2};
+      for (int k = 0; k < 3; ++k) {
+        const Vec2 opp = p[(k + 2) % 3] - p[(k + 1) % 3];
+        e.dndx[k][0] = -opp.y() / twice;
+        e.dndx[k][1] = opp.x() / twice;
+      }
+      e.lambda = lambda;
+      e.mu = mu;
+      // Lumped mass: a third of the triangle's to each corner.
+      for (int k = 0; k < 3; ++k) mass_[e.node[k]] += d.density * e.area / 3;
+      // Explicit step: the least altitude over the P-wave speed, less for stiffness damping.
+      const Real longest = std::max({(p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
+      const Real h = twice / longest;
+      const Real xi = d.stiffness_damping * wave / h;
+      element_step_ = std::min(element_step_, h / wave * (std::sqrt(1 + xi * xi) - xi));
+      elements_.push_back(e);
+    }
+    // Boundary segments, linked to their neighbours along the outline.
+    const std::vector<BoundaryEdge> edges = boundaryEdges(d.mesh);
+    const int first_segment = static_cast<int>(segments_.size());
+    std::vector<int> starts(d.mesh.nodes.size(), -1), ends(d.mesh.nodes.size(), -1);
+    for (std::size_t k = 0; k < edges.size(); ++k) {
+      const BoundaryEdge& be = edges[k];
+      Segment s;
+      s.a = b.first_node + be.a;
+      s.b = b.first_node + be.b;
+      s.body = body;
+      const Vec2 A = d.mesh.nodes[be.a], B = d.mesh.nodes[be.b];
+      s.claim = Real(0.5) * std::abs(cross(B - A, d.mesh.nodes[be.opposite] - A)) / (B - A).norm();
+      starts[be.a] = first_segment + static_cast<int>(k);
+      ends[be.b] = first_segment + static_cast<int>(k);
+      segments_.push_back(s);
+    }
+    for (std::size_t k = 0; k < edges.size(); ++k) {
+      Segment& s = segments_[first_segment + k];
+      // A pinched outline (two segments meeting at a node twice) keeps the last; the bisector
+      // there is approximate.
+      s.prev = ends[edges[k].a] >= 0 ? ends[edges[k].a] : first_segment + static_cast<int>(k);
+      s.next = starts[edges[k].b] >= 0 ? starts[edges[k].b] : first_segment + static_cast<int>(k);
+    }
+    // The initial twist about the centre of mass.
+    Real m = 0;
+    Vec2 centre(0, 0);
+    for (int k = b.first_node; k < b.first_node + b.node_count; ++k) {
+      m += mass_[k];
+      centre += mass_[k] * Vec2(X_[k], Y_[k]);
+    }
+    centre /= m;
+    for (int k = b.first_node; k < b.first_node + b.node_count; ++k) {
+      vx_[k] -= d.angular_velocity * (Y_[k] - centre.y());
+      vy_[k] += d.angular_velocity * (X_[k] - centre.x());
+    }
+    coupling_.emplace_back();
+  }
+  const std::size_t n = X_.size();
+  x_ = X_;
+  y_ = Y_;
+  tvx_ = vx_;
+  tvy_ = vy_;
+  fx_.assign(n, 0);
+  fy_.assign(n, 0);
+  cfx_.assign(n, 0);
+  cfy_.assign(n, 0);
+  on_boundary_.assign(n, 0);
+  for (std::size_t k = 0; k < n; ++k) inv_mass_[k] = inv_mass_[k] > 0 ? 1 / mass_[k] : 0;
+  for (const Segment& s : segments_) on_boundary_[s.a] = on_boundary_[s.b] = 1;
+  stress_.assign(elements_.size(), Stress());
+  for (int s = 0; s < shapeCount(); ++s)
+    if (movable(s)) lightest_ = std::min(lightest_, mass(s));
+  refreshSegments();
+}
+
+void FemBodies::setSurroundings(const Vec2& lo, const Vec2& hi, const WallDef walls[4],
+                                const ContactBodies* obstacles) {
+  domain_min_ = lo;
+  domain_max_ = hi;
+  for (int k = 0; k < 4; ++k) walls_[k] = walls[k];
+  has_domain_ = true;
+  obstacles_ = obstacles;
+}
+
+void FemBodies::refreshSegments() {
+  segment_vertices_.resize(2 * segments_.size());
+  for (std::size_t s = 0; s < segments_.size(); ++s) {
+    segment_vertices_[2 * s] = position(segments_[s].a);
+    segment_vertices_[2 * s + 1] = position(segments_[s].b);
+  }
+}
+
+Real FemBodies::phiA(int s, const Vec2& x) const {
+  const Vec2* v = coreVertices(s);
+  const Vec2 e = v[1] - v[0];
+  const Real t = std::clamp((x - v[0]).dot(e) / e.squaredNorm(), Real(0), Real(1));
+  return 1 - t;
+}
+
+CoreDistance FemBodies::closest(int s, const Vec2& x) const {
+  const Vec2* v = coreVertices(s);
+  const Vec2 A = v[0], B = v[1], e = B - A;
+  const Vec2 n = outwardNormal(A, B);
+  const Real t = std::clamp((x - A).dot(e) / e.squaredNorm(), Real(0), Real(1));
+  CoreDistance d;
+  d.point = A + t * e;
+  const Vec2 r = x - d.point;
+  if (r.dot(n) >= 0) {  // in front: the distance to the segment
+    d.distance = r.norm();
+    d.normal = d.distance > 1e-12 * e.norm() ? Vec2(r / d.distance) : n;
+    return d;
+  }
+  // Behind: the segment's own when between the bisectors at its ends and within its claim.
+  d.normal = n;
+  d.distance = kInfinity;
+  const Segment& g = segments_[s];
+  const Real depth = -(x - A).dot(n);
+  if (depth > g.claim) return d;
+  const Vec2* pv = coreVertices(g.prev);
+  const Vec2* nv = coreVertices(g.next);
+  const Vec2 mA = outwardNormal(pv[0], pv[1]) + n, mB = n + outwardNormal(nv[0], nv[1]);
+  if (cross(mA, x - A) * cross(mA, e) < 0 || cross(mB, x - B) * cross(mB, -e) < 0) return d;
+  d.distance = -depth;
+  d.point = x + depth * n;  // the foot on the segment's line
+  return d;
+}
+
+Box FemBodies::bounds(int s) const {
+  // The segment and the strip behind it that it claims.
+  const Vec2* v = coreVertices(s);
+  const Vec2 in = -segments_[s].claim * outwardNormal(v[0], v[1]);
+  Box b{v[0].cwiseMin(v[1]), v[0].cwiseMax(v[1])};
+  b.min = b.min.cwiseMin(v[0] + in).cwiseMin(v[1] + in);
+  b.max = b.max.cwiseMax(v[0] + in).cwiseMax(v[1] + in);
+  return b;
+}
+
+bool FemBodies::movable(int s) const {
+  return inv_mass_[segments_[s].a] > 0 || inv_mass_[segments_[s].b] > 0;
+}
+
+Real FemBodies::mass(int s) const {
+  const Real inv = Real(0.25) * (inv_mass_[segments_[s].a] + inv_mass_[segments_[s].b]);
+  return inv > 0 ? 1 / inv : kInfinity;
+}
+
+Vec2 FemBodies::velocityAt(int s, const Vec2& x) const {
+  const Real pa = phiA(s, x);
+  const int a = segments_[s].a, b = segments_[s].b;
+  return pa * Vec2(vx_[a], vy_[a]) + (1 - pa) * Vec2(vx_[b], vy_[b]);
+}
+
+Vec2 FemBodies::trialVelocityAt(int s, const Vec2& x) const {
+  const Real pa = phiA(s, x);
+  const int a = segments_[s].a, b = segments_[s].b;
+  return pa * Vec2(tvx_[a], tvy_[a]) + (1 - pa) * Vec2(tvx_[b], tvy_[b]);
+}
+
+Mat2 FemBodies::inverseMass(int s, const Vec2& x) const {
+  const Real pa = phiA(s, x), pb = 1 - pa;
+  return (pa * pa * inv_mass_[segments_[s].a] + pb * pb * inv_mass_[segments_[s].b]) *
+         Mat2::Identity();
+}
+
+BodyPose FemBodies::pose(int s) const {
+  BodyPose p;
+  p.position = coreVertices(s)[0];
+  p.other = coreVertices(s)[1];
+  return p;
+}
+
+Real FemBodies::movedSince(int s, const BodyPose& then) const {
+  return std::max((coreVertices(s)[0] - then.position).norm(),
+                  (coreVertices(s)[1] - then.other).norm());
+}
+
+void FemBodies::interiorPoints(int, Real, std::vector<Vec2>&, Real&) {
+  throw std::logic_error("FEM bodies have no interior lattice (grid-based coupling schemes)");
+}
+
+void FemBodies::internalForces() {
+  // Eq. 20 per triangle: f_K = -A sigma grad N_K, with F = sum_K x_K (x) grad N_K. The
+  // corotational form polar-decomposes F = R S, applies the linear law to eps = sym(S) - I and
+  // rotates the stress back (P = R sigma); the linear form takes R = I.
+  std::fill(fx_.begin(), fx_.end(), Real(0));
+  std::fill(fy_.begin(), fy_.end(), Real(0));
+  for (std::size_t i = 0; i < elements_.size(); ++i) {
+    const Element& e = elements_[i];
+    const FemBodyDef& d = defs_[e.body];
+    Mat2 F = Mat2::Zero(), Fdot = Mat2::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const int n = e.node[k];
+      const Vec2 g(e.dndx[k][0], e.dndx[k][1]);
+      F += Vec2(x_[n], y_[n]) * g.transpose();
+      Fdot += Vec2(vx_[n], vy_[n]) * g.transpose();
+    }
+    const Mat2 R = corotation(F, d.model);
+    const Mat2 S = R.transpose() * F;
+    const Mat2 eps = Real(0.5) * (S + S.transpose()) - Mat2::Identity();
+    const Real tr = eps.trace();
+    Mat2 sigma = e.lambda * tr * Mat2::Identity() + 2 * e.mu * eps;
+    stress_[i].zz = e.lambda * tr;
+    if (d.stiffness_damping > 0) {  // Rayleigh's beta K v: the linear law on the strain rate
+      const Mat2 Sdot = R.transpose() * Fdot;
+      const Mat2 rate = Real(0.5) * (Sdot + Sdot.transpose());
+      sigma += d.stiffness_damping * (e.lambda * rate.trace() * Mat2::Identity() + 2 * e.mu * rate);
+    }
+    const Mat2 P = R * sigma;
+    for (int k = 0; k < 3; ++k) {
+      const Vec2 f = -e.area * P * Vec2(e.dndx[k][0], e.dndx[k][1]);
+      fx_[e.node[k]] += f.x();
+      fy_[e.node[k]] += f.y();
+    }
+    const Mat2 cauchy = R * sigma * R.transpose();
+    stress_[i].xx = cauchy(0, 0);
+    stress_[i].yy = cauchy(1, 1);
+    stress_[i].xy = cauchy(0, 1);
+  }
+}
+
+Real FemBodies::strainEnergy() const {
+  Real sum = 0;
+  for (const Element& e : elements_) {
+    Mat2 F = Mat2::Zero();
+    for (int k = 0; k < 3; ++k)
+      F += position(e.node[k]) * Vec2(e.dndx[k][0], e.dndx[k][1]).transpose();
+    const Mat2 R = corotation(F, defs_[e.body].model);
+    const Mat2 S = R.transpose() * F;
+    const Mat2 eps = Real(0.5) * (S + S.transpose()) - Mat2::Identity();
+    sum += e.area * (e.mu * eps.squaredNorm() + Real(0.5) * e.lambda * eps.trace() * eps.trace());
+  }
+  return sum;
+}
+
+Real FemBodies::kineticEnergy() const {
+  Real sum = 0;
+  for (std::size_t k = 0; k < x_.size(); ++k)
+    sum += Real(0.5) * mass_[k] * (vx_[k] * vx_[k] + vy_[k] * vy_[k]);
+  return sum;
+}
+
+Real FemBodies::potentialEnergy() const {
+  Real sum = 0;
+  for (std::size_t k = 0; k < x_.size(); ++k)
+    sum -= mass_[k] * (gravity_.x() * x_[k] + gravity_.y() * y_[k]);
+  return sum;
+}
+
+void FemBodies::beginCoupling(Real dt) {
+  internalForces();
+  for (Coupling& c : coupling_) c = Coupling();
+  std::fill(cfx_.begin(), cfx_.end(), Real(0));
+  std::fill(cfy_.begin(), cfy_.end(), Real(0));
+  for (std::size_t k = 0; k < x_.size(); ++k) {
+    if (inv_mass_[k] == 0) {
+      tvx_[k] = held_velocity_[k].x();
+      tvy_[k] = held_velocity_[k].y();
+      continue;
+    }
+    // Eq. 17 with the internal force, gravity and mass-proportional damping.
+    tvx_[k] = vx_[k] + dt * (fx_[k] * inv_mass_[k] + gravity_.x() - alpha_[k] * vx_[k]);
+    tvy_[k] = vy_[k] + dt * (fy_[k] * inv_mass_[k] + gravity_.y() - alpha_[k] * vy_[k]);
+  }
+}
+
+void FemBodies::applyForce(int s, const Vec2& force, const Vec2& x) {
+  const Real pa = phiA(s, x);
+  const Segment& g = segments_[s];
+  cfx_[g.a] += pa * force.x();
+  cfy_[g.a] += pa * force.y();
+  cfx_[g.b] += (1 - pa) * force.x();
+  cfy_[g.b] += (1 - pa) * force.y();
+  coupling_[g.body].force += force;
+  ++coupling_[g.body].contacts;
+}
+
+void FemBodies::applyImpulse(int s, const Vec2& impulse, const Vec2& x, Real dt) {
+  const Real pa = phiA(s, x);
+  const Segment& g = segments_[s];
+  tvx_[g.a] += pa * impulse.x() * inv_mass_[g.a];
+  tvy_[g.a] += pa * impulse.y() * inv_mass_[g.a];
+  tvx_[g.b] += (1 - pa) * impulse.x() * inv_mass_[g.b];
+  tvy_[g.b] += (1 - pa) * impulse.y() * inv_mass_[g.b];
+  applyForce(s, impulse / dt, x);
+}
+
+void FemBodies::meetSurroundings(int k, Real dt) {
+  // Momentum-based contact with the static side (seed 002 eq. 47-52 with an infinite mass
+  // there): the node may close its gap within the step and no further; the normal velocity
+  // beyond that is removed and friction takes off tangential speed in proportion. Written as a
+  // wall rule (applyWall) in the frame that closes the gap exactly.
+  Vec2 v(vx_[k], vy_[k]);
+  const Vec2 x = position(k);
+  auto meet = [&](const WallDef& wall, const Vec2& into, Real gap, const Vec2& surface_v) {
+    const Vec2 closing = surface_v + std::max(gap, Real(0)) / dt * into;
+    Vec2 u = v - closing;
+    applyWall(wall, into.x(), into.y(), u.x(), u.y());
+    v = u + closing;
+  };
+  if (has_domain_) {
+    const Vec2 into[4] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};  // left, right, bottom, top
+    const Real gap[4] = {x.x() - domain_min_.x(), domain_max_.x() - x.x(), x.y() - domain_min_.y(),
+                         domain_max_.y() - x.y()};
+    for (int w = 0; w < 4; ++w)
+      if (gap[w] < dt * v.norm()) meet(walls_[w], into[w], gap[w], Vec2(0, 0));
+  }
+  if (obstacles_) {
+    const ContactBodies& O = *obstacles_;
+    const Real reach = dt * v.norm();
+    for (int s = 0; s < O.shapeCount(); ++s) {
+      if (O.movable(s)) continue;
+      const Box b = O.bounds(s);
+      if ((x.array() < b.min.array() - reach).any() || (x.array() > b.max.array() + reach).any())
+        continue;
+      const CoreDistance c = O.closest(s, x);
+      const Real gap = c.distance - O.rounding(s);
+      if (gap > reach) continue;
+      const Real mu = std::min(O.friction(s), defs_[node_body_[k]].friction);
+      meet(WallDef{WallType::kFriction, mu}, -c.normal, gap, O.velocityAt(s, x));
+    }
+  }
+  vx_[k] = v.x();
+  vy_[k] = v.y();
+}
+
+int FemBodies::step(Real dt, Real) {
+  for (std::size_t k = 0; k < x_.size(); ++k) {
+    if (inv_mass_[k] == 0) {
+      vx_[k] = held_velocity_[k].x();
+      vy_[k] = held_velocity_[k].y();
+    } else {
+      // The trial velocity without the impulses, plus every contact force over the step.
+      vx_[k] += dt * ((fx_[k] + cfx_[k]) * inv_mass_[k] + gravity_.x() - alpha_[k] * vx_[k]);
+      vy_[k] += dt * ((fy_[k] + cfy_[k]) * inv_mass_[k] + gravity_.y() - alpha_[k] * vy_[k]);
+      if (on_boundary_[k]) meetSurroundings(static_cast<int>(k), dt);
+    }
+    x_[k] += dt * vx_[k];
+    y_[k] += dt * vy_[k];
+  }
+  refreshSegments();
+  return 1;
+}
+
+}  // namespace mpm_sdem
