@@ -38,6 +38,7 @@ void expectError(const std::string& msg, const std::string& where, const std::st
 TEST(SceneErrors, ValidBaseSceneParses) {
   EXPECT_EQ(errorOf("valid.yaml"), "");
   EXPECT_EQ(errorOf("valid_blocks.yaml"), "");
+  EXPECT_EQ(errorOf("valid_fem.yaml"), "");
   EXPECT_EQ(errorOf("valid_cluster.yaml"), "");
 }
 
@@ -185,6 +186,30 @@ INSTANTIATE_TEST_SUITE_P(
                                "--set blocks.wedge.discs",
                                "blocks[1].discs",
                                "disc 0: its radius must be positive"},
+                      BadScene{"FemElementSizeTooSmall",
+                               "valid_fem.yaml",
+                               {"fem_bodies.barrier.element_size=0.00001"},
+                               "--set fem_bodies.barrier.element_size=0.00001",
+                               "fem_bodies[0].element_size",
+                               "use a larger element_size"},
+                      BadScene{"FemPoissonRatioOutOfRange",
+                               "valid_fem.yaml",
+                               {"fem_bodies.barrier.poisson_ratio=0.5"},
+                               "--set fem_bodies.barrier.poisson_ratio=0.5",
+                               "fem_bodies[0].poisson_ratio",
+                               "must be in [0, 0.49]"},
+                      BadScene{"FemHeldBoxHoldsNoNode",
+                               "valid_fem.yaml",
+                               {"fem_bodies.barrier.held=[[0.5, 0.2, 0.51, 0.21]]"},
+                               "--set fem_bodies.barrier.held",
+                               "fem_bodies[0].held[0]",
+                               "holds no node of the mesh"},
+                      BadScene{"FemWithGridBasedScheme",
+                               "valid_fem.yaml",
+                               {"coupling.scheme=multi_velocity"},
+                               "--set coupling.scheme=multi_velocity",
+                               "coupling.scheme",
+                               "cannot meet FEM bodies"},
                       BadScene{"BlockPointsPerCellOutOfRange",
                                "valid_blocks.yaml",
                                {"coupling.block_points_per_cell=0"},

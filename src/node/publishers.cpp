@@ -37,6 +37,10 @@ Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
   // Latched: a late listener (rostopic echo -n1) gets the last one at once, paused or not.
   stats_ = {pnh.advertise<mpm_sdem::SimStats>("stats", 10, true), SampleClock(params.stats_rate)};
   image_ = {pnh.advertise<sensor_msgs::Image>("image", 1), SampleClock(params.image_rate)};
+  // FEM bodies' triangles coloured by von Mises stress, at the blocks' rate; latched, so a
+  // late listener sees them while paused.
+  fem_ = {pnh.advertise<visualization_msgs::Marker>("fem_mesh", 2, true),
+          SampleClock(params.blocks_rate)};
   markers_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   scene_ = pnh.advertise<std_msgs::String>("scene", 1, true);
   nh.param("/use_sim_time", use_sim_time_, false);
@@ -48,7 +52,8 @@ Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
 }
 
 void Publishers::restart(const World& world) {
-  for (Channel* c : {&particles_, &blocks_, &poses_, &stats_, &image_, &clock_}) c->clock.restart();
+  for (Channel* c : {&particles_, &blocks_, &poses_, &stats_, &image_, &clock_, &fem_})
+    c->clock.restart();
   stats_profile_ = world.profile();
 }
 
@@ -101,6 +106,8 @@ void Publishers::publish(const World& world, const conversions::StatsInput& stat
     }
     if (poses_due) poses_.pub.publish(conversions::toPoseArray(states));
   }
+  if (world.femBodies() && fem_.due(t, force))
+    fem_.pub.publish(conversions::toFemMarker(world, header));
   // Always, like tf: latched, so that it answers a late `rostopic echo -n1`.
   if (stats_.due(t, force, true)) publishStats(world, status, header);
   if (image_.due(t, force)) {

@@ -38,7 +38,7 @@ class Publishers {
   };
 
   const NodeParams& params_;
-  Channel particles_, blocks_, poses_, stats_, image_, clock_;
+  Channel particles_, blocks_, poses_, stats_, image_, clock_, fem_;
   ros::Publisher markers_, scene_;
   tf2_ros::TransformBroadcaster tf_;
   bool use_sim_time_ = false;

@@ -136,6 +136,37 @@ std::vector<geometry_msgs::TransformStamped> toTransforms(const mpm_sdem::BlockS
   return out;
 }
 
+visualization_msgs::Marker toFemMarker(const World& world, const std_msgs::Header& header) {
+  visualization_msgs::Marker m;
+  m.header = header;
+  m.ns = "fem";
+  m.type = visualization_msgs::Marker::TRIANGLE_LIST;
+  m.pose.orientation.w = 1;
+  m.scale.x = m.scale.y = m.scale.z = 1;
+  m.color.a = 1;
+  const FemBodies* F = world.femBodies();
+  if (!F) return m;
+  for (int b = 0; b < F->count(); ++b) {
+    const Real full = 0.01 * F->def(b).youngs_modulus;
+    for (int e = F->firstElement(b); e < F->firstElement(b) + F->elementCount(b); ++e) {
+      const float s = static_cast<float>(std::min(FemBodies::vonMises(F->stress(e)) / full, 1.0));
+      std_msgs::ColorRGBA c;
+      c.r = s;
+      c.g = 0.2f;
+      c.b = 1 - s;
+      c.a = 1;
+      for (const int k : F->elementNodes(e)) {
+        geometry_msgs::Point q;
+        q.x = F->position(k).x();
+        q.y = F->position(k).y();
+        m.points.push_back(q);
+        m.colors.push_back(c);
+      }
+    }
+  }
+  return m;
+}
+
 visualization_msgs::MarkerArray toMarkers(const World& world, const std::string& tf_prefix,
                                           const ros::Time& stamp) {
   visualization_msgs::MarkerArray out;

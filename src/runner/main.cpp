@@ -115,6 +115,12 @@ int main(int argc, char** argv) {
     block_series = std::make_unique<runner::BlockSeriesWriter>((out / "blocks.csv").string());
     block_series->write(world);
   }
+  std::unique_ptr<runner::FemSeriesWriter> fem_series;
+  if (world.femBodies()) {
+    fem_series = std::make_unique<runner::FemSeriesWriter>((out / "fem_nodes.csv").string(),
+                                                           (out / "fem_elements.csv").string());
+    fem_series->write(world);
+  }
   const Diagnostics initial = measure(world);
   // Energy scale for the growth limit: the initial total, which with potential energy measured
   // from the domain floor is the sum of non-negative terms.
@@ -189,6 +195,7 @@ int main(int argc, char** argv) {
       }
       series.write(world, d, dt);
       if (block_series) block_series->write(world);
+      if (fem_series) fem_series->write(world);
       // The next multiple of the interval (a sum of intervals would stall below round-off).
       next_sample =
           (std::floor((world.time() + eps) / scene.output.interval) + 1) * scene.output.interval;

@@ -48,6 +48,33 @@ void BlockSeriesWriter::write(const World& w) {
   out_.flush();
 }
 
+FemSeriesWriter::FemSeriesWriter(const std::string& nodes_path, const std::string& elements_path)
+    : nodes_(openCsv(nodes_path)), elements_(openCsv(elements_path)) {
+  nodes_ << "time,body,name,node,x,y,ux,uy,vx,vy,held\n";
+  elements_ << "time,body,name,element,sxx,syy,sxy,szz,von_mises\n";
+}
+
+void FemSeriesWriter::write(const World& w) {
+  const FemBodies& F = *w.femBodies();
+  for (int b = 0; b < F.count(); ++b) {
+    const std::string& name = F.def(b).name;
+    for (int k = F.firstNode(b); k < F.firstNode(b) + F.nodeCount(b); ++k) {
+      const Vec2 x = F.position(k), u = x - F.reference(k), v = F.velocity(k);
+      nodes_ << w.time() << ',' << b << ',' << name << ',' << k - F.firstNode(b) << ',' << x.x()
+             << ',' << x.y() << ',' << u.x() << ',' << u.y() << ',' << v.x() << ',' << v.y() << ','
+             << (F.held(k) ? 1 : 0) << '\n';
+    }
+    for (int e = F.firstElement(b); e < F.firstElement(b) + F.elementCount(b); ++e) {
+      const FemBodies::Stress& s = F.stress(e);
+      elements_ << w.time() << ',' << b << ',' << name << ',' << e - F.firstElement(b) << ','
+                << s.xx << ',' << s.yy << ',' << s.xy << ',' << s.zz << ','
+                << FemBodies::vonMises(s) << '\n';
+    }
+  }
+  nodes_.flush();
+  elements_.flush();
+}
+
 void writeParticles(const World& world, const std::string& path) {
   std::ofstream out = openCsv(path);
   const Particles& P = world.particles();

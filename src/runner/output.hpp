@@ -29,6 +29,17 @@ class BlockSeriesWriter {
   std::ofstream out_;
 };
 
+// FEM bodies, one row per node (fem_nodes.csv: position and displacement) and per element
+// (fem_elements.csv: Cauchy stress at the start of the step, von Mises) per sample.
+class FemSeriesWriter {
+ public:
+  FemSeriesWriter(const std::string& nodes_path, const std::string& elements_path);
+  void write(const World& world);
+
+ private:
+  std::ofstream nodes_, elements_;
+};
+
 void writeParticles(const World& world, const std::string& path);
 void writeProfile(const World& world, const std::string& path);
 

@@ -37,6 +37,11 @@ std::string blockFrame(const std::string& prefix, const std::string& name);
 
 // A LINE_STRIP per block tracing its rounded outline in the block's own tf frame (frame_locked,
 // so rviz moves it with tf), plus a text label. Blocks that disappeared get DELETEALL first.
+// The FEM bodies' triangles as one TRIANGLE_LIST in the header's (fixed) frame, each coloured by
+// its von Mises stress on a fixed scale: blue at 0 to red at 1% of its body's Young's modulus
+// (the stress of 1% strain) and beyond; the same colours in every message.
+visualization_msgs::Marker toFemMarker(const World& world, const std_msgs::Header& header);
+
 visualization_msgs::MarkerArray toMarkers(const World& world, const std::string& tf_prefix,
                                           const ros::Time& stamp);
 
