@@ -5,6 +5,7 @@
 #include "bench_scenes.hpp"
 #include "mpm/transfer.hpp"
 #include "mpm_sdem/core/mpm/constitutive.hpp"
+#include "mpm_sdem/mesh/mesher.hpp"
 
 using namespace mpm_sdem;
 
@@ -67,8 +68,33 @@ void BM_Constitutive(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate);
 }
 
+// An FEM body's whole step (internal forces, trial velocities, the step itself; seed 002 sec.
+// 2.3): a 1 x 0.05 m corotational beam meshed at element_size = 0.05 / arg, clamped at one end,
+// no material. Counter: element-steps per second.
+void BM_FemStep(benchmark::State& state) {
+  WorldDef def;
+  def.domain.min = Vec2(-0.5, -0.5);
+  def.domain.max = Vec2(1.5, 0.5);
+  def.cell_size = 0.1;
+  FemBodyDef beam;
+  beam.name = "beam";
+  beam.mesh = meshPolygon({{0, -0.025}, {1, -0.025}, {1, 0.025}, {0, 0.025}},
+                          0.05 / static_cast<Real>(state.range(0)));
+  beam.youngs_modulus = 1e9;
+  beam.held = {Box{Vec2(-1, -1), Vec2(1e-9, 1)}};
+  def.fem_bodies = {beam};
+  World w(def);
+  const Real dt = w.chooseTimeStep().dt;
+  for (auto _ : state) w.step(dt);
+  state.counters["element-steps/s"] =
+      benchmark::Counter(static_cast<double>(w.femBodies()->totalElements()),
+                         benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["elements"] = w.femBodies()->totalElements();
+}
+
 }  // namespace
 
+BENCHMARK(BM_FemStep)->Arg(4)->Arg(16)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_P2G)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_G2P)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Constitutive)
