@@ -47,6 +47,17 @@ CASES = [
                  "granular bed against the spheropolygon of the same outline (depth, velocity "
                  "after, cost), and the incline's disk on an incline made of discs", True),
     ("compression", "Seed 000 sec. 7: granular matrix compression", True),
+    ("fem_cantilever", "Seed 002 sec. 2.3: an FEM cantilever (plane-strain linear triangles, "
+                       "corotational) under its own weight against Euler-Bernoulli, three meshes",
+     True),
+    ("fem_incline", "Seed 002 sec. 4.1 in 2D: the elastic disk on an FEM plate at R = element /"
+                    " cell = 1, 2, 4, 8 (particle-to-surface), and the grid-based multi_velocity "
+                    "on an incline cut into rigid segments R cells long", True),
+    ("flexible_barrier", "Issue 18: the shipped flexible_barrier scene (seed 003 sand into a "
+                         "clamped FEM barrier) under refinement, and its cost by stage", True),
+    ("water_gate", "Seed 002 sec. 4.3: a water column collapsing through an elastic gate (Walhorn"
+                   " et al. 2005's case; gate tip against five published histories read off their"
+                   " figures; Tait water at c0 = 30 m/s, particle-to-surface contact)", True),
     ("incline", "Seed 002 sec. 4.1: disk rolling on an incline", True),
     ("bar", "Seed 001: 1D reversibility and bar under a stress boundary condition", True),
     ("stability", "Stability on hard cases (a fixed step above the bound set by hand is refused "
@@ -286,6 +297,88 @@ def plot_debris_flow(data, out):
     return "debris_flow.png"
 
 
+def plot_water_gate(data, out):
+    """The gate's upper-left corner against the published range, one line per resolution."""
+    path = os.path.join(data, "water_gate_tip.csv")
+    if not os.path.exists(path):
+        return None
+    runs = OrderedDict()
+    for r in read_csv(path):
+        key = "cells %.0f mm, elements %.0f mm" % (1000 * float(r["cell_m"]),
+                                                   1000 * float(r["element_m"]))
+        runs.setdefault(key, ([], []))
+        runs[key][0].append(float(r["time"]))
+        runs[key][1].append(1000 * float(r["tip_m"]))
+    fig, ax = plt.subplots(figsize=(6, 3.5))
+    # The five published curves at the times we hold (m -> mm): their range as bars.
+    published = {0.15: (0.0, 3.7), 0.20: (30.2, 39.5), 0.25: (41.1, 47.8), 0.30: (31.1, 42.1),
+                 0.40: (12.7, 29.2)}
+    for t, (lo, hi) in published.items():
+        ax.plot([t, t], [lo, hi], color="k", lw=3, alpha=0.4)
+    ax.plot([], [], color="k", lw=3, alpha=0.4, label="published range (5 methods)")
+    for key, (t, u) in runs.items():
+        ax.plot(t, u, label=key, lw=1)
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("gate tip displacement (mm)")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "water_gate_tip.png"), dpi=110)
+    plt.close(fig)
+    return "water_gate_tip.png"
+
+
+def plot_water_gate_snapshots(data, out):
+    path = os.path.join(data, "water_gate_snapshots.csv")
+    if not os.path.exists(path):
+        return None
+    frames = OrderedDict()
+    for r in read_csv(path):
+        frame = frames.setdefault(r["time"], {"water": ([], []), "gate": ([], [])})
+        frame[r["what"]][0].append(100 * float(r["x"]))
+        frame[r["what"]][1].append(100 * float(r["y"]))
+    cols = 2
+    rows = (len(frames) + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(10, 2.6 * rows), squeeze=False)
+    for ax in axes.flat:
+        ax.axis("off")
+    for ax, (t, frame) in zip(axes.flat, frames.items()):
+        ax.axis("on")
+        ax.scatter(*frame["water"], s=0.3, c="#3070c0", linewidths=0)
+        ax.scatter(*frame["gate"], s=2.0, c="#b03020", linewidths=0)
+        ax.set_xlim(0, 58.4)
+        ax.set_ylim(0, 32)
+        ax.set_aspect("equal")
+        ax.set_title("t = %.2f s" % float(t), fontsize=9)
+        ax.tick_params(labelsize=7)
+    fig.supxlabel("x (cm)", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "water_gate_snapshots.png"), dpi=110)
+    plt.close(fig)
+    return "water_gate_snapshots.png"
+
+
+def stage_table(data, name):
+    """Per-stage milliseconds per step and share of the step, one column per run."""
+    path = os.path.join(data, name + "_stages.csv")
+    if not os.path.exists(path):
+        return None
+    runs, stages = OrderedDict(), OrderedDict()
+    for r in read_csv(path):
+        run = "%.0f mm / %.0f mm" % (1000 * float(r["cell_m"]), 1000 * float(r["element_m"]))
+        runs.setdefault(run, {})[r["stage"]] = (float(r["ms_per_step"]), float(r["share"]))
+        stages[r["stage"]] = True
+    head = "| stage | " + " | ".join("%s: ms/step (share)" % k for k in runs) + " |"
+    lines = ["Cost by stage (cells / elements):", "", head,
+             "|" + " --- |" * (len(runs) + 1)]
+    for st in stages:
+        cells = []
+        for run in runs.values():
+            ms, share = run.get(st, (0, 0))
+            cells.append("%.3f (%.0f%%)" % (ms, 100 * share))
+        lines.append("| %s | %s |" % (st, " | ".join(cells)))
+    return "\n".join(lines)
+
+
 def plot_compression(data, out):
     fig, ax = plt.subplots(figsize=(6, 4))
     found = False
@@ -403,7 +496,9 @@ def main():
              "silo": plot_silo(data, out),
              "silo_convergence": plot_silo_convergence(data, out),
              "debris_flow": plot_debris_flow(data, out),
-             "compression": plot_compression(data, out)}
+             "compression": plot_compression(data, out),
+             "water_gate": plot_water_gate(data, out),
+             "water_gate_snapshots": plot_water_gate_snapshots(data, out)}
     lines = ["# Validation report", "",
              "Generated by `scripts/validate` (%s resolution) on %s. Every row: the quantity, our value,"
              " the reference and where it comes from, the error (relative to the reference; absolute"
@@ -420,6 +515,9 @@ def main():
         for plot in (key, key + "_snapshots"):
             if plots.get(plot):
                 lines += ["", "![%s](%s)" % (plot, plots[plot])]
+        stages = stage_table(data, key)
+        if stages:
+            lines += ["", stages]
     lines += speed_vs_error(by_case, out)
     with open(os.path.join(out, "REPORT.md"), "w") as f:
         f.write("\n".join(lines) + "\n")

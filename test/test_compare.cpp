@@ -85,3 +85,29 @@ TEST(CompareRuns, SelfIsZeroPerturbedIsNot) {
   EXPECT_GT(fs::file_size(out.string() + ".png"), 1000u);
   fs::remove_all(fs::temp_directory_path() / "mpm_sdem_test_compare");
 }
+
+// Runs with FEM bodies: their nodes are recorded (~fem_nodes) and compared node by node; a run
+// against itself differs by nothing, a barrier twice as stiff by the sag under its own weight
+// that it no longer has.
+TEST(CompareRuns, FemNodesAreRecordedAndCompared) {
+  auto recordFem = [](const std::string& name, const std::string& extra) {
+    const fs::path dir = fs::temp_directory_path() / "mpm_sdem_test_compare";
+    fs::create_directories(dir);
+    const std::string bag = (dir / (name + ".bag")).string();
+    const std::string cmd = std::string(MPM_SDEM_RUNNER) + " " + MPM_SDEM_SOURCE_DIR +
+                            "/test/data/valid_fem.yaml --threads 1 --quiet --out " +
+                            (dir / name).string() + " --bag " + bag + " " + extra + " 2>/dev/null";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    return bag;
+  };
+  const RunSeries a = readRun(recordFem("fem_base", ""));
+  const RunSeries b =
+      readRun(recordFem("fem_stiff", "--set fem_bodies.barrier.youngs_modulus=2e6"));
+  ASSERT_FALSE(a.fem_nodes.empty());
+  EXPECT_EQ(a.fem_nodes.size(), a.clouds.size());  // recorded with each particle cloud
+  const Comparison self = compareRuns(a, a, 0.005);
+  ASSERT_EQ(self.fem.time.size(), a.fem_nodes.size());
+  EXPECT_EQ(self.fem.largest.back(), 0.0);
+  const Comparison other = compareRuns(a, b, 0.005);
+  EXPECT_GT(other.fem.largest.back(), 0.0);
+}

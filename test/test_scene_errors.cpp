@@ -40,6 +40,7 @@ TEST(SceneErrors, ValidBaseSceneParses) {
   EXPECT_EQ(errorOf("valid_blocks.yaml"), "");
   EXPECT_EQ(errorOf("valid_fem.yaml"), "");
   EXPECT_EQ(errorOf("valid_cluster.yaml"), "");
+  EXPECT_EQ(errorOf("valid_fluid.yaml"), "");
 }
 
 // A cluster of discs listed, or a shape filled with discs (the wedge's 2.2 cm outline takes
@@ -143,6 +144,36 @@ INSTANTIATE_TEST_SUITE_P(
                                "--set coupling.stiffness_per=length",
                                "coupling.stiffness_per",
                                "applies to the imp and imp_grid schemes only"},
+                      BadScene{"ElasticModulusOnAFluid",
+                               "valid_fluid.yaml",
+                               {"materials.water.youngs_modulus=1e6"},
+                               "--set materials.water.youngs_modulus=1e6",
+                               "materials[0].youngs_modulus",
+                               "a fluid's stiffness is its sound_speed"},
+                      BadScene{"SoundSpeedOnASolid",
+                               "valid.yaml",
+                               {"materials.sand.sound_speed=30"},
+                               "--set materials.sand.sound_speed=30",
+                               "materials[0].sound_speed",
+                               "applies only to model: fluid"},
+                      BadScene{"SoundSpeedOutOfRange",
+                               "valid_fluid.yaml",
+                               {"materials.water.sound_speed=0"},
+                               "--set materials.water.sound_speed=0",
+                               "materials[0].sound_speed",
+                               "must be in [0.1, 10000] m/s"},
+                      BadScene{"TaitExponentOfOne",
+                               "valid_fluid.yaml",
+                               {"materials.water.tait_exponent=1"},
+                               "--set materials.water.tait_exponent=1",
+                               "materials[0].tait_exponent",
+                               "must be in (1, 15]"},
+                      BadScene{"FrictionAngleOnAFluid",
+                               "valid_fluid.yaml",
+                               {"materials.water.friction_angle=30"},
+                               "--set materials.water.friction_angle=30",
+                               "materials[0].friction_angle",
+                               "applies only to model: drucker_prager"},
                       BadScene{"SeparationVolumeRatioBelowOne",
                                "valid.yaml",
                                {"materials.sand.separation_volume_ratio=0.9"},

@@ -3,6 +3,7 @@
 // only.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -104,6 +105,36 @@ struct Cantilever {
   Real seconds = 0;  // wall time of both runs
 };
 Cantilever cantilever(Real element_size, FemModel model = FemModel::kCorotational);
+
+// Seed 002 sec. 4.3 (Walhorn et al. 2005): the water column collapsing through an elastic gate,
+// config/scenes/water_gate.yaml. Runs `world` to t_end and follows the gate's upper-left corner
+// (the node nearest (0.292, 0.08) m), sampling its horizontal displacement every `interval`.
+struct GateRun {
+  std::vector<Real> time, tip;   // s, m
+  Real peak = 0, peak_time = 0;  // largest displacement and when (m, s)
+  Real max_mach = 0;             // largest |v| / c of the water over the run
+  long steps = 0;
+  std::size_t points = 0;
+  int elements = 0;
+  Real seconds = 0;  // wall
+  // Displacement at time t, linear between samples (m).
+  Real at(Real t) const;
+};
+// `snapshot` is called when the run passes each of `snapshot_times` (may be empty).
+GateRun runWaterGate(World& world, Real t_end, Real interval,
+                     const std::vector<Real>& snapshot_times = {},
+                     const std::function<void(const World&, Real)>& snapshot = nullptr);
+// The published tip histories the report compares with, read off the papers' figures (Walhorn
+// 2005, Idelsohn 2008, Rafiee 2009, Ryzhakov 2010, Li et al.; digitised): their mean and range
+// of the peak and its time, and their values at kGateTimes.
+struct GateReference {
+  Real peak_mean, peak_min, peak_max;  // m
+  Real time_mean, time_min, time_max;  // s
+};
+GateReference gateReference();
+inline constexpr Real kGateTimes[] = {0.15, 0.20, 0.25, 0.30, 0.40};
+// Mean, least and largest of the five published displacements at kGateTimes[i] (m).
+void gateReferenceAt(int i, Real& mean, Real& lo, Real& hi);
 
 // Rotation under friction: the incline's elastic disk (R = 5 cm, 10 MPa, nu = 0.3, GIMP) thrown
 // along a static floor block at v0 without spin. While it slides, friction mu g decelerates its

@@ -26,6 +26,9 @@ RunSeries readRun(const std::string& path) {
     if (auto b = m.instantiate<mpm_sdem::BlockStates>()) {
       run.blocks.push_back(*b);
     } else if (auto c = m.instantiate<sensor_msgs::PointCloud2>()) {
+      const std::string& topic = m.getTopic();
+      const bool fem =
+          topic.size() >= 10 && topic.compare(topic.size() - 10, 10, "/fem_nodes") == 0;
       Cloud cloud;
       cloud.time = c->header.stamp.toSec();
       cloud.xy.reserve(2 * c->width * c->height);
@@ -33,7 +36,7 @@ RunSeries readRun(const std::string& path) {
         cloud.xy.push_back(it[0]);
         cloud.xy.push_back(it[1]);
       }
-      run.clouds.push_back(std::move(cloud));
+      (fem ? run.fem_nodes : run.clouds).push_back(std::move(cloud));
     } else if (auto s = m.instantiate<mpm_sdem::SimStats>()) {
       run.energy.push_back({s->header.stamp.toSec(), s->total_energy, s->kinetic_energy});
     }

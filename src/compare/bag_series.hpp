@@ -24,6 +24,7 @@ struct RunSeries {
   std::string path;
   std::vector<mpm_sdem::BlockStates> blocks;  // in time order
   std::vector<Cloud> clouds;
+  std::vector<Cloud> fem_nodes;  // the FEM bodies' nodes (topic .../fem_nodes), in mesh order
   std::vector<EnergySample> energy;
 };
 

@@ -118,6 +118,19 @@ Comparison compareRuns(const RunSeries& a, const RunSeries& b, double raster) {
     out.clouds.distance.push_back(meanNearestDistance(a.clouds[i].xy, b.clouds[j].xy));
     out.clouds.iou.push_back(occupancyIoU(a.clouds[i].xy, b.clouds[j].xy, raster));
   });
+  forMatched(a.fem_nodes, b.fem_nodes, tc, tc, [&](std::size_t i, std::size_t j) {
+    const std::vector<float>&pa = a.fem_nodes[i].xy, &pb = b.fem_nodes[j].xy;
+    if (pa.size() != pb.size()) return;  // different meshes: nothing to match
+    double sum = 0, largest = 0;
+    for (std::size_t k = 0; k + 1 < pa.size(); k += 2) {
+      const double d = std::hypot(pa[k] - pb[k], pa[k + 1] - pb[k + 1]);
+      sum += d * d;
+      largest = std::max(largest, d);
+    }
+    out.fem.time.push_back(a.fem_nodes[i].time);
+    out.fem.rms.push_back(pa.empty() ? 0 : std::sqrt(sum / (pa.size() / 2)));
+    out.fem.largest.push_back(largest);
+  });
   auto te = [](const EnergySample& s) { return s.time; };
   double scale = 0;
   for (const auto& s : a.energy) scale = std::max(scale, std::abs(s.total));

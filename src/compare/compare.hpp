@@ -21,6 +21,12 @@ struct CloudError {
   std::vector<double> iou;       // occupancy intersection over union on a raster
 };
 
+// FEM bodies' nodes, matched node by node (the same scene meshes the same way).
+struct FemError {
+  std::vector<double> time;
+  std::vector<double> rms, largest;  // of |x_a - x_b| over the nodes (m)
+};
+
 struct EnergyError {
   std::vector<double> time, total_a, total_b;
   double rms_relative = 0;    // RMS of (E_a - E_b) / max |E_a|
@@ -30,6 +36,7 @@ struct EnergyError {
 struct Comparison {
   std::vector<BlockError> blocks;  // blocks present in both runs
   CloudError clouds;
+  FemError fem;  // empty unless both runs recorded the same FEM nodes
   EnergyError energy;
   double raster = 0;  // m, cell of the occupancy raster
 };

@@ -35,6 +35,10 @@ void writeCsv(const Comparison& c, const std::string& path) {
     f << c.clouds.time[k] << ",cloud_mean_nn_distance_m,,,," << c.clouds.distance[k] << "\n";
     f << c.clouds.time[k] << ",cloud_occupancy_iou,,,," << c.clouds.iou[k] << "\n";
   }
+  for (std::size_t k = 0; k < c.fem.time.size(); ++k) {
+    f << c.fem.time[k] << ",fem_node_rms_distance_m,,,," << c.fem.rms[k] << "\n";
+    f << c.fem.time[k] << ",fem_node_largest_distance_m,,,," << c.fem.largest[k] << "\n";
+  }
   for (std::size_t k = 0; k < c.energy.time.size(); ++k) {
     f << c.energy.time[k] << ",total_energy_J_per_m,," << c.energy.total_a[k] << ","
       << c.energy.total_b[k] << "," << c.energy.total_a[k] - c.energy.total_b[k] << "\n";
@@ -58,6 +62,12 @@ void printTable(const Comparison& c) {
       "particle clouds: %zu matched, mean nearest-neighbour distance %.4g m (largest "
       "%.4g m), smallest occupancy IoU %.4f (%g m cells)\n",
       c.clouds.time.size(), dmean, dmax, iou_min, c.raster);
+  if (!c.fem.time.empty()) {
+    double largest = 0;
+    for (double d : c.fem.largest) largest = std::max(largest, d);
+    std::printf("FEM nodes: %zu matched, final RMS distance %.4g m, largest %.4g m\n",
+                c.fem.time.size(), c.fem.rms.back(), largest);
+  }
   std::printf("total energy: %zu matched, RMS difference %.4g and final %.4g of max |E_a|\n",
               c.energy.time.size(), c.energy.rms_relative, c.energy.final_relative);
   std::printf("(first contact: first time a material point touches the block, s; -1: never)\n");

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "mpm_sdem/core/fem/fem_bodies.hpp"
 #include "mpm_sdem/core/mpm/constitutive.hpp"
 
 namespace mpm_sdem {
@@ -30,6 +31,9 @@ Diagnostics measure(const World& world) {
     my += m * P.y[p];
     d.mass += m;
     d.max_speed = std::fmax(d.max_speed, std::sqrt(v2));
+    const MaterialParams& mp = params[P.material[p]];
+    if (mp.model == MaterialModel::kFluid)
+      d.max_mach = std::fmax(d.max_mach, std::sqrt(v2 / squaredWaveSpeed(mp, P.J[p])));
   }
   if (d.mass > 0) d.center_of_mass = Vec2(mx, my) / d.mass;
   if (const Blocks* B = world.blocks()) {
@@ -46,6 +50,19 @@ Diagnostics measure(const World& world) {
       d.angular_momentum += m.mass * cross(s.position, s.velocity) + m.inertia * s.angular_velocity;
     }
     d.momentum += d.block_momentum;
+  }
+  if (const FemBodies* F = world.femBodies()) {
+    d.fem_kinetic = F->kineticEnergy();
+    d.fem_strain = F->strainEnergy();
+    d.kinetic += d.fem_kinetic;
+    d.elastic += d.fem_strain;
+    for (int k = 0; k < F->totalNodes(); ++k) {
+      const Real m = F->nodeMass(k);
+      const Vec2 x = F->position(k), v = F->velocity(k);
+      d.gravity -= m * g.dot(x - base);
+      d.momentum += m * v;
+      d.angular_momentum += m * cross(x, v);
+    }
   }
   d.finite = std::isfinite(d.kinetic) && std::isfinite(d.elastic) && std::isfinite(d.gravity) &&
              std::isfinite(d.angular_momentum) && d.momentum.allFinite() &&

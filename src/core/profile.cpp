@@ -22,8 +22,8 @@ const char* stageName(Stage stage) {
       return "constitutive";
     case Stage::kStress:
       return "stress_force";
-    case Stage::kBlocks:
-      return "blocks";
+    case Stage::kBodies:
+      return "bodies";
     case Stage::kCount:
       break;
   }

@@ -24,6 +24,8 @@ const char* stepLimitName(StepLimit limit) {
       return "contact";
     case StepLimit::kElement:
       return "element";
+    case StepLimit::kViscous:
+      return "viscous";
     case StepLimit::kMax:
       return "max";
   }
@@ -66,7 +68,12 @@ World::World(const WorldDef& def) : def_(def) {
   grid_.init(def.domain.min, cellCount(size.x(), def.cell_size, "width"),
              cellCount(size.y(), def.cell_size, "height"), def.cell_size);
   tiles_.init(grid_);
-  for (const MaterialDef& m : def.materials) params_.push_back(makeMaterialParams(m));
+  for (const MaterialDef& m : def.materials) {
+    params_.push_back(makeMaterialParams(m));
+    if (m.model == MaterialModel::kFluid && m.viscosity > 0)
+      viscous_dt_ =
+          std::fmin(viscous_dt_, def.cell_size * def.cell_size * m.density / (2 * m.viscosity));
+  }
 
   std::size_t count = 0;
   std::vector<std::vector<Vec2>> filled;
@@ -280,18 +287,20 @@ TimeStepChoice World::stepBound(Real cfl, Real kappa2) const {
       fastest = s > fastest ? s : fastest;  // a NaN speed is skipped, as fmax would
     }
   };
-  if (params_.size() == 1) {  // one material: no lookup, so the loop vectorises
+  if (params_.size() == 1 && params_[0].model != MaterialModel::kFluid) {
+    // One solid material: no lookup and no pow, so the loop vectorises.
     const Real k = params_[0].modulus_over_density, loose = params_[0].separation;
     fastestWith([k, loose](long, Real J) { return J > loose ? Real(0) : k * J; });
   } else {
-    fastestWith([this, &P](long p, Real J) {
-      const MaterialParams& m = params_[P.material[p]];
-      return J > m.separation ? Real(0) : m.modulus_over_density * J;
-    });
+    fastestWith([this, &P](long p, Real J) { return squaredWaveSpeed(params_[P.material[p]], J); });
   }
   const Real cfl_dt = fastest > 0 ? cfl * grid_.h / fastest : std::numeric_limits<Real>::infinity();
   TimeStepChoice choice{def_.time_step.max, StepLimit::kMax};
   if (cfl_dt < choice.dt) choice = {cfl_dt, StepLimit::kCfl};
+  // Explicit viscous diffusion: dt <= kappa_1 h^2 / (2 nu) with the kinematic viscosity nu =
+  // eta / rho0 of the most diffusive fluid (the diffusion number h^2 / (4 nu) of an explicit
+  // 2D Laplacian at kappa_1 = 0.5).
+  if (viscous_dt_ < choice.dt / cfl) choice = {cfl * viscous_dt_, StepLimit::kViscous};
   if (fem_ && cfl * fem_->elementStep() < choice.dt)
     choice = {cfl * fem_->elementStep(), StepLimit::kElement};
   if (hasContactBodies() && coupling_->hasSprings()) {
@@ -318,7 +327,10 @@ StepInfo World::step(Real dt) {
   // part in the stages of coupling.hpp.
   const bool coupled = hasContactBodies();
   const bool corrected = coupled && coupling_->correctsVelocities();
-  if (coupled) contactBodies()->beginCoupling(dt);
+  if (coupled) {
+    StageTimer timer(profile_, Stage::kBodies);  // FEM bodies' internal forces (eq. 20)
+    contactBodies()->beginCoupling(dt);
+  }
   auto stage = [&](void (Coupling::*f)(CouplingStep&)) {
     if (coupled) couplingStage(dt, kick, f);
   };
@@ -374,7 +386,7 @@ void World::couplingStage(Real dt, Real kick, void (Coupling::*stage)(CouplingSt
 }
 
 void World::stepBodies(Real dt) {
-  StageTimer timer(profile_, Stage::kBlocks);
+  StageTimer timer(profile_, Stage::kBodies);
   ContactBodies& bodies = *contactBodies();
   bodies.step(dt, bodies.stableStep(def_.time_step.contact_factor));
 }

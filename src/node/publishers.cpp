@@ -41,6 +41,8 @@ Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
   // late listener sees them while paused.
   fem_ = {pnh.advertise<visualization_msgs::Marker>("fem_mesh", 2, true),
           SampleClock(params.blocks_rate)};
+  fem_nodes_ = {pnh.advertise<sensor_msgs::PointCloud2>("fem_nodes", 2, true),
+                SampleClock(params.blocks_rate)};
   markers_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   scene_ = pnh.advertise<std_msgs::String>("scene", 1, true);
   nh.param("/use_sim_time", use_sim_time_, false);
@@ -52,7 +54,7 @@ Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
 }
 
 void Publishers::restart(const World& world) {
-  for (Channel* c : {&particles_, &blocks_, &poses_, &stats_, &image_, &clock_, &fem_})
+  for (Channel* c : {&particles_, &blocks_, &poses_, &stats_, &image_, &clock_, &fem_, &fem_nodes_})
     c->clock.restart();
   stats_profile_ = world.profile();
 }
@@ -108,6 +110,10 @@ void Publishers::publish(const World& world, const conversions::StatsInput& stat
   }
   if (world.femBodies() && fem_.due(t, force))
     fem_.pub.publish(conversions::toFemMarker(world, header));
+  if (world.femBodies() && fem_nodes_.due(t, force)) {
+    conversions::toFemCloud(world, header, fem_cloud_);
+    fem_nodes_.pub.publish(fem_cloud_);
+  }
   // Always, like tf: latched, so that it answers a late `rostopic echo -n1`.
   if (stats_.due(t, force, true)) publishStats(world, status, header);
   if (image_.due(t, force)) {

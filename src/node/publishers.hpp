@@ -38,11 +38,11 @@ class Publishers {
   };
 
   const NodeParams& params_;
-  Channel particles_, blocks_, poses_, stats_, image_, clock_, fem_;
+  Channel particles_, blocks_, poses_, stats_, image_, clock_, fem_, fem_nodes_;
   ros::Publisher markers_, scene_;
   tf2_ros::TransformBroadcaster tf_;
   bool use_sim_time_ = false;
-  sensor_msgs::PointCloud2 cloud_;
+  sensor_msgs::PointCloud2 cloud_, fem_cloud_;
   cv::Mat frame_;
   void publishClock(const std_msgs::Header& header);
   void publishStats(const World& world, const conversions::StatsInput& status,

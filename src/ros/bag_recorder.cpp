@@ -86,6 +86,11 @@ void BagRecorder::record(const World& world, const conversions::StatsInput& stat
   if (clouds_.due(t)) {
     conversions::toPointCloud(world, def_.cloud_decimation, header, cloud_);
     write(def_.ns + "/particles", t, cloud_);
+    if (world.femBodies()) {
+      conversions::toFemCloud(world, header, fem_cloud_);
+      write(def_.ns + "/fem_nodes", t, fem_cloud_);
+      write(def_.ns + "/fem_mesh", t, conversions::toFemMarker(world, header));
+    }
   }
   if (states_.due(t)) {
     const mpm_sdem::BlockStates blocks = conversions::toBlockStates(world, header);

@@ -167,6 +167,41 @@ visualization_msgs::Marker toFemMarker(const World& world, const std_msgs::Heade
   return m;
 }
 
+void toFemCloud(const World& world, const std_msgs::Header& header,
+                sensor_msgs::PointCloud2& cloud) {
+  cloud.header = header;
+  sensor_msgs::PointCloud2Modifier mod(cloud);
+  mod.setPointCloud2Fields(
+      9, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32, "z", 1,
+      sensor_msgs::PointField::FLOAT32, "ux", 1, sensor_msgs::PointField::FLOAT32, "uy", 1,
+      sensor_msgs::PointField::FLOAT32, "vx", 1, sensor_msgs::PointField::FLOAT32, "vy", 1,
+      sensor_msgs::PointField::FLOAT32, "von_mises", 1, sensor_msgs::PointField::FLOAT32, "body", 1,
+      sensor_msgs::PointField::UINT16);
+  const FemBodies* F = world.femBodies();
+  mod.resize(F ? F->totalNodes() : 0);
+  if (!F) return;
+  std::vector<Real> von_mises;
+  F->nodalVonMises(von_mises);
+  sensor_msgs::PointCloud2Iterator<float> x(cloud, "x"), u(cloud, "ux"), v(cloud, "vx"),
+      s(cloud, "von_mises");
+  sensor_msgs::PointCloud2Iterator<std::uint16_t> body(cloud, "body");
+  for (int b = 0; b < F->count(); ++b) {
+    for (int k = F->firstNode(b); k < F->firstNode(b) + F->nodeCount(b);
+         ++k, ++x, ++u, ++v, ++s, ++body) {
+      const Vec2 p = F->position(k), d = p - F->reference(k), w = F->velocity(k);
+      x[0] = static_cast<float>(p.x());
+      x[1] = static_cast<float>(p.y());
+      x[2] = 0.f;
+      u[0] = static_cast<float>(d.x());
+      u[1] = static_cast<float>(d.y());
+      v[0] = static_cast<float>(w.x());
+      v[1] = static_cast<float>(w.y());
+      *s = static_cast<float>(von_mises[k]);
+      *body = static_cast<std::uint16_t>(b);
+    }
+  }
+}
+
 visualization_msgs::MarkerArray toMarkers(const World& world, const std::string& tf_prefix,
                                           const ros::Time& stamp) {
   visualization_msgs::MarkerArray out;

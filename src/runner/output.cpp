@@ -17,7 +17,7 @@ std::ofstream openCsv(const std::string& path) {
 
 TimeSeriesWriter::TimeSeriesWriter(const std::string& path) : out_(openCsv(path)) {
   out_ << "time,step,dt,dt_limit,kinetic_energy,elastic_energy,gravity_energy,total_energy,"
-          "momentum_x,momentum_y,angular_momentum,com_x,com_y,max_speed\n";
+          "momentum_x,momentum_y,angular_momentum,com_x,com_y,max_speed,max_mach\n";
   out_.flush();
 }
 
@@ -25,7 +25,8 @@ void TimeSeriesWriter::write(const World& w, const Diagnostics& d, const TimeSte
   out_ << w.time() << ',' << w.stepCount() << ',' << dt.dt << ',' << stepLimitName(dt.limit) << ','
        << d.kinetic << ',' << d.elastic << ',' << d.gravity << ',' << d.total() << ','
        << d.momentum.x() << ',' << d.momentum.y() << ',' << d.angular_momentum << ','
-       << d.center_of_mass.x() << ',' << d.center_of_mass.y() << ',' << d.max_speed << '\n';
+       << d.center_of_mass.x() << ',' << d.center_of_mass.y() << ',' << d.max_speed << ','
+       << d.max_mach << '\n';
   out_.flush();
 }
 

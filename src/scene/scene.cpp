@@ -215,21 +215,40 @@ MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::st
   MapReader r(ctx, n, path,
               {"name", "model", "density", "youngs_modulus", "poisson_ratio", "bulk_modulus",
                "shear_modulus", "friction_angle", "dilation_angle", "cohesion", "tensile_strength",
-               "separation_volume_ratio"});
+               "separation_volume_ratio", "sound_speed", "tait_exponent", "viscosity"});
   MaterialDef m;
   m.name = r.name("name");
   m.model = r.choiceOf<MaterialModel>(r.node("model"), r.path("model"),
                                       {{"linear_elastic", MaterialModel::kLinearElastic},
-                                       {"drucker_prager", MaterialModel::kDruckerPrager}});
+                                       {"drucker_prager", MaterialModel::kDruckerPrager},
+                                       {"fluid", MaterialModel::kFluid}});
   m.density = r.number("density", limits::kDensity);
+  const bool fluid = m.model == MaterialModel::kFluid;
+  const std::vector<const char*> solid_keys = {"youngs_modulus", "poisson_ratio", "bulk_modulus",
+                                               "shear_modulus"};
+  const std::vector<const char*> fluid_keys = {"sound_speed", "tait_exponent", "viscosity"};
+  for (const char* k : fluid ? solid_keys : fluid_keys) {
+    r.require(!r.has(k), k,
+              fluid ? "applies only to a solid; a fluid's stiffness is its sound_speed"
+                    : "applies only to model: fluid");
+  }
   const bool e_nu = r.has("youngs_modulus") || r.has("poisson_ratio");
   const bool k_g = r.has("bulk_modulus") || r.has("shear_modulus");
-  if (e_nu == k_g) {
+  if (fluid) {
+    const Real c = r.number("sound_speed", limits::kSoundSpeed);
+    m.bulk_modulus = m.density * c * c;
+    r.require(m.bulk_modulus >= limits::kModulus.min && m.bulk_modulus <= limits::kModulus.max,
+              "sound_speed",
+              "gives a bulk modulus density * sound_speed^2 = " + num(m.bulk_modulus) +
+                  " Pa outside [1, 1e13] Pa");
+    m.tait_exponent = r.number("tait_exponent", limits::kTaitExponent, 7);
+    m.viscosity = r.number("viscosity", limits::kViscosity, 0);
+    m.tensile_strength = r.number("tensile_strength", limits::kStrength, 0);
+  } else if (e_nu == k_g) {
     ctx.fail(n, path,
              "give the elasticity either as youngs_modulus and poisson_ratio or as "
              "bulk_modulus and shear_modulus (Pa)");
-  }
-  if (e_nu) {
+  } else if (e_nu) {
     const Real E = r.number("youngs_modulus", limits::kModulus);
     const Real nu = r.number("poisson_ratio", "(dimensionless)");
     r.require(nu > -1 && nu < 0.5, "poisson_ratio",
@@ -263,6 +282,7 @@ MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::st
                   num(m.separation_volume_ratio));
   } else {
     for (const char* k : plastic_keys) {
+      if (fluid && std::string(k) == "tensile_strength") continue;
       r.require(!r.has(k), k, "applies only to model: drucker_prager");
     }
   }

@@ -16,10 +16,16 @@ struct Diagnostics {
   Vec2 center_of_mass{0, 0};  // m
   Real mass = 0;              // kg per metre
   Real max_speed = 0;         // m/s (material points)
+  // The largest |v| / c of a fluid point, c its current sound speed: a weakly compressible fluid
+  // errs in density by about Ma^2 / 2, so an artificial c0 should keep this below 0.1 (1%).
+  Real max_mach = 0;
   // Dynamic blocks, included in the energies and momenta above as well.
   Real block_kinetic = 0;     // J/m, translation and rotation
   Vec2 block_momentum{0, 0};  // kg m/s per metre
-  bool finite = true;         // every summed quantity is finite
+  // FEM bodies, included in the energies and momenta above as well.
+  Real fem_kinetic = 0;  // J/m
+  Real fem_strain = 0;   // J/m
+  bool finite = true;    // every summed quantity is finite
 };
 
 Diagnostics measure(const World& world);

@@ -33,6 +33,9 @@ struct Range {
 inline constexpr Range kDensity{0.1, 1e5, "kg/m^3"};      // aerogel to four times osmium
 inline constexpr Range kModulus{1, 1e13, "Pa"};           // E, K, G: a soft gel to 10 x diamond
 inline constexpr Range kStrength{0, 1e12, "Pa"};          // cohesion, tensile strength, adhesion
+inline constexpr Range kSoundSpeed{0.1, 1e4, "m/s"};      // a fluid's c0, artificial or real
+inline constexpr Range kTaitExponent{1, 15, "", true};    // gamma: 7 for water
+inline constexpr Range kViscosity{0, 1e6, "Pa s"};        // water 1e-3 to bitumen
 inline constexpr Range kStiffness{1, 1e13, "N/m per m"};  // contact springs
 inline constexpr Range kFriction{0, 10, ""};              // Coulomb coefficients
 inline constexpr Range kRestitution{0, 1, "", true};      // 0 would need an infinite damper

@@ -15,7 +15,7 @@ enum class Stage : int {
   kG2P,           // grid to particle: velocity, affine matrix, position
   kConstitutive,  // stress update of USL
   kStress,        // USF: velocity gradient, stress update and internal force in one sweep
-  kBlocks,        // Box2D step of the blocks
+  kBodies,        // solid bodies: blocks' springs and Box2D, FEM bodies' elements and step
   kCount
 };
 

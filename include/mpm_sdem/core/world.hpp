@@ -80,7 +80,8 @@ Real stepTowards(Real dt, Real end_time, Real time);
 
 // Which term set the time step.
 // kElement: the FEM bodies' elements (FemBodies::elementStep times kappa_1).
-enum class StepLimit { kFixed, kCfl, kContact, kElement, kMax };
+// kViscous: a fluid's viscous diffusion (h^2 / (2 nu) times kappa_1).
+enum class StepLimit { kFixed, kCfl, kContact, kElement, kViscous, kMax };
 const char* stepLimitName(StepLimit limit);
 
 struct TimeStepChoice {
@@ -198,6 +199,8 @@ class World {
   // (kg/m; impSpringScale) and the largest scale.
   Real lightest_point_ = 0;
   Real largest_spring_scale_ = 1;
+  // h^2 / (2 nu) of the most viscous fluid (s); infinite without one.
+  Real viscous_dt_ = std::numeric_limits<Real>::infinity();
   struct PointLoad {
     int particle;
     Vec2 force;   // N/m

@@ -38,7 +38,8 @@ class BagRecorder {
   BagRecorder(const BagRecorder&) = delete;
   BagRecorder& operator=(const BagRecorder&) = delete;
 
-  // Writes what is due at the world's current time: a cloud every 1/cloud_rate s and the states
+  // Writes what is due at the world's current time: a cloud every 1/cloud_rate s (with the FEM
+  // bodies' nodes, <ns>/fem_nodes, and triangles, <ns>/fem_mesh, when there are any) and the states
   // every 1/state_rate s of simulation time (both at the first call, with the markers). stats
   // supplies what the world does not know (time step, real-time factor, stage times).
   void record(const World& world, const conversions::StatsInput& stats);
@@ -62,7 +63,7 @@ class BagRecorder {
   SampleClock clouds_, states_;
   long messages_ = 0;
   bool started_ = false;
-  sensor_msgs::PointCloud2 cloud_;  // reused: no allocation per cloud
+  sensor_msgs::PointCloud2 cloud_, fem_cloud_;  // reused: no allocation per cloud
 };
 
 }  // namespace mpm_sdem

@@ -41,6 +41,11 @@ std::string blockFrame(const std::string& prefix, const std::string& name);
 // its von Mises stress on a fixed scale: blue at 0 to red at 1% of its body's Young's modulus
 // (the stress of 1% strain) and beyond; the same colours in every message.
 visualization_msgs::Marker toFemMarker(const World& world, const std_msgs::Header& header);
+// The FEM bodies' nodes as an unordered cloud in the header's frame: float32 x, y, z (z = 0, m),
+// ux, uy (displacement from the reference mesh, m), vx, vy (m/s), von_mises (Pa, the mean of
+// the node's triangles), uint16 body (index in the scene's fem_bodies).
+void toFemCloud(const World& world, const std_msgs::Header& header,
+                sensor_msgs::PointCloud2& cloud);
 
 visualization_msgs::MarkerArray toMarkers(const World& world, const std::string& tf_prefix,
                                           const ros::Time& stamp);

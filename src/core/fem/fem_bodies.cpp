@@ -76,6 +76,19 @@ Real FemBodies::vonMises(const Stress& s) {
   return std::sqrt(Real(0.5) * (a * a + b * b + c * c) + 3 * s.xy * s.xy);
 }
 
+void FemBodies::nodalVonMises(std::vector<Real>& out) const {
+  out.assign(x_.size(), 0);
+  std::vector<int> count(x_.size(), 0);
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    const Real s = vonMises(stress_[e]);
+    for (const int k : elements_[e].node) {
+      out[k] += s;
+      ++count[k];
+    }
+  }
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] /= count[k];  // every node has a triangle
+}
+
 FemBodies::FemBodies(const std::vector<FemBodyDef>& defs, const Vec2& gravity)
     : defs_(defs), gravity_(gravity) {
   for (std::size_t i = 0; i < defs.size(); ++i) {

@@ -25,6 +25,11 @@ MaterialParams makeMaterialParams(const MaterialDef& def) {
   p.lame = def.bulk_modulus - Real(2) / 3 * def.shear_modulus;
   p.modulus_over_density = (def.bulk_modulus + Real(4) / 3 * def.shear_modulus) / def.density;
   if (def.separation_volume_ratio > 0) p.separation = def.separation_volume_ratio;
+  if (def.model == MaterialModel::kFluid) {
+    p.tait_gamma = def.tait_exponent;
+    p.viscosity = def.viscosity;
+    p.tension = def.tensile_strength;
+  }
   if (def.model == MaterialModel::kDruckerPrager) {
     const Real t = std::tan(def.friction_angle);
     p.q_phi = coneSlope(def.friction_angle);

@@ -98,9 +98,18 @@ void particleToGrid(const Particles& P, Grid& G, const Tiles& T) {
 
 // The stress and volume of one point over dt with its velocity gradient L_p: Jaumann-rate
 // elasticity (eq. 21-25), the Drucker-Prager return for granular points only (eq. 31-35), and
-// V^{n+1} = det(I + dt L) V^n.
+// V^{n+1} = det(I + dt L) V^n; a fluid's stress from its new J and L (fluidStress).
 inline void updatePointStress(const MaterialParams& m, Particles& P, long p, Real dt) {
   const VelocityGradient L{P.lxx[p], P.lxy[p], P.lyx[p], P.lyy[p]};
+  if (m.model == MaterialModel::kFluid) {
+    P.J[p] *= (1 + dt * L.xx) * (1 + dt * L.yy) - dt * dt * L.xy * L.yx;
+    const Stress s = fluidStress(m, P.J[p], L);
+    P.sxx[p] = s.xx;
+    P.syy[p] = s.yy;
+    P.sxy[p] = s.xy;
+    P.szz[p] = s.zz;
+    return;
+  }
   Stress s{P.sxx[p], P.syy[p], P.sxy[p], P.szz[p]};
   s = jaumannElasticUpdate(m, s, L, dt);
   if (m.model == MaterialModel::kDruckerPrager) druckerPragerReturn(m, s);

@@ -83,6 +83,8 @@ class FemBodies final : public ContactBodies {
   };
   const Stress& stress(int e) const { return stress_[e]; }
   static Real vonMises(const Stress& s);
+  // Each node's von Mises stress: the mean over the triangles that share it (Pa), for outputs.
+  void nodalVonMises(std::vector<Real>& out) const;
   // Kinetic and strain energy (J/m) and the gravitational potential energy -m g.x (J/m).
   Real kineticEnergy() const;
   Real strainEnergy() const;

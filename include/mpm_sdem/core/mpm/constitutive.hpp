@@ -92,8 +92,34 @@ inline PlasticReturn druckerPragerReturn(const MaterialParams& m, Stress& s) {
   return out;
 }
 
-// Recoverable (elastic) energy density of a stress state, sigma_m^2 / (2K) + J2 / (2G) (J/m^3).
+// Tait's pressure at volume ratio J, p = (K / gamma) (J^-gamma - 1), cut off at the tension the
+// fluid sustains (Pa, compression positive).
+inline Real taitPressure(const MaterialParams& m, Real J) {
+  const Real p = m.bulk / m.tait_gamma * (std::pow(J, -m.tait_gamma) - 1);
+  return std::fmax(p, -m.tension);
+}
+
+// A fluid's stress at volume ratio J under velocity gradient L: -p I + 2 eta D', D' the deviator
+// of the plane-strain rate of deformation (D_zz = 0, so sigma_zz carries -2 eta tr(D) / 3). Not
+// incremental: the pressure is a function of J alone, so no error accumulates in it.
+inline Stress fluidStress(const MaterialParams& m, Real J, const VelocityGradient& L) {
+  const Real p = taitPressure(m, J);
+  const Real third = (L.xx + L.yy) / 3;
+  const Real eta2 = 2 * m.viscosity;
+  return {-p + eta2 * (L.xx - third), -p + eta2 * (L.yy - third), m.viscosity * (L.xy + L.yx),
+          -p - eta2 * third};
+}
+
+// Recoverable (elastic) energy density of a stress state (J/m^3, per current volume). Solids:
+// sigma_m^2 / (2K) + J2 / (2G). A fluid stores the work of its pressure, int_J^1 p dJ' per
+// reference volume, with J recovered from p = -sigma_m (viscous stress has no mean part); a point
+// held at the tension cut-off is counted at the cut-off's J.
 inline Real elasticEnergyDensity(const MaterialParams& m, const Stress& s) {
+  if (m.model == MaterialModel::kFluid) {
+    const Real g = m.tait_gamma;
+    const Real J = std::pow(1 - g * meanStress(s) / m.bulk, -1 / g);
+    return m.bulk / g * ((std::pow(J, 1 - g) - 1) / (g - 1) - 1 + J) / J;
+  }
   const Real sm = meanStress(s);
   const Real tau = equivalentShear(s);
   return sm * sm / (2 * m.bulk) + tau * tau / (2 * m.shear);

@@ -9,7 +9,13 @@
 
 namespace mpm_sdem {
 
-enum class MaterialModel { kLinearElastic, kDruckerPrager };
+enum class MaterialModel {
+  kLinearElastic,
+  kDruckerPrager,
+  // Weakly compressible fluid (seed 002 sec. 4.3-4.4 model water this way): pressure from the
+  // volume ratio by Tait's equation, Newtonian viscosity, and a tension cut-off.
+  kFluid,
+};
 
 // What a scene declares for a material. Elasticity is given as bulk and shear moduli; the scene
 // layer converts Young's modulus and Poisson's ratio (K = E / (3 (1 - 2 nu)), G = E / (2 (1 +
@@ -30,6 +36,13 @@ struct MaterialDef {
   // phase of a cohesionless granular continuum, Dunatunga and Kamrin 2015). Keeps a free-falling
   // stream from bounding the step by the stiffness of a density it no longer has. 0: off.
   Real separation_volume_ratio = 0;
+  // Fluid only. Pressure p = (K / gamma) (J^-gamma - 1) with K = rho0 c0^2 in bulk_modulus
+  // (Tait's equation; gamma = 7 for water), never below -tensile_strength (the tension the fluid
+  // sustains before it cavitates: seed 002 keeps water's surface smooth with 6 kPa); deviatoric
+  // stress 2 eta D' (plane strain, no bulk viscosity). c0 may be an artificial sound speed:
+  // density errors scale as the Mach number squared (diagnostics' max_mach).
+  Real tait_exponent = 7;  // gamma (dimensionless)
+  Real viscosity = 0;      // eta (Pa s)
 };
 
 // The steepest friction angle a Drucker-Prager material may ask for (rad). Eq. 35's cone matches
@@ -55,7 +68,18 @@ struct MaterialParams {
   Real tau_corner = 0, alpha_p = 0, inv_return_modulus = 0;
   Real modulus_over_density = 0;  // (K + 4G/3) / rho0: squared P-wave speed at J = 1
   Real separation = std::numeric_limits<Real>::infinity();  // J above which: no stress
+  Real tait_gamma = 7, viscosity = 0;                       // fluid only
 };
+
+// Squared wave speed of a point of volume ratio J (m^2/s^2), the CFL term of seed 000 eq. 51:
+// a solid's constant modulus over the current density rho0 / J; Tait's dp/drho =
+// c0^2 J^(1 - gamma) for a fluid; none when the grains have separated.
+inline Real squaredWaveSpeed(const MaterialParams& m, Real J) {
+  if (J > m.separation) return 0;
+  if (m.model == MaterialModel::kFluid)
+    return m.modulus_over_density * std::pow(J, 1 - m.tait_gamma);
+  return m.modulus_over_density * J;
+}
 
 MaterialParams makeMaterialParams(const MaterialDef& def);
 
