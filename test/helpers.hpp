@@ -29,6 +29,17 @@ inline MaterialDef druckerPrager(Real density, Real E, Real nu, Real phi_deg, Re
   return m;
 }
 
+// A weakly compressible fluid of sound speed c0 (m/s) and viscosity eta (Pa s), Tait gamma 7.
+inline MaterialDef fluid(Real density, Real c0, Real eta = 0) {
+  MaterialDef m;
+  m.name = "fluid";
+  m.model = MaterialModel::kFluid;
+  m.density = density;
+  m.bulk_modulus = density * c0 * c0;
+  m.viscosity = eta;
+  return m;
+}
+
 inline BodyDef rectangle(const Vec2& lo, const Vec2& hi, int ppc, int material = 0) {
   BodyDef b;
   b.name = "rect";

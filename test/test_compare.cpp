@@ -25,13 +25,15 @@ std::vector<float> lattice(int n, float s, float dx, float dy) {
   return xy;
 }
 
-std::string record(const std::string& name, const std::string& extra) {
+// Runs the runner on a scene of test/data with extra arguments, recording a bag; its path.
+std::string record(const std::string& name, const std::string& extra,
+                   const std::string& scene = "node_bed.yaml --set time.end=0.2") {
   const fs::path dir = fs::temp_directory_path() / "mpm_sdem_test_compare";
   fs::create_directories(dir);
   const std::string bag = (dir / (name + ".bag")).string();
-  const std::string cmd = std::string(MPM_SDEM_RUNNER) + " " + MPM_SDEM_SOURCE_DIR +
-                          "/test/data/node_bed.yaml --set time.end=0.2 --threads 1 --quiet --out " +
-                          (dir / name).string() + " --bag " + bag + " " + extra + " 2>/dev/null";
+  const std::string cmd = std::string(MPM_SDEM_RUNNER) + " " + MPM_SDEM_SOURCE_DIR + "/test/data/" +
+                          scene + " --threads 1 --quiet --out " + (dir / name).string() +
+                          " --bag " + bag + " " + extra + " 2>/dev/null";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
   return bag;
 }
@@ -87,22 +89,12 @@ TEST(CompareRuns, SelfIsZeroPerturbedIsNot) {
 }
 
 // Runs with FEM bodies: their nodes are recorded (~fem_nodes) and compared node by node; a run
-// against itself differs by nothing, a barrier twice as stiff by the sag under its own weight
-// that it no longer has.
+// against itself differs by nothing, a barrier twice as stiff by half of the sag under its
+// own weight.
 TEST(CompareRuns, FemNodesAreRecordedAndCompared) {
-  auto recordFem = [](const std::string& name, const std::string& extra) {
-    const fs::path dir = fs::temp_directory_path() / "mpm_sdem_test_compare";
-    fs::create_directories(dir);
-    const std::string bag = (dir / (name + ".bag")).string();
-    const std::string cmd = std::string(MPM_SDEM_RUNNER) + " " + MPM_SDEM_SOURCE_DIR +
-                            "/test/data/valid_fem.yaml --threads 1 --quiet --out " +
-                            (dir / name).string() + " --bag " + bag + " " + extra + " 2>/dev/null";
-    EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
-    return bag;
-  };
-  const RunSeries a = readRun(recordFem("fem_base", ""));
+  const RunSeries a = readRun(record("fem_base", "", "valid_fem.yaml"));
   const RunSeries b =
-      readRun(recordFem("fem_stiff", "--set fem_bodies.barrier.youngs_modulus=2e6"));
+      readRun(record("fem_stiff", "--set fem_bodies.barrier.youngs_modulus=2e6", "valid_fem.yaml"));
   ASSERT_FALSE(a.fem_nodes.empty());
   EXPECT_EQ(a.fem_nodes.size(), a.clouds.size());  // recorded with each particle cloud
   const Comparison self = compareRuns(a, a, 0.005);

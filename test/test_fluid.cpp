@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "helpers.hpp"
 #include "mpm_sdem/core/diagnostics.hpp"
 #include "mpm_sdem/core/mpm/constitutive.hpp"
 #include "mpm_sdem/core/world.hpp"
@@ -17,23 +18,7 @@ using namespace mpm_sdem;
 namespace {
 
 MaterialDef water(Real sound_speed, Real viscosity = 0) {
-  MaterialDef m;
-  m.name = "water";
-  m.model = MaterialModel::kFluid;
-  m.density = 1000;
-  m.bulk_modulus = m.density * sound_speed * sound_speed;
-  m.viscosity = viscosity;
-  return m;
-}
-
-BodyDef box(const Vec2& lo, const Vec2& hi, int ppc) {
-  BodyDef b;
-  b.name = "fluid";
-  b.shape.type = ShapeType::kRectangle;
-  b.shape.min = lo;
-  b.shape.max = hi;
-  b.points_per_cell = ppc;
-  return b;
+  return test::fluid(1000, sound_speed, viscosity);
 }
 
 }  // namespace
@@ -79,7 +64,7 @@ TEST(FluidHydrostatics, AColumnAtRestCarriesItsWeight) {
   w.domain.max = Vec2(0.2, 0.3);
   w.cell_size = h;
   w.materials = {water(20, 0.01)};
-  w.bodies = {box(Vec2(0, 0), Vec2(0.2, H), 2)};
+  w.bodies = {test::rectangle(Vec2(0, 0), Vec2(0.2, H), 2)};
   World world(w);
   const Particles& P = world.particles();
   const Real rho_g = 1000 * 9.81;
@@ -128,7 +113,7 @@ Poiseuille poiseuille(Real h, Real nu, Real sound_speed, Real t_end) {
   w.cell_size = h;
   w.materials = {water(sound_speed, 1000 * nu)};
   w.domain.max = Vec2(W, 0.4);
-  w.bodies = {box(Vec2(0, 0.15), Vec2(W, 0.35), 2)};
+  w.bodies = {test::rectangle(Vec2(0, 0.15), Vec2(W, 0.35), 2)};
   World world(w);
   Poiseuille r;
   r.limit = world.chooseTimeStep().limit;

@@ -73,7 +73,15 @@ void Publishers::publishStats(const World& world, const conversions::StatsInput&
                               const std_msgs::Header& header) {
   conversions::StatsInput in = status;
   in.profile = since(world.profile(), stats_profile_);
-  stats_.pub.publish(conversions::toStats(world, measure(world), in, header));
+  const Diagnostics d = measure(world);
+  if (d.max_mach > kMachWarning) {
+    ROS_WARN_ONCE(
+        "a fluid point reached Mach %.3f at t = %.4f s (its speed over its sound speed): density "
+        "errs by about %.2g%%. Raise the material's sound_speed to 10 times the fastest flow "
+        "(docs/scene_reference.md, fluid).",
+        d.max_mach, world.time(), 50 * d.max_mach * d.max_mach);
+  }
+  stats_.pub.publish(conversions::toStats(world, d, in, header));
   stats_profile_ = world.profile();
 }
 

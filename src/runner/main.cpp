@@ -148,8 +148,6 @@ int main(int argc, char** argv) {
   runner::Progress progress(scene.end_time, !opt.quiet);
   int status = 0;
   const Real eps = 1e-9 * scene.end_time;
-  // A weakly compressible fluid errs in density by about Ma^2 / 2: warn once past 0.5%.
-  constexpr Real kMaxMach = 0.1;
   bool mach_warned = false;
   while (world.time() < scene.end_time - eps && !g_interrupted) {
     const auto start = std::chrono::steady_clock::now();
@@ -196,7 +194,7 @@ int main(int argc, char** argv) {
         status = 3;
         break;
       }
-      if (d.max_mach > kMaxMach && !mach_warned) {
+      if (d.max_mach > kMachWarning && !mach_warned) {
         std::cerr << "\nwarning: a fluid point reached Mach " << d.max_mach
                   << " at t = " << world.time()
                   << " s (its speed over its sound speed): density errs by about "

@@ -7,7 +7,9 @@
 #include <mpm_sdem/SetObstacleState.h>
 #include <mpm_sdem/StepSimulation.h>
 #include <rosgraph_msgs/Clock.h>
+#include <sensor_msgs/point_cloud2_iterator.h>
 #include <unistd.h>
+#include <visualization_msgs/Marker.h>
 
 #include <chrono>
 #include <cmath>
@@ -362,6 +364,41 @@ TEST(Requests, ResetsKeepOneRecording) {
     files += e.path().filename().string().rfind(fs::path(bag).stem().string(), 0) == 0;
   EXPECT_EQ(files, 1) << "resets opened new recordings";
   fs::remove(bag);
+}
+
+// The FEM bodies' outputs (fem_outputs.test, on test/data/valid_fem.yaml: one barrier clamped at
+// its foot): ~fem_nodes carries every node with its displacement, velocity, stress and body, the
+// clamped ones not displaced; ~fem_mesh three points per triangle; both keep coming.
+TEST(Requests, FemBodiesArePublished) {
+  Node& n = *g_node;
+  test::Latest<sensor_msgs::PointCloud2> nodes(n.nh, test::kNs + "fem_nodes");
+  test::Latest<visualization_msgs::Marker> mesh(n.nh, test::kNs + "fem_mesh");
+  ASSERT_TRUE(waitFor([&] { return nodes.count() >= 2 && mesh.count() >= 2; }, 30))
+      << "no ~fem_nodes or ~fem_mesh";
+  const sensor_msgs::PointCloud2 c = nodes.get();
+  std::vector<std::string> fields;
+  for (const auto& f : c.fields) fields.push_back(f.name);
+  EXPECT_EQ(fields,
+            (std::vector<std::string>{"x", "y", "z", "ux", "uy", "vx", "vy", "von_mises", "body"}));
+  ASSERT_GT(c.width, 10u);
+  int clamped = 0;
+  sensor_msgs::PointCloud2ConstIterator<float> x(c, "x"), u(c, "ux"), s(c, "von_mises");
+  for (; x != x.end(); ++x, ++u, ++s) {
+    EXPECT_TRUE(std::isfinite(u[0]) && std::isfinite(u[1]) && std::isfinite(*s));
+    EXPECT_GE(*s, 0.f);
+    if (x[1] < 1e-4f) {  // the foot, clamped
+      ++clamped;
+      EXPECT_EQ(u[0], 0.f);
+      EXPECT_EQ(u[1], 0.f);
+    }
+  }
+  EXPECT_GE(clamped, 2);
+  const visualization_msgs::Marker m = mesh.get();
+  EXPECT_EQ(m.type, visualization_msgs::Marker::TRIANGLE_LIST);
+  EXPECT_EQ(m.points.size() % 3, 0u);
+  EXPECT_GT(m.points.size(), c.width);  // more triangle corners than nodes
+  EXPECT_EQ(m.colors.size(), m.points.size());
+  EXPECT_EQ(c.header.frame_id, "world");
 }
 
 int main(int argc, char** argv) {

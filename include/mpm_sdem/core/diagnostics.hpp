@@ -30,4 +30,8 @@ struct Diagnostics {
 
 Diagnostics measure(const World& world);
 
+// The Mach number past which the runner and the node warn (once): a density error of about
+// Ma^2 / 2 = 0.5% (docs/scene_reference.md, fluid).
+inline constexpr Real kMachWarning = 0.1;
+
 }  // namespace mpm_sdem
