@@ -397,13 +397,15 @@ TEST(FemImpact, NoMaterialPointEverEntersTheBodyAt20MetresPerSecond) {
 // water_gate scene's gate tip peaks within the range of the five published histories (41.4 to
 // 48.2 mm at 0.231 to 0.255 s; cases::gateReference), and the water stays below Mach 0.2.
 TEST(FemWater, GateTipPeaksWithinThePublishedRange) {
-  const Scene scene = loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/water_gate.yaml");
+  const Scene scene =
+      loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/water_gate.yaml");
   World w(scene.world);
   const GateRun g = runWaterGate(w, 0.3, 0.002);
   const GateReference ref = gateReference();
-  std::printf("peak %.2f mm at %.3f s (published %.1f-%.1f mm at %.3f-%.3f s), max Mach %.3f, %.1f s\n",
-              1e3 * g.peak, g.peak_time, 1e3 * ref.peak_min, 1e3 * ref.peak_max, ref.time_min,
-              ref.time_max, g.max_mach, g.seconds);
+  std::printf(
+      "peak %.2f mm at %.3f s (published %.1f-%.1f mm at %.3f-%.3f s), max Mach %.3f, %.1f s\n",
+      1e3 * g.peak, g.peak_time, 1e3 * ref.peak_min, 1e3 * ref.peak_max, ref.time_min, ref.time_max,
+      g.max_mach, g.seconds);
   EXPECT_GE(g.peak, ref.peak_min);
   EXPECT_LE(g.peak, ref.peak_max);
   EXPECT_GE(g.peak_time, ref.time_min);
