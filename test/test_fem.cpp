@@ -395,7 +395,8 @@ TEST(FemImpact, NoMaterialPointEverEntersTheBodyAt20MetresPerSecond) {
 
 // Seed 002 sec. 4.3 at its resolution (4 mm cells and elements, points 2 mm apart): the shipped
 // water_gate scene's gate tip peaks within the range of the five published histories (41.4 to
-// 48.2 mm at 0.231 to 0.255 s; cases::gateReference), and the water stays below Mach 0.2.
+// 48.2 mm at 0.231 to 0.255 s; cases::gateReference), and the water stays below the Mach number
+// the runner warns at (kMachWarning, 0.1). Measured: 45.90 mm at 0.242 s, Mach 0.064, 17 s.
 TEST(FemWater, GateTipPeaksWithinThePublishedRange) {
   const Scene scene =
       loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/water_gate.yaml");
@@ -410,5 +411,5 @@ TEST(FemWater, GateTipPeaksWithinThePublishedRange) {
   EXPECT_LE(g.peak, ref.peak_max);
   EXPECT_GE(g.peak_time, ref.time_min);
   EXPECT_LE(g.peak_time, ref.time_max);
-  EXPECT_LT(g.max_mach, 0.2);
+  EXPECT_LT(g.max_mach, kMachWarning);
 }
