@@ -91,6 +91,28 @@ def table(rows):
     return "\n".join(out)
 
 
+def finish(fig, out, name):
+    """Lays the figure out, writes it to out/name and closes it; returns name."""
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, name), dpi=110)
+    plt.close(fig)
+    return name
+
+
+def snapshot_panels(frames, height):
+    """A figure of two panels a row, one per frame (panel height in inches); the unused panels
+    hidden. Returns the figure and the (axes, (time, frame)) pairs."""
+    cols = 2
+    rows = (len(frames) + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(10, height * rows), squeeze=False)
+    for ax in axes.flat:
+        ax.axis("off")
+    panels = list(zip(axes.flat, frames.items()))
+    for ax, _ in panels:
+        ax.axis("on")
+    return fig, panels
+
+
 def plot_collision(data, out):
     fig, axes = plt.subplots(1, 2, figsize=(10, 3.5), sharey=True)
     for ax, name in zip(axes, ["hard", "soft"]):
@@ -107,10 +129,7 @@ def plot_collision(data, out):
         ax.set_xlim(0, 20)
     axes[0].set_ylabel("energy (J/m)")
     axes[0].legend()
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "collision_energy.png"), dpi=110)
-    plt.close(fig)
-    return "collision_energy.png"
+    return finish(fig, out, "collision_energy.png")
 
 
 def plot_contact_schemes(data, out):
@@ -130,10 +149,7 @@ def plot_contact_schemes(data, out):
     axes[0].legend(fontsize=8)
     axes[1].set_yscale("log")
     axes[1].set_xlabel("wall time per step (us)")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "contact_schemes.png"), dpi=110)
-    plt.close(fig)
-    return "contact_schemes.png"
+    return finish(fig, out, "contact_schemes.png")
 
 
 def plot_debris(data, out):
@@ -153,10 +169,7 @@ def plot_debris(data, out):
     ax.set_xlabel("time (s)")
     ax.set_ylabel("block 2 rotation (deg, clockwise)")
     ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "debris_block2_angle.png"), dpi=110)
-    plt.close(fig)
-    return "debris_block2_angle.png"
+    return finish(fig, out, "debris_block2_angle.png")
 
 
 def plot_debris_snapshots(data, out):
@@ -173,13 +186,8 @@ def plot_debris_snapshots(data, out):
         else:
             block = frame["blocks"].setdefault(r["what"], (float(r["id"]), []))
             block[1].append((100 * float(r["x"]), 100 * float(r["y"])))
-    cols = 2
-    rows = (len(frames) + cols - 1) // cols
-    fig, axes = plt.subplots(rows, cols, figsize=(10, 2.2 * rows), squeeze=False)
-    for ax in axes.flat:
-        ax.axis("off")
-    for ax, (t, frame) in zip(axes.flat, frames.items()):
-        ax.axis("on")
+    fig, panels = snapshot_panels(frames, 2.2)
+    for ax, (t, frame) in panels:
         ax.scatter(frame["points"][0], frame["points"][1], s=1.0, c="#c2a060", linewidths=0)
         for name, (rounding, verts) in frame["blocks"].items():
             # The core polygon stroked with the rounding's width: the spheropolygon's outline.
@@ -193,10 +201,7 @@ def plot_debris_snapshots(data, out):
         ax.set_title("t = %.2f s" % float(t), fontsize=9)
         ax.tick_params(labelsize=7)
     fig.supxlabel("x (cm)", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "debris_snapshots.png"), dpi=110)
-    plt.close(fig)
-    return "debris_snapshots.png"
+    return finish(fig, out, "debris_snapshots.png")
 
 
 def plot_silo(data, out):
@@ -220,10 +225,7 @@ def plot_silo(data, out):
     ax.set_xlabel("neck width D0 (cm)")
     ax.set_ylabel("mass flow rate (kg/(s m))")
     ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "silo_beverloo.png"), dpi=110)
-    plt.close(fig)
-    return "silo_beverloo.png"
+    return finish(fig, out, "silo_beverloo.png")
 
 
 def plot_silo_convergence(data, out):
@@ -256,10 +258,7 @@ def plot_silo_convergence(data, out):
     axes[1].set_xlabel("D0 - k_c r_p (cm)")
     axes[1].set_ylabel("mass flow rate (kg/(s m))")
     axes[1].legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "silo_convergence.png"), dpi=110)
-    plt.close(fig)
-    return "silo_convergence.png"
+    return finish(fig, out, "silo_convergence.png")
 
 
 def plot_debris_flow(data, out):
@@ -291,10 +290,7 @@ def plot_debris_flow(data, out):
     axes[1].set_xlabel("steps to 0.2 s (one cell size)")
     axes[1].set_ylabel("kinetic energy at 0.2 s (J/m)")
     axes[1].legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "debris_flow.png"), dpi=110)
-    plt.close(fig)
-    return "debris_flow.png"
+    return finish(fig, out, "debris_flow.png")
 
 
 def plot_water_gate(data, out):
@@ -310,21 +306,17 @@ def plot_water_gate(data, out):
         runs[key][0].append(float(r["time"]))
         runs[key][1].append(1000 * float(r["tip_m"]))
     fig, ax = plt.subplots(figsize=(6, 3.5))
-    # The five published curves at the times we hold (m -> mm): their range as bars.
-    published = {0.15: (0.0, 3.7), 0.20: (30.2, 39.5), 0.25: (41.1, 47.8), 0.30: (31.1, 42.1),
-                 0.40: (12.7, 29.2)}
-    for t, (lo, hi) in published.items():
-        ax.plot([t, t], [lo, hi], color="k", lw=3, alpha=0.4)
+    # The five published curves' range at the times the case compares (m -> mm), as bars.
+    for r in read_csv(os.path.join(data, "water_gate_reference.csv")):
+        ax.plot([float(r["time"])] * 2, [1000 * float(r["low_m"]), 1000 * float(r["high_m"])],
+                color="k", lw=3, alpha=0.4)
     ax.plot([], [], color="k", lw=3, alpha=0.4, label="published range (5 methods)")
     for key, (t, u) in runs.items():
         ax.plot(t, u, label=key, lw=1)
     ax.set_xlabel("time (s)")
     ax.set_ylabel("gate tip displacement (mm)")
     ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "water_gate_tip.png"), dpi=110)
-    plt.close(fig)
-    return "water_gate_tip.png"
+    return finish(fig, out, "water_gate_tip.png")
 
 
 def plot_water_gate_snapshots(data, out):
@@ -336,13 +328,8 @@ def plot_water_gate_snapshots(data, out):
         frame = frames.setdefault(r["time"], {"water": ([], []), "gate": ([], [])})
         frame[r["what"]][0].append(100 * float(r["x"]))
         frame[r["what"]][1].append(100 * float(r["y"]))
-    cols = 2
-    rows = (len(frames) + cols - 1) // cols
-    fig, axes = plt.subplots(rows, cols, figsize=(10, 2.6 * rows), squeeze=False)
-    for ax in axes.flat:
-        ax.axis("off")
-    for ax, (t, frame) in zip(axes.flat, frames.items()):
-        ax.axis("on")
+    fig, panels = snapshot_panels(frames, 2.6)
+    for ax, (t, frame) in panels:
         ax.scatter(*frame["water"], s=0.3, c="#3070c0", linewidths=0)
         ax.scatter(*frame["gate"], s=2.0, c="#b03020", linewidths=0)
         ax.set_xlim(0, 58.4)
@@ -351,10 +338,7 @@ def plot_water_gate_snapshots(data, out):
         ax.set_title("t = %.2f s" % float(t), fontsize=9)
         ax.tick_params(labelsize=7)
     fig.supxlabel("x (cm)", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "water_gate_snapshots.png"), dpi=110)
-    plt.close(fig)
-    return "water_gate_snapshots.png"
+    return finish(fig, out, "water_gate_snapshots.png")
 
 
 def stage_table(data, name):
@@ -397,10 +381,7 @@ def plot_compression(data, out):
     ax.set_xlabel("settlement (cm)")
     ax.set_ylabel("plate force (kN/m)")
     ax.legend()
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "compression_force_settlement.png"), dpi=110)
-    plt.close(fig)
-    return "compression_force_settlement.png"
+    return finish(fig, out, "compression_force_settlement.png")
 
 
 def family(quantity):

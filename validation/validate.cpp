@@ -1296,6 +1296,15 @@ void waterGate(const Options& o, Results& r) {
   std::fprintf(snaps, "time,what,x,y\n");
   FILE* stages = std::fopen((o.out + "/water_gate_stages.csv").c_str(), "w");
   std::fprintf(stages, "cell_m,element_m,stage,ms_per_step,share\n");
+  // The published range the plot draws (cases::gateReferenceAt: one source for it).
+  FILE* reference = std::fopen((o.out + "/water_gate_reference.csv").c_str(), "w");
+  std::fprintf(reference, "time,mean_m,low_m,high_m\n");
+  for (int i = 0; i < 5; ++i) {
+    Real mean, lo, hi;
+    cases::gateReferenceAt(i, mean, lo, hi);
+    std::fprintf(reference, "%g,%.5f,%.5f,%.5f\n", cases::kGateTimes[i], mean, lo, hi);
+  }
+  std::fclose(reference);
   const std::string path = std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/water_gate.yaml";
   for (const Run& run : runs) {
     Scene scene = loadScene(path, {"grid.cell_size=" + std::to_string(run.cell),
