@@ -1,6 +1,7 @@
 #include "mpm_sdem/core/diagnostics.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "mpm_sdem/core/fem/fem_bodies.hpp"
 #include "mpm_sdem/core/mpm/constitutive.hpp"
@@ -68,6 +69,17 @@ Diagnostics measure(const World& world) {
              std::isfinite(d.angular_momentum) && d.momentum.allFinite() &&
              d.center_of_mass.allFinite();
   return d;
+}
+
+std::string machWarning(const Diagnostics& d, Real t) {
+  if (!(d.max_mach > kMachWarning)) return "";
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "a fluid point reached Mach %.3f at t = %.4f s (its speed over its sound speed): "
+                "density errs by about %.2g%%. Raise the material's sound_speed to 10 times the "
+                "fastest flow (docs/scene_reference.md, fluid).",
+                d.max_mach, t, 50 * d.max_mach * d.max_mach);
+  return text;
 }
 
 }  // namespace mpm_sdem

@@ -74,13 +74,8 @@ void Publishers::publishStats(const World& world, const conversions::StatsInput&
   conversions::StatsInput in = status;
   in.profile = since(world.profile(), stats_profile_);
   const Diagnostics d = measure(world);
-  if (d.max_mach > kMachWarning) {
-    ROS_WARN_ONCE(
-        "a fluid point reached Mach %.3f at t = %.4f s (its speed over its sound speed): density "
-        "errs by about %.2g%%. Raise the material's sound_speed to 10 times the fastest flow "
-        "(docs/scene_reference.md, fluid).",
-        d.max_mach, world.time(), 50 * d.max_mach * d.max_mach);
-  }
+  if (const std::string w = machWarning(d, world.time()); !w.empty())
+    ROS_WARN_ONCE("%s", w.c_str());
   stats_.pub.publish(conversions::toStats(world, d, in, header));
   stats_profile_ = world.profile();
 }

@@ -194,12 +194,8 @@ int main(int argc, char** argv) {
         status = 3;
         break;
       }
-      if (d.max_mach > kMachWarning && !mach_warned) {
-        std::cerr << "\nwarning: a fluid point reached Mach " << d.max_mach
-                  << " at t = " << world.time()
-                  << " s (its speed over its sound speed): density errs by about "
-                  << 50 * d.max_mach * d.max_mach << "%. Raise the material's sound_speed to 10 "
-                  << "times the fastest flow (docs/scene_reference.md, fluid).\n";
+      if (const std::string w = machWarning(d, world.time()); !w.empty() && !mach_warned) {
+        std::cerr << "\nwarning: " << w << "\n";
         mach_warned = true;
       }
       series.write(world, d, dt);

@@ -1,6 +1,8 @@
 // Whole-world measures for the time series and the conservation tests.
 #pragma once
 
+#include <string>
+
 #include "mpm_sdem/core/types.hpp"
 #include "mpm_sdem/core/world.hpp"
 
@@ -17,7 +19,7 @@ struct Diagnostics {
   Real mass = 0;              // kg per metre
   Real max_speed = 0;         // m/s (material points)
   // The largest |v| / c of a fluid point, c its current sound speed: a weakly compressible fluid
-  // errs in density by about Ma^2 / 2, so an artificial c0 should keep this below 0.1 (1%).
+  // errs in density by about Ma^2 / 2, so an artificial c0 should keep this below 0.1 (0.5%).
   Real max_mach = 0;
   // Dynamic blocks, included in the energies and momenta above as well.
   Real block_kinetic = 0;     // J/m, translation and rotation
@@ -33,5 +35,7 @@ Diagnostics measure(const World& world);
 // The Mach number past which the runner and the node warn (once): a density error of about
 // Ma^2 / 2 = 0.5% (docs/scene_reference.md, fluid).
 inline constexpr Real kMachWarning = 0.1;
+// That warning's text for a state that reached max_mach at time t (s); "" below kMachWarning.
+std::string machWarning(const Diagnostics& d, Real t);
 
 }  // namespace mpm_sdem
