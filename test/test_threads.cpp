@@ -73,3 +73,13 @@ TEST(Threads, DebrisImpactIsBitIdenticalOnOneAndTwoThreads) {
   EXPECT_GT(one.blocks[2].position.x(), 0.3105) << "block2 should have been pushed by then";
   expectIdentical(one, two);
 }
+
+TEST(Threads, SphRegionIsBitIdenticalOnOneAndTwoThreads) {
+  // A granular column collapsing into an SPH region: points change kind as they cross it.
+  WorldDef def = test::box(Vec2(0, 0), Vec2(0.6, 0.3), 0.01);
+  def.materials.push_back(test::druckerPrager(1500, 1e6, 0.3, 30, 0));
+  def.bodies.push_back(test::rectangle(Vec2(0, 0), Vec2(0.1, 0.2), 2));
+  def.sph = cases::sphBox(Vec2(0.06, 0.02), Vec2(0.5, 0.15));
+  const Snapshot one = run(def, 1, 0.15), two = run(def, 2, 0.15);
+  expectIdentical(one, two);
+}

@@ -494,9 +494,22 @@ const Real kCopperWaveSpeed = std::sqrt(128e9 / 8790);  // m/s, sqrt(E / rho)
 
 }  // namespace
 
-Reversal reversal(TransferScheme transfer, StressUpdate update) {
+SphDef sphBox(const Vec2& lo, const Vec2& hi, SphKernel kernel, Real alpha) {
+  SphDef sph;
+  ShapeDef box;
+  box.type = ShapeType::kRectangle;
+  box.min = lo;
+  box.max = hi;
+  sph.regions.push_back(box);
+  sph.kernel = kernel;
+  sph.viscosity_alpha = alpha;
+  return sph;
+}
+
+Reversal reversal(TransferScheme transfer, StressUpdate update, const SphDef& sph) {
   const Real h = 0.01;
   WorldDef def = copperStrip(Vec2(0, 0), Vec2(1, 0.02), Vec2(1, 0.02), h, 2);
+  def.sph = sph;
   def.domain.left.type = def.domain.right.type = WallType::kSticky;
   def.solver.transfer = transfer;
   def.solver.pic_fraction = 0;
@@ -516,10 +529,12 @@ Reversal reversal(TransferScheme transfer, StressUpdate update) {
   return {worst / amp, measure(w).total() / e0};
 }
 
-BarStrain stressBar(Real h, int ppc, Real sigma, Real ramp_transits, Real hold_transits) {
+BarStrain stressBar(Real h, int ppc, Real sigma, Real ramp_transits, Real hold_transits,
+                    const SphDef& sph) {
   const Real L = 1, width = h;  // one cell wide, as in the seed's 1D bar
   WorldDef def = copperStrip(Vec2(4 * h, 2 * h), Vec2(4 * h + L, 2 * h + width),
                              Vec2(L + 8 * h, width + 4 * h), h, ppc);
+  def.sph = sph;
   def.time_step.cfl = 0.1;  // seed 001 Table 1's Courant factor
   World w(def);
   const Particles& P = w.particles();

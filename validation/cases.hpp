@@ -192,7 +192,12 @@ struct Reversal {
   Real velocity_error = 0;
   Real energy_ratio = 0;
 };
-Reversal reversal(TransferScheme transfer, StressUpdate update);
+// With sph, the particles inside its regions are SPH particles (seed 001's coupled bar).
+Reversal reversal(TransferScheme transfer, StressUpdate update, const SphDef& sph = {});
+
+// An SPH region: the box lo-hi, the kernel, and the artificial viscosity's alpha (beta 0).
+SphDef sphBox(const Vec2& lo, const Vec2& hi, SphKernel kernel = SphKernel::kCubicSpline,
+              Real alpha = 0);
 
 // Seed 001 sec. 5.2: the copper bar (1 m, nu = 0, so that the plane-strain strip is a 1D bar)
 // free in space, its two ends loaded by a compressive traction sigma ramped linearly over
@@ -207,7 +212,7 @@ struct BarStrain {
   std::size_t points = 0;
 };
 BarStrain stressBar(Real cell_size, int points_per_cell, Real sigma, Real ramp_transits,
-                    Real hold_transits);
+                    Real hold_transits, const SphDef& sph = {});
 
 // Seed 000 sec. 5.3 (Table 3 in SI, g = 10 m/s^2): dry sand (Drucker-Prager: rho = 1500 kg/m^3,
 // K = 500 kPa, G = 320 kPa, phi = 35 deg, psi = 25 deg, no cohesion or tension; grains apart

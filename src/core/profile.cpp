@@ -24,6 +24,8 @@ const char* stageName(Stage stage) {
       return "stress_force";
     case Stage::kBodies:
       return "bodies";
+    case Stage::kSph:
+      return "sph";
     case Stage::kCount:
       break;
   }

@@ -11,6 +11,7 @@
 #include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/mpm/constitutive.hpp"
 #include "mpm_sdem/core/rigid/block_checks.hpp"
+#include "sph/sph_step.hpp"
 
 namespace mpm_sdem {
 
@@ -26,6 +27,8 @@ const char* stepLimitName(StepLimit limit) {
       return "element";
     case StepLimit::kViscous:
       return "viscous";
+    case StepLimit::kSph:
+      return "sph";
     case StepLimit::kMax:
       return "max";
   }
@@ -59,6 +62,23 @@ std::string sizeProblem(const DomainDef& domain, Real cell_size,
     points += (extent.x() + 1) * (extent.y() + 1);  // at most one point per lattice site
   }
   return limits::memoryProblem((cells.x() + pad) * (cells.y() + pad), points);
+}
+
+struct World::SphState {
+  detail::SphSettings settings;
+  std::vector<char> sph_body;  // per body: all its points are SPH particles
+  detail::SphColumns columns;
+  std::vector<std::uint32_t> stamp;  // markBand's node scratch
+  std::uint32_t now = 0;
+  Real mu_max = 0;  // the last force pass's largest approach |mu_ab| (m/s)
+};
+
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+Real World::sphSupport() const {
+  return sph_ ? sph_->settings.support : 0;
 }
 
 World::World(const WorldDef& def) : def_(def) {
@@ -119,6 +139,7 @@ World::World(const WorldDef& def) : def_(def) {
   }
   if (!(largest_spring_scale_ > 0)) largest_spring_scale_ = 1;
 
+  if (def.sph.enabled()) initSph();
   if (!def.blocks.empty())
     blocks_ = std::make_unique<Blocks>(def.blocks, def.block_contact, def.solver.gravity);
   if (!def.fem_bodies.empty()) {
@@ -164,6 +185,38 @@ World::World(const WorldDef& def) : def_(def) {
                   1 / limits::kMinTimeStep);
     throw std::invalid_argument(msg);
   }
+}
+
+void World::initSph() {
+  const SphDef& d = def_.sph;
+  if (def_.solver.stress_update != StressUpdate::kUsf)
+    throw std::invalid_argument(
+        "sph: the SPH particles need solver.stress_update usf (their stress is updated with the "
+        "material points' before the forces, seed 001 sec. 4)");
+  if (!def_.blocks.empty() || !def_.fem_bodies.empty())
+    throw std::invalid_argument(
+        "sph: blocks and FEM bodies do not meet SPH particles yet; leave out the blocks or the "
+        "sph section");
+  const Real hs = d.smoothing_length > 0 ? d.smoothing_length : def_.cell_size;
+  if (!(hs >= 0.5 * def_.cell_size && 2 * hs <= Tiles::kSize * def_.cell_size * (1 + 1e-12)))
+    throw std::invalid_argument(
+        "sph.smoothing_length must lie between 0.5 and 1.5 cells (the kernel reaches twice it, "
+        "and the tiles of 3 cells are the neighbour search's cell list)");
+  const Real R = 2 * hs;
+  if (!(d.viscosity_alpha >= 0 && d.viscosity_beta >= 0))
+    throw std::invalid_argument("sph.viscosity_alpha and viscosity_beta must be >= 0");
+  sph_ = std::make_unique<SphState>();
+  sph_->settings = {d.kernel, R, d.viscosity_alpha, d.viscosity_beta, d.corrected_gradient};
+  sph_->sph_body.assign(def_.bodies.size(), 0);
+  for (int b : d.bodies) {
+    if (b < 0 || b >= static_cast<int>(def_.bodies.size()))
+      throw std::invalid_argument("sph.bodies names no body");
+    sph_->sph_body[b] = 1;
+  }
+  sph_->columns.resize(particles_.size());
+  detail::assignKinds(d.regions, sph_->sph_body, particles_);
+  tiles_.binByKind(particles_, grid_);  // the SPH ranges for the first step's bound
+  tiles_.activate();
 }
 
 CouplingDef World::resolvedCoupling() const {
@@ -301,6 +354,13 @@ TimeStepChoice World::stepBound(Real cfl, Real kappa2) const {
   // eta / rho0 of the most diffusive fluid (the diffusion number h^2 / (4 nu) of an explicit
   // 2D Laplacian at kappa_1 = 0.5).
   if (viscous_dt_ < choice.dt / cfl) choice = {cfl * viscous_dt_, StepLimit::kViscous};
+  if (sph_) {
+    // The SPH particles' signal speed over their smoothing length h_s = R / 2.
+    const Real fastest_sph =
+        detail::sphSignalSpeed(particles_, tiles_, sph_->settings, params_, sph_->mu_max);
+    const Real dt = cfl * sph_->settings.smoothingLength() / fastest_sph;
+    if (fastest_sph > 0 && dt < choice.dt) choice = {dt, StepLimit::kSph};
+  }
   if (fem_ && cfl * fem_->elementStep() < choice.dt)
     choice = {cfl * fem_->elementStep(), StepLimit::kElement};
   if (hasContactBodies() && coupling_->hasSprings()) {
@@ -338,15 +398,20 @@ StepInfo World::step(Real dt) {
   binParticles();
   clearGrid();
   if (def_.solver.stress_update == StressUpdate::kUsf) {
+    // The SPH particles' velocity gradient and stress first: it needs no grid, and the band's
+    // particles lend the grid their affine velocity (transfer.hpp) and their stress.
+    if (sph_) sphStress(stress_lag_);
     particleToGrid(true, false);
     gridVelocity(0, false);
     stressAndInternalForce(stress_lag_);
+    if (sph_) sphForces();  // before any point moves: the pairs are read at x^n
     spreadPointLoads();
     stage(&Coupling::addGridForces);
     gridVelocity(kick, true);
     stage(&Coupling::correctGridVelocity);
     if (corrected) applyWalls(grid_.vel_x, grid_.vel_y);  // a correction may push into a wall
     gridToParticle(dt, info);
+    if (sph_) sphMove(dt, kick, info);
     stress_lag_ = dt;
   } else {
     particleToGrid(true, true);
@@ -413,6 +478,11 @@ void World::spreadPointLoads() {
   detail::withKernel(def_.solver.kernel, [&](auto k) {
     const Particles& P = particles_;
     for (const PointLoad& l : point_loads_) {
+      if (P.kind[l.particle] == kSphParticle) {  // moved by its own acceleration, not the grid
+        sph_->columns.ax[l.particle] += l.force.x() / P.mass[l.particle];
+        sph_->columns.ay[l.particle] += l.force.y() / P.mass[l.particle];
+        continue;
+      }
       const Vec2 at = Vec2(P.x[l.particle], P.y[l.particle]) + l.offset;
       detail::spreadPointLoad<decltype(k)>(grid_, at, P.half_size[l.particle], l.force);
     }
@@ -420,8 +490,42 @@ void World::spreadPointLoads() {
 }
 
 void World::binParticles() {
+  if (sph_) return binWithSph();
   StageTimer timer(profile_, Stage::kSort);
   tiles_.bin(particles_, grid_);
+}
+
+void World::binWithSph() {
+  {
+    StageTimer timer(profile_, Stage::kSph);
+    detail::assignKinds(def_.sph.regions, sph_->sph_body, particles_);
+  }
+  {
+    StageTimer timer(profile_, Stage::kSort);
+    tiles_.binByKind(particles_, grid_);
+  }
+  StageTimer timer(profile_, Stage::kSph);
+  detail::markBand(particles_, grid_, def_.solver.kernel, tiles_, sph_->stamp, ++sph_->now);
+  tiles_.activate();
+}
+
+void World::sphStress(Real stress_dt) {
+  StageTimer timer(profile_, Stage::kSph);
+  detail::sphVelocityGradient(particles_, tiles_, sph_->settings, params_, stress_dt,
+                              sph_->columns);
+}
+
+void World::sphForces() {
+  StageTimer timer(profile_, Stage::kSph);
+  sph_->mu_max = detail::sphAcceleration(particles_, tiles_, sph_->settings, params_,
+                                         def_.solver.gravity, sph_->columns);
+}
+
+void World::sphMove(Real dt, Real kick, StepInfo& info) {
+  StageTimer timer(profile_, Stage::kSph);
+  const detail::G2PSettings s{def_.solver.pic_fraction, dt, def_.domain.min, def_.domain.max};
+  detail::sphKickDrift(particles_, tiles_, sph_->columns, kick, def_.solver.damping, s,
+                       info.clamped, info.finite);
 }
 
 template <class F>
@@ -484,11 +588,8 @@ void World::gridVelocity(Real kick, bool after_force) {
     const Real m = G.mass[i];
     if (m > 0) {
       // Eq. 11 and 17: total nodal force, internal plus gravity (eq. 13-14).
-      Real fx = G.force_x[i] + m * gx, fy = G.force_y[i] + m * gy;
-      if (damping > 0) {
-        fx -= damping * std::abs(fx) * (G.vel0_x[i] > 0 ? 1 : G.vel0_x[i] < 0 ? -1 : 0);
-        fy -= damping * std::abs(fy) * (G.vel0_y[i] > 0 ? 1 : G.vel0_y[i] < 0 ? -1 : 0);
-      }
+      const Real fx = detail::localDamping(G.force_x[i] + m * gx, G.vel0_x[i], damping);
+      const Real fy = detail::localDamping(G.force_y[i] + m * gy, G.vel0_y[i], damping);
       G.vel_x[i] = G.vel0_x[i] + kick * fx / m;
       G.vel_y[i] = G.vel0_y[i] + kick * fy / m;
     } else {
@@ -533,12 +634,13 @@ void World::gridToParticle(Real dt, StepInfo& info) {
   const bool usl = def_.solver.stress_update == StressUpdate::kUsl;
   detail::withKernel(def_.solver.kernel, [&](auto k) {
     using K = decltype(k);
+    const Tiles* material_points = sph_ ? &tiles_ : nullptr;  // only those, with SPH
     auto run = [&](auto scheme) {
       constexpr TransferScheme kScheme = decltype(scheme)::value;
       usl ? detail::gridToParticle<K, kScheme, true>(particles_, grid_, s, info.clamped,
-                                                     info.finite)
+                                                     info.finite, material_points)
           : detail::gridToParticle<K, kScheme, false>(particles_, grid_, s, info.clamped,
-                                                      info.finite);
+                                                      info.finite, material_points);
     };
     switch (def_.solver.transfer) {
       case TransferScheme::kPic:

@@ -16,6 +16,7 @@ enum class Stage : int {
   kConstitutive,  // stress update of USL
   kStress,        // USF: velocity gradient, stress update and internal force in one sweep
   kBodies,        // solid bodies: blocks' springs and Box2D, FEM bodies' elements and step
+  kSph,  // SPH particles (seed 001): kinds and band, velocity gradient, stress, forces, move
   kCount
 };
 

@@ -19,6 +19,7 @@
 #include "mpm_sdem/core/mpm/tiles.hpp"
 #include "mpm_sdem/core/profile.hpp"
 #include "mpm_sdem/core/rigid/blocks.hpp"
+#include "mpm_sdem/core/sph/sph.hpp"
 #include "mpm_sdem/core/types.hpp"
 
 namespace mpm_sdem {
@@ -66,6 +67,7 @@ struct WorldDef {
   BlockContactDef block_contact;
   std::vector<FemBodyDef> fem_bodies;  // deformable bodies (seed 002), fixed for the world's life
   CouplingDef coupling;  // contact between material and blocks (scheme and its settings)
+  SphDef sph;            // the SPH region or bodies (seed 001); none by default
 };
 
 // Whether a world of this domain, cell and bodies fits in memory (limits::memoryProblem, with
@@ -81,7 +83,8 @@ Real stepTowards(Real dt, Real end_time, Real time);
 // Which term set the time step.
 // kElement: the FEM bodies' elements (FemBodies::elementStep times kappa_1).
 // kViscous: a fluid's viscous diffusion (h^2 / (2 nu) times kappa_1).
-enum class StepLimit { kFixed, kCfl, kContact, kElement, kViscous, kMax };
+// kSph: the SPH particles' signal speed over the smoothing length (detail::sphSignalSpeed).
+enum class StepLimit { kFixed, kCfl, kContact, kElement, kViscous, kSph, kMax };
 const char* stepLimitName(StepLimit limit);
 
 struct TimeStepChoice {
@@ -99,6 +102,9 @@ class World {
  public:
   // Throws std::invalid_argument on a definition the scene layer should have refused.
   explicit World(const WorldDef& def);
+  ~World();
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
 
   // The stable time step for the current state (CFL term of seed 000 eq. 51), or the fixed one.
   TimeStepChoice chooseTimeStep();
@@ -144,6 +150,11 @@ class World {
   const Particles& particles() const { return particles_; }
   Particles& particles() { return particles_; }
   const Grid& grid() const { return grid_; }
+  // The particles' bins, sorted by kind within a tile when there are SPH particles (Tiles).
+  const Tiles& tiles() const { return tiles_; }
+  // Whether the world has SPH particles or regions (WorldDef::sph), and its kernel radius (m).
+  bool hasSph() const { return sph_ != nullptr; }
+  Real sphSupport() const;
   // Memory held, in bytes: the particle columns with their tile bins, and the grid arrays.
   // Nodes the last step cleared and updated (the tiles within reach of a particle).
   struct Memory {
@@ -176,6 +187,13 @@ class World {
   // bodies meet.
   void linkContactBodies();
   void spreadPointLoads();
+  // Seed 001's SPH particles (sph_step.hpp): kinds and the band before the grid sums, then
+  // their velocity gradient and stress, their accelerations, and their move.
+  void initSph();
+  void binWithSph();
+  void sphStress(Real stress_dt);
+  void sphForces();
+  void sphMove(Real dt, Real kick, StepInfo& info);
   // Everything solid the material meets: the rigid blocks, the FEM bodies, both (the set), or
   // nullptr.
   ContactBodies* contactBodies() const {
@@ -195,6 +213,8 @@ class World {
   std::unique_ptr<FemBodies> fem_;
   std::unique_ptr<ContactSet> set_;  // when there are blocks and FEM bodies
   std::unique_ptr<Coupling> coupling_;
+  struct SphState;  // sph_step.hpp's columns and settings; null without SPH
+  std::unique_ptr<SphState> sph_;
   // For the contact term of the time step: the smallest mass per spring scale of a point
   // (kg/m; impSpringScale) and the largest scale.
   Real lightest_point_ = 0;

@@ -1,8 +1,6 @@
 #include "mpm_sdem/core/mpm/grid.hpp"
 #include "mpm_sdem/core/mpm/particles.hpp"
 
-#include <type_traits>
-
 namespace mpm_sdem {
 
 void Particles::resize(std::size_t n) {
@@ -14,8 +12,8 @@ void Particles::resize(std::size_t n) {
 namespace {
 
 template <class T>
-void gather(std::vector<T>& column, const std::vector<int>& order, std::vector<T>& scratch) {
-  scratch.resize(column.size());
+void gather(std::vector<T>& column, const std::vector<int>& order) {
+  std::vector<T> scratch(column.size());
   for (std::size_t k = 0; k < order.size(); ++k) scratch[k] = column[order[k]];
   column.swap(scratch);
 }
@@ -23,14 +21,7 @@ void gather(std::vector<T>& column, const std::vector<int>& order, std::vector<T
 }  // namespace
 
 void Particles::permute(const std::vector<int>& order) {
-  std::vector<Real> real_scratch;
-  std::vector<std::uint16_t> int_scratch;
-  forEachColumn([&](auto& column) {
-    if constexpr (std::is_same_v<std::decay_t<decltype(column[0])>, Real>)
-      gather(column, order, real_scratch);
-    else
-      gather(column, order, int_scratch);
-  });
+  forEachColumn([&](auto& column) { gather(column, order); });
 }
 
 void Grid::init(const Vec2& domain_min, int domain_cells_x, int domain_cells_y, Real cell_size) {

@@ -12,6 +12,8 @@ void Tiles::init(const Grid& g) {
   ny = (g.ny + kSize - 1) / kSize;
   const std::size_t n = static_cast<std::size_t>(nx) * ny;
   start.assign(n + 1, 0);
+  mpm_end.assign(n, 0);
+  grid_end.assign(n, 0);
   reach_.assign(n, 0);
   order.clear();
   for (auto& c : colour) c.clear();
@@ -21,10 +23,21 @@ void Tiles::init(const Grid& g) {
 }
 
 void Tiles::bin(const Particles& P, const Grid& g) {
+  sort(P, g, false);
+  activate();
+}
+
+void Tiles::binByKind(const Particles& P, const Grid& g) {
+  sort(P, g, true);
+}
+
+void Tiles::sort(const Particles& P, const Grid& g, bool by_kind) {
   const long n = static_cast<long>(P.size());
   key_.resize(n);
   order.resize(n);
-  const int tiles = nx * ny;
+  // Keys are tile * kinds + kind; one kind when kinds are not told apart.
+  const int kinds = by_kind ? 2 : 1;
+  const int tiles = nx * ny * kinds;
   counts_.resize(static_cast<std::size_t>(omp_get_max_threads()) * tiles);
   const Real inv_h = g.inv_h, ox = g.origin.x(), oy = g.origin.y();
   const int last_x = nx - 1, last_y = ny - 1;
@@ -42,7 +55,8 @@ void Tiles::bin(const Particles& P, const Grid& g) {
       // guard against a non-finite position, which the step reports separately.
       const int a = static_cast<int>((P.x[p] - ox) * inv_h) / kSize;
       const int b = static_cast<int>((P.y[p] - oy) * inv_h) / kSize;
-      key_[p] = std::clamp(a, 0, last_x) + std::clamp(b, 0, last_y) * nx;
+      const int t = std::clamp(a, 0, last_x) + std::clamp(b, 0, last_y) * nx;
+      key_[p] = by_kind ? 2 * t + P.kind[p] : t;
       ++count[key_[p]];
     }
 #pragma omp barrier
@@ -50,7 +64,8 @@ void Tiles::bin(const Particles& P, const Grid& g) {
     {
       int next = 0;
       for (int t = 0; t < tiles; ++t) {
-        start[t] = next;
+        if (t % kinds == 0) start[t / kinds] = next;
+        if (t % kinds == 1) mpm_end[t / kinds] = next;
         for (int k = 0; k < threads; ++k) {
           int& c = counts_[static_cast<std::size_t>(k) * tiles + t];
           const int m = c;
@@ -58,17 +73,23 @@ void Tiles::bin(const Particles& P, const Grid& g) {
           next += m;
         }
       }
-      start[tiles] = next;
+      start[tiles / kinds] = next;
     }
     for (long p = lo; p < hi; ++p) order[count[key_[p]]++] = static_cast<int>(p);
   }
+  if (!by_kind) std::copy(start.begin() + 1, start.end(), mpm_end.begin());
+  grid_end = mpm_end;
+}
 
+void Tiles::activate() {
+  const int tiles = nx * ny;
+  const int last_x = nx - 1, last_y = ny - 1;
   for (auto& c : colour) c.clear();
   previous.swap(active);
   active.clear();
   std::fill(reach_.begin(), reach_.end(), 0);
   for (int t = 0; t < tiles; ++t) {
-    if (start[t + 1] == start[t]) continue;
+    if (grid_end[t] == start[t]) continue;
     const int a = t % nx, b = t / nx;
     colour[(a & 1) | ((b & 1) << 1)].push_back(t);
     // A particle writes nodes from one before its tile to two past it: the neighbouring tiles.

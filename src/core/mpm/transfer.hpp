@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <optional>
+#include <type_traits>
 
 #include "mpm_sdem/core/mpm/constitutive.hpp"
 #include "mpm_sdem/core/mpm/grid.hpp"
@@ -23,47 +24,68 @@ inline void stencils(const Grid& g, Real x, Real y, Real lp, Real& xg, Real& yg,
   K::stencil(yg, lp, sy);
 }
 
-// Run body(p) for every particle, tile colour by tile colour; the tiles of one colour are shared
-// among the threads (see Tiles: no two of them write the same node).
-template <class Body>
-void forEachParticleByColour(const Tiles& T, Body&& body) {
+// Run body(p) for every particle of the grid sums, tile colour by tile colour; the tiles of one
+// colour are shared among the threads (see Tiles: no two of them write the same node). With
+// band(p), the SPH particles of the transition band go to band instead (they are updated by the
+// SPH sums, and only lend the grid their mass, momentum and stress).
+template <class Body, class Band>
+void forEachParticleByColour(const Tiles& T, Body&& body, Band&& band) {
   for (const std::vector<int>& tiles : T.colour) {
     const long count = static_cast<long>(tiles.size());
 #pragma omp parallel for schedule(static)
     for (long k = 0; k < count; ++k) {
       const int t = tiles[k];
-      for (int q = T.start[t]; q < T.start[t + 1]; ++q) body(T.order[q]);
+      for (int q = T.start[t]; q < T.mpm_end[t]; ++q) body(T.order[q]);
+      for (int q = T.mpm_end[t]; q < T.grid_end[t]; ++q) band(T.order[q]);
     }
   }
+}
+template <class Body>
+void forEachParticleByColour(const Tiles& T, Body&& body) {
+  forEachParticleByColour(T, body, body);
 }
 
 // P2G: nodal mass (eq. 18), momentum (eq. 19, or eq. 30 with the APIC affine term) and internal
 // force f_I = -sum_p V_p sigma_p grad S_Ip (eq. 13). Gravity is added on the grid (eq. 14 with a
 // uniform body force equals m_I g).
+// The SPH particles of the transition band lend the nodes the affine velocity field their own
+// velocity gradient gives, v_p + L_p (x_I - x_p), in every transfer scheme: without it the
+// band's nodes see a velocity field smoothed towards the particles' (the coupled bar of seed
+// 001 sec. 5.2 came to a strain 2.4% short; with it, 0.01%).
+enum AffineSource { kNoAffine, kAffineFromB, kAffineFromL };
+
 template <class K, bool kApic, bool kMomentum, bool kForce>
 void particleToGrid(const Particles& P, Grid& G, const Tiles& T) {
   constexpr int S = K::kSupport;
-  const Real inv_h = G.inv_h;
+  const Real h = G.h, inv_h = G.inv_h;
   const int nx = G.nx;
   Real* gm = G.mass.data();
   Real* gpx = G.mom_x.data();
   Real* gpy = G.mom_y.data();
   Real* gfx = G.force_x.data();
   Real* gfy = G.force_y.data();
-  forEachParticleByColour(T, [&](int p) {
+  auto deposit = [&](int p, auto source) {
+    constexpr AffineSource kAffine = decltype(source)::value;
     Real xg, yg;
     Stencil1D sx, sy;
     stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
     const Real m = P.mass[p];
     const Real mvx = m * P.vx[p], mvy = m * P.vy[p];
-    // m B D^-1 (x_I - x_p) with D = diag(second moments) h^2 and offsets in grid units r h.
+    // m C (x_I - x_p) with offsets in grid units r h: APIC's C = B D^-1 with D = diag(second
+    // moments) h^2, or an SPH particle's C = L.
     Real cxx = 0, cxy = 0, cyx = 0, cyy = 0;
-    if (kApic) {
+    if constexpr (kAffine == kAffineFromB) {
       const Real ax = m * inv_h / sx.second_moment, ay = m * inv_h / sy.second_moment;
       cxx = P.bxx[p] * ax;
       cxy = P.bxy[p] * ay;
       cyx = P.byx[p] * ax;
       cyy = P.byy[p] * ay;
+    } else if constexpr (kAffine == kAffineFromL) {
+      const Real a = m * h;
+      cxx = P.lxx[p] * a;
+      cxy = P.lxy[p] * a;
+      cyx = P.lyx[p] * a;
+      cyy = P.lyy[p] * a;
     }
     Real sxx = 0, syy = 0, sxy = 0;
     if (kForce) {
@@ -93,7 +115,11 @@ void particleToGrid(const Particles& P, Grid& G, const Tiles& T) {
         }
       }
     }
-  });
+  };
+  using Points = std::integral_constant<AffineSource, kApic ? kAffineFromB : kNoAffine>;
+  using Band = std::integral_constant<AffineSource, kAffineFromL>;
+  forEachParticleByColour(
+      T, [&](int p) { deposit(p, Points{}); }, [&](int p) { deposit(p, Band{}); });
 }
 
 // The stress and volume of one point over dt with its velocity gradient L_p: Jaumann-rate
@@ -125,6 +151,8 @@ inline void updatePointStress(const MaterialParams& m, Particles& P, long p, Rea
 // velocity gradient L_p = sum_I v_I (grad S_Ip)^T from the pre-kick grid velocity (eq. 21-22),
 // the stress update over dt with it (skipped when dt = 0, the first step), then the internal
 // force of the new stress onto the same nodes (eq. 13).
+// The SPH particles of the transition band lend the nodes their stress, which the SPH sums
+// updated (seed 001 sec. 4).
 template <class K>
 void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
                             const std::vector<MaterialParams>& materials, Real dt) {
@@ -135,27 +163,7 @@ void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
   const Real* vy0 = G.vel0_y.data();
   Real* gfx = G.force_x.data();
   Real* gfy = G.force_y.data();
-  forEachParticleByColour(T, [&](int p) {
-    Real xg, yg;
-    Stencil1D sx, sy;
-    stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
-    Real lxx = 0, lxy = 0, lyx = 0, lyy = 0;
-    for (int j = 0; j < S; ++j) {
-      const int row = (sy.base + j) * nx + sx.base;
-      for (int i = 0; i < S; ++i) {
-        const Real gx = sx.dw[i] * sy.w[j], gy = sx.w[i] * sy.dw[j];
-        const Real vx = vx0[row + i], vy = vy0[row + i];
-        lxx += vx * gx;
-        lxy += vx * gy;
-        lyx += vy * gx;
-        lyy += vy * gy;
-      }
-    }
-    P.lxx[p] = lxx * inv_h;
-    P.lxy[p] = lxy * inv_h;
-    P.lyx[p] = lyx * inv_h;
-    P.lyy[p] = lyy * inv_h;
-    if (dt != 0) updatePointStress(materials[P.material[p]], P, p, dt);
+  auto spreadStress = [&](int p, const Stencil1D& sx, const Stencil1D& sy) {
     const Real vol = P.volume0[p] * P.J[p] * inv_h;
     const Real sxx = vol * P.sxx[p], syy = vol * P.syy[p], sxy = vol * P.sxy[p];
     for (int j = 0; j < S; ++j) {
@@ -166,7 +174,39 @@ void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
         gfy[row + i] -= sxy * gx + syy * gy;
       }
     }
-  });
+  };
+  auto band = [&](int p) {
+    Real xg, yg;
+    Stencil1D sx, sy;
+    stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+    spreadStress(p, sx, sy);
+  };
+  forEachParticleByColour(
+      T,
+      [&](int p) {
+        Real xg, yg;
+        Stencil1D sx, sy;
+        stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+        Real lxx = 0, lxy = 0, lyx = 0, lyy = 0;
+        for (int j = 0; j < S; ++j) {
+          const int row = (sy.base + j) * nx + sx.base;
+          for (int i = 0; i < S; ++i) {
+            const Real gx = sx.dw[i] * sy.w[j], gy = sx.w[i] * sy.dw[j];
+            const Real vx = vx0[row + i], vy = vy0[row + i];
+            lxx += vx * gx;
+            lxy += vx * gy;
+            lyx += vy * gx;
+            lyy += vy * gy;
+          }
+        }
+        P.lxx[p] = lxx * inv_h;
+        P.lxy[p] = lxy * inv_h;
+        P.lyx[p] = lyx * inv_h;
+        P.lyy[p] = lyy * inv_h;
+        if (dt != 0) updatePointStress(materials[P.material[p]], P, p, dt);
+        spreadStress(p, sx, sy);
+      },
+      band);
 }
 
 struct G2PSettings {
@@ -175,19 +215,48 @@ struct G2PSettings {
   Vec2 lo, hi;  // domain box: points are kept inside it
 };
 
+// Local non-viscous (Cundall) damping of one force component f against the velocity v:
+// f - damping |f| sign(v) (SolverDef::damping); for a force per unit mass alike.
+inline Real localDamping(Real f, Real v, Real damping) {
+  if (!(damping > 0)) return f;
+  return f - damping * std::abs(f) * (v > 0 ? 1 : v < 0 ? -1 : 0);
+}
+
+// x_p += dt v, kept inside the domain box (counted in clamped); a non-finite position is not
+// taken (bad = 1), so that no stencil ever leaves the grid. Every particle moves through here,
+// material point or SPH particle.
+inline void moveInside(Particles& P, long p, const G2PSettings& s, Real vx, Real vy, long& clamped,
+                       int& bad) {
+  Real x = P.x[p] + s.dt * vx, y = P.y[p] + s.dt * vy;
+  if (!std::isfinite(x) || !std::isfinite(y)) {
+    bad = 1;
+    return;
+  }
+  if (x < s.lo.x() || x > s.hi.x() || y < s.lo.y() || y > s.hi.y()) {
+    ++clamped;
+    x = std::fmin(std::fmax(x, s.lo.x()), s.hi.x());
+    y = std::fmin(std::fmax(y, s.lo.y()), s.hi.y());
+  }
+  P.x[p] = x;
+  P.y[p] = y;
+}
+
 // G2P: PIC velocity (eq. 26), FLIP blend (eq. 28) or APIC affine matrix (eq. 31), then
 // x_p += dt sum_I S_Ip v_I (the PIC velocity moves the point in every scheme). kGradient (USL):
 // also L_p from the post-kick velocity.
+// Without SPH particles every point in storage order; with them (T given), the material points
+// of each tile.
 template <class K, TransferScheme kScheme, bool kGradient>
-void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& clamped,
-                    bool& finite) {
+void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& clamped, bool& finite,
+                    const Tiles* T = nullptr) {
   constexpr int S = K::kSupport;
   const long n = static_cast<long>(P.size());
   const Real h = G.h, inv_h = G.inv_h;
   long clamped_count = 0;
   int bad = 0;
-#pragma omp parallel for schedule(static) reduction(+ : clamped_count) reduction(| : bad)
-  for (long p = 0; p < n; ++p) {
+  // The reduction's private copies are passed in: a lambda made outside the parallel region
+  // would capture the shared ones.
+  auto point = [&](long p, long& clamped_here, int& bad_here) {
     Real xg, yg;
     Stencil1D sx, sy;
     stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
@@ -242,18 +311,16 @@ void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& cla
       P.lyx[p] = lyx;
       P.lyy[p] = lyy;
     }
-    Real x = P.x[p] + s.dt * vx, y = P.y[p] + s.dt * vy;
-    if (!std::isfinite(x) || !std::isfinite(y)) {
-      bad = 1;  // keep the last finite position so that no stencil ever leaves the grid
-      continue;
-    }
-    if (x < s.lo.x() || x > s.hi.x() || y < s.lo.y() || y > s.hi.y()) {
-      ++clamped_count;
-      x = std::fmin(std::fmax(x, s.lo.x()), s.hi.x());
-      y = std::fmin(std::fmax(y, s.lo.y()), s.hi.y());
-    }
-    P.x[p] = x;
-    P.y[p] = y;
+    moveInside(P, p, s, vx, vy, clamped_here, bad_here);
+  };
+  if (T) {
+    const long tiles = static_cast<long>(T->start.size()) - 1;
+#pragma omp parallel for schedule(static) reduction(+ : clamped_count) reduction(| : bad)
+    for (long t = 0; t < tiles; ++t)
+      for (int q = T->start[t]; q < T->mpm_end[t]; ++q) point(T->order[q], clamped_count, bad);
+  } else {
+#pragma omp parallel for schedule(static) reduction(+ : clamped_count) reduction(| : bad)
+    for (long p = 0; p < n; ++p) point(p, clamped_count, bad);
   }
   clamped += clamped_count;
   if (bad) finite = false;

@@ -27,6 +27,8 @@ struct Particles {
   std::vector<Real> depth;
   std::vector<std::uint16_t> material;  // index into the world's materials
   std::vector<std::uint16_t> body;      // index of the body the point was filled from
+  // ParticleKind: updated from the grid (material point) or by the SPH sums (seed 001).
+  std::vector<std::uint8_t> kind;
 
   std::size_t size() const { return x.size(); }
   void resize(std::size_t n);
@@ -41,6 +43,7 @@ struct Particles {
       f(*c);
     f(material);
     f(body);
+    f(kind);
   }
   template <class F>
   void forEachColumn(F&& f) const {

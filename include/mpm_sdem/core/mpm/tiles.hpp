@@ -21,9 +21,14 @@ struct Tiles {
   // threads enough tiles of each colour to share in small scenes.
   static constexpr int kSize = 3;
 
-  int nx = 0, ny = 0;                      // tiles per axis; tile (a, b) holds nodes a*kSize ...
-  std::vector<int> start;                  // per tile, its first entry in order (size tiles+1)
-  std::vector<int> order;                  // particle indices grouped by tile, ascending in a tile
+  int nx = 0, ny = 0;      // tiles per axis; tile (a, b) holds nodes a*kSize ...
+  std::vector<int> start;  // per tile, its first entry in order (size tiles+1)
+  std::vector<int> order;  // particle indices grouped by tile, ascending in a tile
+  // With SPH particles (binByKind), tile t's entries order[start[t], start[t+1]) hold its
+  // material points up to mpm_end[t], then its SPH particles; the grid sums (P2G) take
+  // order[start[t], grid_end[t]): the material points and the SPH particles of the transition
+  // band (seed 001 sec. 4). Without SPH both are start[t+1].
+  std::vector<int> mpm_end, grid_end;
   std::array<std::vector<int>, 4> colour;  // occupied tiles of each colour, ascending
   std::vector<int> active;                 // node tiles within reach of a particle, ascending
   std::vector<int> previous;               // active tiles of the previous binning
@@ -32,8 +37,14 @@ struct Tiles {
   void init(const Grid& g);
   // Bytes of the per-particle arrays (sort keys and order).
   std::size_t particleBytes() const { return (key_.capacity() + order.capacity()) * sizeof(int); }
-  // Bin the particles by the cell they are in (stable counting sort, O(N + tiles)).
+  // Bin the particles by the cell they are in (stable counting sort, O(N + tiles)), every one
+  // taking part in the grid sums; then activate().
   void bin(const Particles& P, const Grid& g);
+  // Bin by tile and, within a tile, by Particles::kind (material points first). grid_end is
+  // mpm_end: the caller adds the SPH particles of the band, then calls activate().
+  void binByKind(const Particles& P, const Grid& g);
+  // The colour lists and active node tiles from the tiles' grid entries [start, grid_end).
+  void activate();
   // Call f(first_node, count) for each row segment of nodes in tile t.
   template <class F>
   void forRows(const Grid& g, int t, F&& f) const {
@@ -44,7 +55,9 @@ struct Tiles {
   }
 
  private:
-  std::vector<int> key_;              // per particle, its tile
+  void sort(const Particles& P, const Grid& g, bool by_kind);
+
+  std::vector<int> key_;              // per particle, its tile (times 2, plus its kind)
   std::vector<int> counts_;           // per thread and tile: count, then write position
   std::vector<unsigned char> reach_;  // per tile, 1 if within reach of a particle
 };
