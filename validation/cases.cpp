@@ -1025,3 +1025,70 @@ void gateReferenceAt(int i, Real& mean, Real& lo, Real& hi) {
 }
 
 }  // namespace mpm_sdem::cases
+
+namespace mpm_sdem::cases {
+
+Biaxial biaxial(Real h, const SphDef& sph, Real transits) {
+  // A 1 m copper plate (seed 001 Table 1, nu = 0.3) free in a larger domain, no gravity; the
+  // traction on each face is shared by its outer layer of points and acts on the face
+  // (World::setPointLoad), ramped over half the run and held with local damping 0.1.
+  const Real W = 1, margin = 4 * h, sigma = 1e6;
+  WorldDef def;
+  def.domain.max = Vec2(W + 2 * margin, W + 2 * margin);
+  def.cell_size = h;
+  def.solver.gravity = Vec2(0, 0);
+  def.solver.damping = 0.1;
+  MaterialDef m;
+  m.name = "copper";
+  m.density = 8790;
+  m.bulk_modulus = 128e9 / (3 * (1 - 2 * 0.3));
+  m.shear_modulus = 128e9 / (2 * 1.3);
+  def.materials.push_back(m);
+  BodyDef b;
+  b.name = "plate";
+  b.shape.min = Vec2(margin, margin);
+  b.shape.max = Vec2(margin + W, margin + W);
+  def.bodies.push_back(b);
+  def.sph = sph;
+  World w(def);
+  const Particles& P = w.particles();
+  const Real spacing = h / 2, share = sigma * spacing;
+  const Vec2 lo = b.shape.min, hi = b.shape.max;
+  const Real c = std::sqrt((m.bulk_modulus + 4 * m.shear_modulus / 3) / m.density);
+  const Real end = transits * W / c, ramp = 0.5 * end;
+  Biaxial out;
+  while (w.time() < end) {
+    const Real f = share * std::min<Real>(1, w.time() / ramp);
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      Vec2 force(0, 0), offset(0, 0);
+      if (P.x[p] < lo.x() + spacing) force.x() += f, offset.x() = -spacing / 2;
+      if (P.x[p] > hi.x() - spacing) force.x() -= f, offset.x() = spacing / 2;
+      if (P.y[p] < lo.y() + spacing) force.y() += f, offset.y() = -spacing / 2;
+      if (P.y[p] > hi.y() - spacing) force.y() -= f, offset.y() = spacing / 2;
+      if (!force.isZero()) w.setPointLoad(static_cast<int>(p), force, offset);
+    }
+    w.step(stepTowards(w.chooseTimeStep().dt, end, w.time()));
+  }
+  // sigma_xx along the horizontal centre line and sigma_yy along the vertical one: the points
+  // within half a spacing of each line.
+  const Vec2 mid = 0.5 * (lo + hi);
+  Real sum = 0, n = 0;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const bool on_h = std::abs(P.y[p] - mid.y()) < spacing,
+               on_v = std::abs(P.x[p] - mid.x()) < spacing;
+    for (int axis = 0; axis < 2; ++axis) {
+      if (!(axis == 0 ? on_h : on_v)) continue;
+      const Real s = -(axis == 0 ? P.sxx[p] : P.syy[p]) / sigma;
+      out.worst = std::fmax(out.worst, std::abs(s - 1));
+      sum += s;
+      n += 1;
+      if (P.kind[p] == kSphParticle) ++out.sph_points;
+    }
+  }
+  out.mean = sum / n;
+  out.line_points = static_cast<long>(n);
+  out.steps = w.stepCount();
+  return out;
+}
+
+}  // namespace mpm_sdem::cases

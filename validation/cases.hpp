@@ -214,6 +214,17 @@ struct BarStrain {
 BarStrain stressBar(Real cell_size, int points_per_cell, Real sigma, Real ramp_transits,
                     Real hold_transits, const SphDef& sph = {});
 
+// Seed 001 sec. 6.1: a 1 m copper plate (Table 1, nu = 0.3) under a biaxial compressive
+// traction of 1 MPa on its faces (on the outer material points), ramped over half of
+// `transits` P-wave transits and held with local damping; with sph, its regions are SPH.
+// Returns -sigma_xx / 1 MPa along the horizontal centre line and -sigma_yy / 1 MPa along the
+// vertical one: their mean and largest deviation from 1, and how many of those points are SPH.
+struct Biaxial {
+  Real mean = 0, worst = 0;
+  long line_points = 0, sph_points = 0, steps = 0;
+};
+Biaxial biaxial(Real cell_size, const SphDef& sph, Real transits = 40);
+
 // Seed 000 sec. 5.3 (Table 3 in SI, g = 10 m/s^2): dry sand (Drucker-Prager: rho = 1500 kg/m^3,
 // K = 500 kPa, G = 320 kPa, phi = 35 deg, psi = 25 deg, no cohesion or tension; grains apart
 // beyond J = 1.27, MaterialDef::separation_volume_ratio) filled 20 cm

@@ -189,22 +189,11 @@ World::World(const WorldDef& def) : def_(def) {
 
 void World::initSph() {
   const SphDef& d = def_.sph;
-  if (def_.solver.stress_update != StressUpdate::kUsf)
-    throw std::invalid_argument(
-        "sph: the SPH particles need solver.stress_update usf (their stress is updated with the "
-        "material points' before the forces, seed 001 sec. 4)");
-  if (!def_.blocks.empty() || !def_.fem_bodies.empty())
-    throw std::invalid_argument(
-        "sph: blocks and FEM bodies do not meet SPH particles yet; leave out the blocks or the "
-        "sph section");
-  const Real hs = d.smoothing_length > 0 ? d.smoothing_length : def_.cell_size;
-  if (!(hs >= 0.5 * def_.cell_size && 2 * hs <= Tiles::kSize * def_.cell_size * (1 + 1e-12)))
-    throw std::invalid_argument(
-        "sph.smoothing_length must lie between 0.5 and 1.5 cells (the kernel reaches twice it, "
-        "and the tiles of 3 cells are the neighbour search's cell list)");
-  const Real R = 2 * hs;
-  if (!(d.viscosity_alpha >= 0 && d.viscosity_beta >= 0))
-    throw std::invalid_argument("sph.viscosity_alpha and viscosity_beta must be >= 0");
+  const Problem problem =
+      sphProblem(d, def_.cell_size, def_.solver.stress_update == StressUpdate::kUsf,
+                 !def_.blocks.empty() || !def_.fem_bodies.empty());
+  if (!problem.empty()) throw std::invalid_argument("sph." + problem.text());
+  const Real R = 2 * (d.smoothing_length > 0 ? d.smoothing_length : def_.cell_size);
   sph_ = std::make_unique<SphState>();
   sph_->settings = {d.kernel, R, d.viscosity_alpha, d.viscosity_beta, d.corrected_gradient};
   sph_->sph_body.assign(def_.bodies.size(), 0);

@@ -710,12 +710,57 @@ void parseFemBodies(const Context& ctx, const MapReader& top, Scene& s) {
                  "own); use particle_surface (seed 002's) or imp");
 }
 
+// The SPH region or bodies (seed 001): regions as body shapes, bodies by name.
+void parseSph(const Context& ctx, const MapReader& top, Scene& s) {
+  if (!top.has("sph")) return;
+  MapReader r(ctx, top.node("sph"), "sph",
+              {"regions", "bodies", "kernel", "smoothing_length", "viscosity_alpha",
+               "viscosity_beta", "corrected_gradient"});
+  SphDef& d = s.world.sph;
+  if (r.has("regions")) {
+    const YAML::Node list = r.node("regions");
+    if (!list.IsSequence()) ctx.fail(list, r.path("regions"), "expected a list of shapes");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string path = r.path("regions") + "[" + std::to_string(i) + "]";
+      MapReader region(ctx, list[i], path, {"shape", "min", "max", "vertices", "center", "radius"});
+      d.regions.push_back(parseShape(ctx, region));
+    }
+  }
+  if (r.has("bodies")) {
+    const YAML::Node list = r.node("bodies");
+    if (!list.IsSequence()) ctx.fail(list, r.path("bodies"), "expected a list of body names");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string name = list[i].IsScalar() ? list[i].Scalar() : "";
+      int found = -1;
+      for (std::size_t b = 0; b < s.world.bodies.size(); ++b)
+        if (s.world.bodies[b].name == name) found = static_cast<int>(b);
+      if (found < 0)
+        ctx.fail(list[i], r.path("bodies") + "[" + std::to_string(i) + "]",
+                 "no body named '" + name + "'; name a body of the bodies list");
+      d.bodies.push_back(found);
+    }
+  }
+  r.require(d.enabled(), "regions", "give at least one region or body, or leave out sph");
+  d.kernel = r.choice<SphKernel>(
+      "kernel",
+      {{"cubic_spline", SphKernel::kCubicSpline}, {"wendland_c2", SphKernel::kWendlandC2}},
+      d.kernel);
+  d.smoothing_length = r.number("smoothing_length", "m", s.world.cell_size);
+  d.viscosity_alpha = r.number("viscosity_alpha", "(dimensionless)", d.viscosity_alpha);
+  d.viscosity_beta = r.number("viscosity_beta", "(dimensionless)", d.viscosity_beta);
+  d.corrected_gradient = r.boolean("corrected_gradient", d.corrected_gradient);
+  const Problem p =
+      sphProblem(d, s.world.cell_size, s.world.solver.stress_update == StressUpdate::kUsf,
+                 !s.world.blocks.empty() || !s.world.fem_bodies.empty());
+  r.require(p.empty(), p.key.c_str(), p.message);
+}
+
 Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& source) {
   Scene s;
   s.source = source;
   MapReader top(ctx, root, "",
                 {"name", "description", "domain", "grid", "solver", "time", "materials", "bodies",
-                 "output", "limits", "blocks", "block_contact", "coupling", "fem_bodies"});
+                 "output", "limits", "blocks", "block_contact", "coupling", "fem_bodies", "sph"});
   s.name = top.has("name") ? top.name("name") : "";
   s.description = top.text("description", "");
   top.require(s.description.size() <= 4096, "description",
@@ -741,6 +786,7 @@ Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& s
   parseBodies(ctx, top, s, by_name);
   parseBlocks(ctx, top, s);
   parseFemBodies(ctx, top, s);
+  parseSph(ctx, top, s);
 
   if (top.has("output")) {
     MapReader o(ctx, top.node("output"), "output", {"interval", "particles"});

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/mpm/shapes.hpp"
 #include "mpm_sdem/core/types.hpp"
 
@@ -46,5 +47,10 @@ struct SphDef {
 
   bool enabled() const { return !regions.empty() || !bodies.empty(); }
 };
+
+// Why a world of this cell size cannot take d (empty when it can), naming the key: the smoothing
+// length's range, the viscosity factors', and what SPH particles cannot be combined with yet.
+// The one check, for the scene parser and World.
+Problem sphProblem(const SphDef& d, Real cell_size, bool stress_first, bool solid_bodies);
 
 }  // namespace mpm_sdem
