@@ -103,3 +103,20 @@ TEST(CompareRuns, FemNodesAreRecordedAndCompared) {
   const Comparison other = compareRuns(a, b, 0.005);
   EXPECT_GT(other.fem.largest.back(), 0.0);
 }
+
+// Runs with SPH particles (seed 001): the clouds carry each point's kind, and the SPH sets are
+// counted and compared on their own; a run whose region is smaller has fewer SPH particles.
+TEST(CompareRuns, SphParticlesAreRecordedAndCompared) {
+  const std::string scene = "valid_sph.yaml --set time.end=0.1";
+  const RunSeries a = readRun(record("sph_base", "", scene));
+  const RunSeries b = readRun(record("sph_small", "--set sph.regions.0.max=[0.08,0.25]", scene));
+  ASSERT_FALSE(a.clouds.empty());
+  ASSERT_FALSE(a.clouds.back().sph_xy.empty());
+  EXPECT_LT(b.clouds.back().sph_xy.size(), a.clouds.back().sph_xy.size());
+  const Comparison self = compareRuns(a, a, 0.005);
+  ASSERT_FALSE(self.clouds.sph_distance.empty());
+  EXPECT_EQ(self.clouds.sph_distance.back(), 0.0);
+  EXPECT_EQ(self.clouds.sph_count_a.back(), a.clouds.back().sph_xy.size() / 2);
+  const Comparison other = compareRuns(a, b, 0.005);
+  EXPECT_GT(other.clouds.sph_count_a.back(), other.clouds.sph_count_b.back());
+}

@@ -1028,13 +1028,13 @@ void gateReferenceAt(int i, Real& mean, Real& lo, Real& hi) {
 
 namespace mpm_sdem::cases {
 
-Biaxial biaxial(Real h, const SphDef& sph, Real transits) {
-  // A 1 m copper plate (seed 001 Table 1, nu = 0.3) free in a larger domain, no gravity; the
-  // traction on each face is shared by its outer layer of points and acts on the face
-  // (World::setPointLoad), ramped over half the run and held with local damping 0.1.
-  const Real W = 1, margin = 4 * h, sigma = 1e6;
+namespace {
+
+// A copper plate lo-hi (seed 001 Table 1, nu = 0.3) as one or more bodies in a domain with a
+// margin of 4 cells, no gravity, local damping 0.1 (settling to a static state).
+WorldDef copperPlate(const Vec2& size, Real h, std::vector<BodyDef> bodies, const SphDef& sph) {
   WorldDef def;
-  def.domain.max = Vec2(W + 2 * margin, W + 2 * margin);
+  def.domain.max = size + Vec2(8 * h, 8 * h);
   def.cell_size = h;
   def.solver.gravity = Vec2(0, 0);
   def.solver.damping = 0.1;
@@ -1044,38 +1044,173 @@ Biaxial biaxial(Real h, const SphDef& sph, Real transits) {
   m.bulk_modulus = 128e9 / (3 * (1 - 2 * 0.3));
   m.shear_modulus = 128e9 / (2 * 1.3);
   def.materials.push_back(m);
-  BodyDef b;
-  b.name = "plate";
-  b.shape.min = Vec2(margin, margin);
-  b.shape.max = Vec2(margin + W, margin + W);
-  def.bodies.push_back(b);
+  def.bodies = std::move(bodies);
   def.sph = sph;
-  World w(def);
+  return def;
+}
+
+// Steps w for `transits` P-wave transits of length L with the traction t (Pa, per face: x on
+// the left and right faces, y on the bottom and top, positive pulling outwards) ramped over the
+// first half on the outer points of the box lo-hi; each face's traction is shared by its outer
+// layer of points (spacing s) and acts on the face (World::setPointLoad).
+void loadFaces(World& w, const Vec2& lo, const Vec2& hi, Real s, const Vec2& t, Real L,
+               Real transits) {
   const Particles& P = w.particles();
-  const Real spacing = h / 2, share = sigma * spacing;
-  const Vec2 lo = b.shape.min, hi = b.shape.max;
-  const Real c = std::sqrt((m.bulk_modulus + 4 * m.shear_modulus / 3) / m.density);
-  const Real end = transits * W / c, ramp = 0.5 * end;
-  Biaxial out;
+  const MaterialParams& m = w.materialParams()[0];
+  const Real end = transits * L / std::sqrt(m.modulus_over_density), ramp = 0.5 * end;
   while (w.time() < end) {
-    const Real f = share * std::min<Real>(1, w.time() / ramp);
+    const Real f = s * std::min<Real>(1, w.time() / ramp);
     for (std::size_t p = 0; p < P.size(); ++p) {
       Vec2 force(0, 0), offset(0, 0);
-      if (P.x[p] < lo.x() + spacing) force.x() += f, offset.x() = -spacing / 2;
-      if (P.x[p] > hi.x() - spacing) force.x() -= f, offset.x() = spacing / 2;
-      if (P.y[p] < lo.y() + spacing) force.y() += f, offset.y() = -spacing / 2;
-      if (P.y[p] > hi.y() - spacing) force.y() -= f, offset.y() = spacing / 2;
+      if (P.x[p] < lo.x() + s) force.x() -= f * t.x(), offset.x() = -s / 2;
+      if (P.x[p] > hi.x() - s) force.x() += f * t.x(), offset.x() = s / 2;
+      if (P.y[p] < lo.y() + s) force.y() -= f * t.y(), offset.y() = -s / 2;
+      if (P.y[p] > hi.y() - s) force.y() += f * t.y(), offset.y() = s / 2;
       if (!force.isZero()) w.setPointLoad(static_cast<int>(p), force, offset);
     }
     w.step(stepTowards(w.chooseTimeStep().dt, end, w.time()));
   }
+}
+
+}  // namespace
+
+Kirsch kirsch(Real a, Real S, const Vec2& d) {
+  // Load S along y, theta from the x axis: the textbook solution for a load along x with
+  // cos 2 theta and sin 2 theta negated (the angle measured from the load turns by 90 deg).
+  const Real r2 = d.squaredNorm(), q = a * a / r2, q2 = q * q;
+  const Real th = std::atan2(d.y(), d.x()), c2 = std::cos(2 * th), s2 = std::sin(2 * th);
+  const Real rr = S / 2 * (1 - q) - S / 2 * (1 - 4 * q + 3 * q2) * c2;
+  const Real tt = S / 2 * (1 + q) + S / 2 * (1 + 3 * q2) * c2;
+  const Real rt = S / 2 * (1 + 2 * q - 3 * q2) * s2;
+  const Real c = std::cos(th), s = std::sin(th);
+  return {rr * c * c + tt * s * s - 2 * rt * s * c, rr * s * s + tt * c * c + 2 * rt * s * c,
+          (rr - tt) * s * c + rt * (c * c - s * s)};
+}
+
+PlateHole plateWithHole(Real h, int hole_cells, Real width_over_d, const SphDef& sph,
+                        Real transits) {
+  const Real a = hole_cells * h, W = std::round(2 * a * width_over_d / h) * h;
+  const Vec2 lo(4 * h, 4 * h), hi = lo + Vec2(W, W), c = 0.5 * (lo + hi);
+  // Two bodies, the halves above and below the mid line, each notched by half the hole (a
+  // 128-gon): the body shapes have no holes, and no lattice point lies on the mid line.
+  std::vector<BodyDef> halves(2);
+  for (int k = 0; k < 2; ++k) {
+    BodyDef& b = halves[k];
+    b.name = k == 0 ? "lower" : "upper";
+    b.shape.type = ShapeType::kPolygon;
+    const Real sgn = k == 0 ? -1 : 1, yedge = k == 0 ? lo.y() : hi.y();
+    std::vector<Vec2>& v = b.shape.vertices;
+    v.push_back(Vec2(hi.x(), c.y()));
+    v.push_back(Vec2(hi.x(), yedge));
+    v.push_back(Vec2(lo.x(), yedge));
+    v.push_back(Vec2(lo.x(), c.y()));
+    for (int i = 0; i <= 64; ++i) {  // the half circle from (xc - a, yc) to (xc + a, yc)
+      const Real th = M_PI - M_PI * i / 64;
+      v.push_back(c + a * Vec2(std::cos(th), sgn * std::sin(th)));
+    }
+  }
+  World w(copperPlate(Vec2(W, W), h, halves, sph));
+  // Kirsch's own traction sigma n on every outer face, so that his solution is the finite
+  // plate's exact one (no finite-width correction): each face point carries its share, at the
+  // face (World::setPointLoad), ramped over the first half of the run.
+  const Real S = 1e6, s = h / 2;  // Pa; point spacing (m)
+  const Particles& P = w.particles();
+  struct Load {
+    int p;
+    Vec2 force, offset;
+  };
+  std::vector<Load> loads;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const Vec2 x(P.x[p], P.y[p]);
+    for (const Vec2& n : {Vec2(-1, 0), Vec2(1, 0), Vec2(0, -1), Vec2(0, 1)}) {
+      const Real gap = n.x() < 0   ? x.x() - lo.x()
+                       : n.x() > 0 ? hi.x() - x.x()
+                       : n.y() < 0 ? x.y() - lo.y()
+                                   : hi.y() - x.y();
+      if (gap > s) continue;
+      const Vec2 face = x + n * (s / 2);
+      const Kirsch k = kirsch(a, S, face - c);
+      loads.push_back({static_cast<int>(p),
+                       s * Vec2(k.xx * n.x() + k.xy * n.y(), k.xy * n.x() + k.yy * n.y()),
+                       n * (s / 2)});
+    }
+  }
+  const MaterialParams& m = w.materialParams()[0];
+  const Real end = transits * W / std::sqrt(m.modulus_over_density), ramp = 0.5 * end;
+  std::vector<Vec2> total(P.size(), Vec2::Zero()), offset(P.size(), Vec2::Zero());
+  for (const Load& l : loads) {
+    total[l.p] += l.force;
+    offset[l.p] += l.offset;  // a corner point's load acts at the corner
+  }
+  while (w.time() < end) {
+    const Real f = std::min<Real>(1, w.time() / ramp);
+    for (const Load& l : loads) w.setPointLoad(l.p, f * total[l.p], offset[l.p]);
+    w.step(stepTowards(w.chooseTimeStep().dt, end, w.time()));
+  }
+  // sigma_yy along the mid line out to 3a against Kirsch at each point; and Kirsch's form
+  // 1 + c1 q + c2 q^2 (q = a^2 / r^2) fitted to all of them by least squares, whose value at the
+  // edge, 1 + c1 + c2, is the stress concentration the points give (Kirsch: 3).
+  PlateHole out;
+  Real edge_r = std::numeric_limits<Real>::infinity();
+  Real s11 = 0, s12 = 0, s22 = 0, b1 = 0, b2 = 0;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const Vec2 d(P.x[p] - c.x(), P.y[p] - c.y());
+    if (std::abs(d.y()) > 0.5 * h || std::abs(d.x()) > 3 * a) continue;
+    const Real expected = kirsch(a, S, d).yy / S, got = P.syy[p] / S;
+    const Real rr = d.norm(), err = std::abs(got / expected - 1);
+    out.worst = std::fmax(out.worst, err);
+    ++out.points;
+    if (P.kind[p] == kSphParticle) ++out.sph_points;
+    if (d.x() > 0 && d.y() > 0)
+      out.line.push_back({rr / a, got, expected, P.kind[p] == kSphParticle});
+    const Real q = a * a / (rr * rr), q2 = q * q;
+    s11 += q * q;
+    s12 += q * q2;
+    s22 += q2 * q2;
+    b1 += q * (got - 1);
+    b2 += q2 * (got - 1);
+    if (rr < edge_r - 1e-9 * a) {
+      edge_r = rr;
+      out.edge_error = err;
+      out.edge = got;
+      out.edge_expected = expected;
+    } else if (std::abs(rr - edge_r) <= 1e-9 * a) {
+      out.edge_error = std::fmax(out.edge_error, err);
+    }
+  }
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const Vec2 d(P.x[p] - c.x(), P.y[p] - c.y());
+    if (std::abs(d.y()) > 0.5 * h || std::abs(d.x()) > 3 * a || d.norm() <= a + 1.5 * h) continue;
+    out.worst_inside = std::fmax(out.worst_inside, std::abs(P.syy[p] / kirsch(a, S, d).yy - 1));
+  }
+  std::sort(out.line.begin(), out.line.end(),
+            [](const PlateHole::Sample& x, const PlateHole::Sample& y) { return x.r < y.r; });
+  const Real det = s11 * s22 - s12 * s12;
+  out.fitted_concentration = 1 + (b1 * s22 - b2 * s12) / det + (s11 * b2 - s12 * b1) / det;
+  out.steps = w.stepCount();
+  out.particles = static_cast<long>(P.size());
+  return out;
+}
+
+Biaxial biaxial(Real h, const SphDef& sph, Real transits) {
+  // A 1 m plate, the traction compressive on all four faces.
+  const Real W = 1, sigma = 1e6;
+  const Vec2 lo(4 * h, 4 * h), hi = lo + Vec2(W, W), mid = 0.5 * (lo + hi);
+  BodyDef b;
+  b.name = "plate";
+  b.shape.min = lo;
+  b.shape.max = hi;
+  World w(copperPlate(Vec2(W, W), h, {b}, sph));
+  loadFaces(w, lo, hi, h / 2, Vec2(-sigma, -sigma), W, transits);
   // sigma_xx along the horizontal centre line and sigma_yy along the vertical one: the points
   // within half a spacing of each line.
-  const Vec2 mid = 0.5 * (lo + hi);
+  const Particles& P = w.particles();
+  const Real spacing = h / 2;
+  Biaxial out;
   Real sum = 0, n = 0;
   for (std::size_t p = 0; p < P.size(); ++p) {
-    const bool on_h = std::abs(P.y[p] - mid.y()) < spacing,
-               on_v = std::abs(P.x[p] - mid.x()) < spacing;
+    const bool on_h = std::abs(P.y[p] - mid.y()) < spacing;
+    const bool on_v = std::abs(P.x[p] - mid.x()) < spacing;
     for (int axis = 0; axis < 2; ++axis) {
       if (!(axis == 0 ? on_h : on_v)) continue;
       const Real s = -(axis == 0 ? P.sxx[p] : P.syy[p]) / sigma;

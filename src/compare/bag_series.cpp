@@ -36,6 +36,17 @@ RunSeries readRun(const std::string& path) {
         cloud.xy.push_back(it[0]);
         cloud.xy.push_back(it[1]);
       }
+      bool has_kind = false;  // bags recorded before SPH particles existed have no kind
+      for (const sensor_msgs::PointField& f : c->fields) has_kind = has_kind || f.name == "kind";
+      if (has_kind) {
+        std::size_t k = 0;
+        for (sensor_msgs::PointCloud2ConstIterator<std::uint8_t> it(*c, "kind"); it != it.end();
+             ++it, k += 2) {
+          if (*it != 1) continue;
+          cloud.sph_xy.push_back(cloud.xy[k]);
+          cloud.sph_xy.push_back(cloud.xy[k + 1]);
+        }
+      }
       (fem ? run.fem_nodes : run.clouds).push_back(std::move(cloud));
     } else if (auto s = m.instantiate<mpm_sdem::SimStats>()) {
       run.energy.push_back({s->header.stamp.toSec(), s->total_energy, s->kinetic_energy});

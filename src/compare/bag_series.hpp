@@ -12,6 +12,8 @@ namespace mpm_sdem::compare {
 struct Cloud {
   double time = 0;        // s
   std::vector<float> xy;  // x0, y0, x1, y1, ... (m)
+  // The SPH particles' positions alone (the cloud's field kind == 1; seed 001); empty without.
+  std::vector<float> sph_xy;
 };
 
 struct EnergySample {

@@ -117,6 +117,10 @@ Comparison compareRuns(const RunSeries& a, const RunSeries& b, double raster) {
     out.clouds.time.push_back(a.clouds[i].time);
     out.clouds.distance.push_back(meanNearestDistance(a.clouds[i].xy, b.clouds[j].xy));
     out.clouds.iou.push_back(occupancyIoU(a.clouds[i].xy, b.clouds[j].xy, raster));
+    const std::vector<float>&sa = a.clouds[i].sph_xy, &sb = b.clouds[j].sph_xy;
+    out.clouds.sph_count_a.push_back(sa.size() / 2);
+    out.clouds.sph_count_b.push_back(sb.size() / 2);
+    out.clouds.sph_distance.push_back(sa.empty() || sb.empty() ? -1 : meanNearestDistance(sa, sb));
   });
   forMatched(a.fem_nodes, b.fem_nodes, tc, tc, [&](std::size_t i, std::size_t j) {
     const std::vector<float>&pa = a.fem_nodes[i].xy, &pb = b.fem_nodes[j].xy;

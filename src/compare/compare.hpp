@@ -19,6 +19,9 @@ struct CloudError {
   std::vector<double> time;
   std::vector<double> distance;  // symmetric mean nearest-neighbour distance (m)
   std::vector<double> iou;       // occupancy intersection over union on a raster
+  // SPH particles (seed 001): how many each run has, and the distance between the two SPH
+  // sets (as distance; -1 where either has none).
+  std::vector<double> sph_count_a, sph_count_b, sph_distance;
 };
 
 // FEM bodies' nodes, matched node by node (the same scene meshes the same way).

@@ -34,6 +34,11 @@ void writeCsv(const Comparison& c, const std::string& path) {
   for (std::size_t k = 0; k < c.clouds.time.size(); ++k) {
     f << c.clouds.time[k] << ",cloud_mean_nn_distance_m,,,," << c.clouds.distance[k] << "\n";
     f << c.clouds.time[k] << ",cloud_occupancy_iou,,,," << c.clouds.iou[k] << "\n";
+    if (c.clouds.sph_count_a[k] + c.clouds.sph_count_b[k] == 0) continue;
+    f << c.clouds.time[k] << ",sph_particles,," << c.clouds.sph_count_a[k] << ","
+      << c.clouds.sph_count_b[k] << "," << c.clouds.sph_count_a[k] - c.clouds.sph_count_b[k]
+      << "\n";
+    f << c.clouds.time[k] << ",sph_mean_nn_distance_m,,,," << c.clouds.sph_distance[k] << "\n";
   }
   for (std::size_t k = 0; k < c.fem.time.size(); ++k) {
     f << c.fem.time[k] << ",fem_node_rms_distance_m,,,," << c.fem.rms[k] << "\n";
@@ -62,6 +67,13 @@ void printTable(const Comparison& c) {
       "particle clouds: %zu matched, mean nearest-neighbour distance %.4g m (largest "
       "%.4g m), smallest occupancy IoU %.4f (%g m cells)\n",
       c.clouds.time.size(), dmean, dmax, iou_min, c.raster);
+  double sph_largest = -1;
+  for (double d : c.clouds.sph_distance) sph_largest = std::max(sph_largest, d);
+  if (sph_largest >= 0)
+    std::printf(
+        "SPH particles: last sample %.0f and %.0f, largest mean nearest-neighbour "
+        "distance %.4g m\n",
+        c.clouds.sph_count_a.back(), c.clouds.sph_count_b.back(), sph_largest);
   if (!c.fem.time.empty()) {
     double largest = 0;
     for (double d : c.fem.largest) largest = std::max(largest, d);

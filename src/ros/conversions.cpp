@@ -34,15 +34,16 @@ void toPointCloud(const World& world, int decimation, const std_msgs::Header& he
   cloud.header = header;
   sensor_msgs::PointCloud2Modifier mod(cloud);
   mod.setPointCloud2Fields(
-      8, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32, "z", 1,
+      9, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32, "z", 1,
       sensor_msgs::PointField::FLOAT32, "vx", 1, sensor_msgs::PointField::FLOAT32, "vy", 1,
       sensor_msgs::PointField::FLOAT32, "pressure", 1, sensor_msgs::PointField::FLOAT32,
       "von_mises", 1, sensor_msgs::PointField::FLOAT32, "material", 1,
-      sensor_msgs::PointField::UINT16);
+      sensor_msgs::PointField::UINT16, "kind", 1, sensor_msgs::PointField::UINT8);
   mod.resize(n);  // height 1, width n, dense
   sensor_msgs::PointCloud2Iterator<float> x(cloud, "x"), vx(cloud, "vx"), p(cloud, "pressure");
   sensor_msgs::PointCloud2Iterator<std::uint16_t> mat(cloud, "material");
-  for (std::size_t i = 0; i < P.size(); i += step, ++x, ++vx, ++p, ++mat) {
+  sensor_msgs::PointCloud2Iterator<std::uint8_t> kind(cloud, "kind");  // 0 material point, 1 SPH
+  for (std::size_t i = 0; i < P.size(); i += step, ++x, ++vx, ++p, ++mat, ++kind) {
     x[0] = static_cast<float>(P.x[i]);
     x[1] = static_cast<float>(P.y[i]);
     x[2] = 0.f;
@@ -52,6 +53,7 @@ void toPointCloud(const World& world, int decimation, const std_msgs::Header& he
     p[0] = static_cast<float>(-meanStress(s));
     p[1] = static_cast<float>(std::sqrt(3.0) * equivalentShear(s));  // sqrt(3 J2)
     *mat = P.material[i];
+    *kind = P.kind[i];
   }
 }
 

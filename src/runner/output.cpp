@@ -79,12 +79,13 @@ void FemSeriesWriter::write(const World& w) {
 void writeParticles(const World& world, const std::string& path) {
   std::ofstream out = openCsv(path);
   const Particles& P = world.particles();
-  out << "id,body,material,x,y,vx,vy,mass,volume,sxx,syy,sxy,szz,pressure\n";
+  out << "id,body,material,kind,x,y,vx,vy,mass,volume,sxx,syy,sxy,szz,pressure\n";
   for (std::size_t p = 0; p < P.size(); ++p) {
     const Stress s{P.sxx[p], P.syy[p], P.sxy[p], P.szz[p]};
-    out << p << ',' << P.body[p] << ',' << P.material[p] << ',' << P.x[p] << ',' << P.y[p] << ','
-        << P.vx[p] << ',' << P.vy[p] << ',' << P.mass[p] << ',' << P.volume0[p] * P.J[p] << ','
-        << s.xx << ',' << s.yy << ',' << s.xy << ',' << s.zz << ',' << -meanStress(s) << '\n';
+    out << p << ',' << P.body[p] << ',' << P.material[p] << ',' << int{P.kind[p]} << ',' << P.x[p]
+        << ',' << P.y[p] << ',' << P.vx[p] << ',' << P.vy[p] << ',' << P.mass[p] << ','
+        << P.volume0[p] * P.J[p] << ',' << s.xx << ',' << s.yy << ',' << s.xy << ',' << s.zz << ','
+        << -meanStress(s) << '\n';
   }
 }
 

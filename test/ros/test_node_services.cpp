@@ -35,7 +35,7 @@ TEST(Node, PublishesCloudBlocksAndTf) {
   std::vector<std::string> fields;
   for (const auto& f : c.fields) fields.push_back(f.name);
   EXPECT_EQ(fields, (std::vector<std::string>{"x", "y", "z", "vx", "vy", "pressure", "von_mises",
-                                              "material"}));
+                                              "material", "kind"}));
   RigidBlockState box;
   ASSERT_TRUE(n.block("box", box));
   EXPECT_EQ(box.body_type, RigidBlockState::DYNAMIC);
