@@ -189,9 +189,10 @@ World::World(const WorldDef& def) : def_(def) {
 
 void World::initSph() {
   const SphDef& d = def_.sph;
-  const Problem problem =
-      sphProblem(d, def_.cell_size, def_.solver.stress_update == StressUpdate::kUsf,
-                 !def_.blocks.empty() || !def_.fem_bodies.empty());
+  const CouplingScheme scheme = def_.coupling.scheme;
+  const Problem problem = sphProblem(
+      d, def_.cell_size, def_.solver.stress_update == StressUpdate::kUsf,
+      scheme == CouplingScheme::kMultiVelocity || scheme == CouplingScheme::kPartitioned);
   if (!problem.empty()) throw std::invalid_argument("sph." + problem.text());
   const Real R = 2 * (d.smoothing_length > 0 ? d.smoothing_length : def_.cell_size);
   sph_ = std::make_unique<SphState>();
@@ -436,6 +437,10 @@ void World::couplingStage(Real dt, Real kick, void (Coupling::*stage)(CouplingSt
   StageTimer timer(profile_, Stage::kContact);
   CouplingStep s{particles_,          grid_, tiles_, *contactBodies(), def_.solver.kernel,
                  def_.solver.gravity, dt,    kick};
+  if (sph_) {
+    s.sph_ax = sph_->columns.ax.data();
+    s.sph_ay = sph_->columns.ay.data();
+  }
   ((*coupling_).*stage)(s);
 }
 
@@ -500,13 +505,13 @@ void World::binWithSph() {
 
 void World::sphStress(Real stress_dt) {
   StageTimer timer(profile_, Stage::kSph);
-  detail::sphVelocityGradient(particles_, tiles_, sph_->settings, params_, stress_dt,
+  detail::sphVelocityGradient(particles_, tiles_, grid_, sph_->settings, params_, stress_dt,
                               sph_->columns);
 }
 
 void World::sphForces() {
   StageTimer timer(profile_, Stage::kSph);
-  sph_->mu_max = detail::sphAcceleration(particles_, tiles_, sph_->settings, params_,
+  sph_->mu_max = detail::sphAcceleration(particles_, tiles_, grid_, sph_->settings, params_,
                                          def_.solver.gravity, sph_->columns);
 }
 

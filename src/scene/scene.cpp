@@ -749,9 +749,10 @@ void parseSph(const Context& ctx, const MapReader& top, Scene& s) {
   d.viscosity_alpha = r.number("viscosity_alpha", "(dimensionless)", d.viscosity_alpha);
   d.viscosity_beta = r.number("viscosity_beta", "(dimensionless)", d.viscosity_beta);
   d.corrected_gradient = r.boolean("corrected_gradient", d.corrected_gradient);
-  const Problem p =
-      sphProblem(d, s.world.cell_size, s.world.solver.stress_update == StressUpdate::kUsf,
-                 !s.world.blocks.empty() || !s.world.fem_bodies.empty());
+  const CouplingScheme scheme = s.world.coupling.scheme;
+  const Problem p = sphProblem(
+      d, s.world.cell_size, s.world.solver.stress_update == StressUpdate::kUsf,
+      scheme == CouplingScheme::kMultiVelocity || scheme == CouplingScheme::kPartitioned);
   r.require(p.empty(), p.key.c_str(), p.message);
 }
 

@@ -72,6 +72,11 @@ void ImpCoupling::addGridForces(CouplingStep& s) {
     using K = decltype(k);
     for (const ContactPair& c : search_.pairs()) {
       if (c.force.x() == 0 && c.force.y() == 0) continue;
+      if (s.isSph(c.particle)) {  // the whole force on the particle, at its centre
+        s.sph_ax[c.particle] += c.force.x() / P.mass[c.particle];
+        s.sph_ay[c.particle] += c.force.y() / P.mass[c.particle];
+        continue;
+      }
       // Fig. 17B: the nodes around the contact point that carry material; eq. 48 otherwise
       // (f_I += S_Ip f_p), also when no node around the contact point has mass.
       if (!at_point ||

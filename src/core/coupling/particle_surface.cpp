@@ -61,7 +61,7 @@ ParticleSurfaceCoupling::ParticleSurfaceCoupling(const CouplingDef& def, const V
 }
 
 void ParticleSurfaceCoupling::correctGridVelocity(CouplingStep& s) {
-  const Particles& P = s.particles;
+  Particles& P = s.particles;  // SPH particles take their impulses on their own velocity
   ContactBodies& B = s.bodies;
   Grid& G = s.grid;
   search_.update(P, B);
@@ -88,6 +88,24 @@ void ParticleSurfaceCoupling::correctGridVelocity(CouplingStep& s) {
       // grid at the contact point itself with the weights W_I = S_Ip + d . grad S_Ip.
       const Vec2 dp = point - x;
       const Vec2 t(-d.normal.y(), d.normal.x());
+      if (s.isSph(p)) {
+        // An SPH particle: its own trial velocity v + kick a carried to the contact point, its
+        // own mass as its response, and the impulse on its velocity.
+        const Vec2 trial(P.vx[p] + s.kick * s.sph_ax[p] + P.lxx[p] * dp.x() + P.lxy[p] * dp.y(),
+                         P.vy[p] + s.kick * s.sph_ay[p] + P.lyx[p] * dp.x() + P.lyy[p] * dp.y());
+        const Vec2 u = trial - vc;
+        const Real target = -std::fmax(gap, Real(0)) / s.dt;
+        if (!(u.dot(d.normal) < target)) return;
+        const Mat2 Km = Mat2::Identity() / P.mass[p] + B.inverseMass(b, point);
+        const detail::Exchange e = detail::exchange(Km, u, d.normal, target, B.friction(b));
+        P.vx[p] += e.impulse.x() / P.mass[p];
+        P.vy[p] += e.impulse.y() / P.mass[p];
+        B.applyImpulse(b, -e.impulse, point, s.dt);
+        on_material_ += e.impulse / s.dt;
+        records_.push_back({p, b, gap, d.normal, e.impulse, target, e.relative_after, e.stuck});
+        ++active_;
+        return;
+      }
       const OffsetWeights<K> at_contact(G, x, P.half_size[p], dp);
       const Vec2 along_normal =
           detail::gridVelocityAt<K>(G, x, P.half_size[p]) +

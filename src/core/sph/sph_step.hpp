@@ -51,14 +51,14 @@ void markBand(const Particles& P, const Grid& G, KernelType kernel, Tiles& T,
 // material points included (eq. 2.9 with the correction), then the stress and volume over
 // stress_dt by the material's own update (updatePointStress), as the material points do in
 // stressAndInternalForce.
-void sphVelocityGradient(Particles& P, const Tiles& T, const SphSettings& s,
+void sphVelocityGradient(Particles& P, const Tiles& T, const Grid& G, const SphSettings& s,
                          const std::vector<MaterialParams>& materials, Real stress_dt,
                          SphColumns& c);
 
 // Second pass: each SPH particle's acceleration from the stresses of its neighbours (eq. 2.6)
 // with the artificial viscosity (eq. 2.7-2.8) and gravity, into c.ax, c.ay. Returns the largest
 // |mu_ab| of an approaching pair (m/s), for the viscous term of the time step.
-Real sphAcceleration(const Particles& P, const Tiles& T, const SphSettings& s,
+Real sphAcceleration(const Particles& P, const Tiles& T, const Grid& G, const SphSettings& s,
                      const std::vector<MaterialParams>& materials, const Vec2& gravity,
                      SphColumns& c);
 

@@ -16,6 +16,7 @@
 #include "mpm_sdem/core/mpm/particles.hpp"
 #include "mpm_sdem/core/mpm/shapes.hpp"
 #include "mpm_sdem/core/mpm/tiles.hpp"
+#include "mpm_sdem/core/sph/sph.hpp"
 #include "mpm_sdem/core/types.hpp"
 
 namespace mpm_sdem {
@@ -66,6 +67,12 @@ struct CouplingStep {
   Vec2 gravity;  // m/s^2
   Real dt;       // s, the step
   Real kick;     // s, the grid velocity update's span (dt, half of it on the first step)
+  // The SPH particles' accelerations (m/s^2, indexed by particle; seed 001), or null in a world
+  // without them. An SPH particle is moved by its own acceleration, not by the grid: a contact
+  // force on it is added here, and an impulse changes its velocity (Particles::vx, vy) at once.
+  Real* sph_ax = nullptr;
+  Real* sph_ay = nullptr;
+  bool isSph(int p) const { return sph_ax && particles.kind[p] == kSphParticle; }
 };
 
 class Coupling {

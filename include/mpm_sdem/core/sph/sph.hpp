@@ -49,8 +49,10 @@ struct SphDef {
 };
 
 // Why a world of this cell size cannot take d (empty when it can), naming the key: the smoothing
-// length's range, the viscosity factors', and what SPH particles cannot be combined with yet.
-// The one check, for the scene parser and World.
-Problem sphProblem(const SphDef& d, Real cell_size, bool stress_first, bool solid_bodies);
+// length's range, the viscosity factors', a stress update other than first (stress_first), and
+// a coupling scheme that meets bodies through the grid alone (grid_coupling: multi_velocity,
+// partitioned), which an SPH particle does not follow. The one check, for the scene parser and
+// World.
+Problem sphProblem(const SphDef& d, Real cell_size, bool stress_first, bool grid_coupling);
 
 }  // namespace mpm_sdem
