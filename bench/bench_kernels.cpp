@@ -1,5 +1,6 @@
 // Google Benchmark kernels: the P2G and G2P transfers and the constitutive update, per particle,
-// on the column scene (APIC, quadratic B-spline). Counters report particles per second.
+// on the column scene (APIC, quadratic B-spline), and the whole step with material points or SPH
+// particles. Counters report particles per second.
 #include <benchmark/benchmark.h>
 
 #include "bench_scenes.hpp"
@@ -92,8 +93,27 @@ void BM_FemStep(benchmark::State& state) {
   state.counters["elements"] = w.femBodies()->totalElements();
 }
 
+// The whole step of the column scene (APIC, linear elastic), its points all material points
+// (arg 1 = 0) or all SPH particles (seed 001, cubic spline, h_s one cell; arg 1 = 1), at the
+// step each takes. Counter: particle-steps per second.
+void BM_Step(benchmark::State& state) {
+  WorldDef def = bench::columnWorld(state.range(0), MaterialModel::kLinearElastic);
+  if (state.range(1)) def.sph.bodies = {0};
+  World w(def);
+  for (int s = 0; s < 5; ++s) w.step(w.chooseTimeStep().dt);
+  for (auto _ : state) w.step(w.chooseTimeStep().dt);
+  state.counters["particle-steps/s"] = benchmark::Counter(
+      static_cast<double>(w.particles().size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+
 }  // namespace
 
+BENCHMARK(BM_Step)
+    ->Args({10000, 0})
+    ->Args({10000, 1})
+    ->Args({100000, 0})
+    ->Args({100000, 1})
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FemStep)->Arg(4)->Arg(16)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_P2G)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_G2P)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);

@@ -60,6 +60,8 @@ CASES = [
                    " figures; Tait water at c0 = 60 m/s, particle-to-surface contact)", True),
     ("incline", "Seed 002 sec. 4.1: disk rolling on an incline", True),
     ("bar", "Seed 001: 1D reversibility and bar under a stress boundary condition", True),
+    ("sph", "Seed 001 (issue 19): the coupled MPM-SPH method on the seed's 1D bar, biaxial "
+            "plate and plate with a hole, and the SPH particles' cost", True),
     ("stability", "Stability on hard cases (a fixed step above the bound set by hand is refused "
                   "before the run: test_free_fall FixedStep.AboveTheCriticalStepIsRefused)", True),
 ]

@@ -234,13 +234,14 @@ Biaxial biaxial(Real cell_size, const SphDef& sph, Real transits = 40);
 struct PlateHole {
   Real edge = 0, edge_expected = 0;  // sigma_yy / 1 MPa at the points nearest the hole
   Real edge_error = 0, worst = 0;
-  // Kirsch's form 1 + c1 (a/r)^2 + c2 (a/r)^4 fitted to the mid line's points by least
-  // squares, at r = a: the concentration factor they give (Kirsch: 3).
+  // Kirsch's form 1 + c1 (a/r)^2 + c2 (a/r)^4 fitted by least squares to the mid line's points
+  // whose stencil is complete (below), at r = a: the concentration factor they give (Kirsch: 3).
   Real fitted_concentration = 0;
   // Over the points whose stencil lies inside the material (more than 1.5 cells from the hole):
   // within a stencil of the free surface the nodes lack the material beyond it, and the points
   // there do not converge pointwise (with material points alone the nearest are 5.2%, 4.3% and
-  // 8.2% low at 4, 6 and 8 cells per radius; the fit above uses them all).
+  // 8.2% low at 4, 6 and 8 cells per radius with material points alone; a fit through them gave
+  // 2.866, 2.970 and 2.903).
   Real worst_inside = 0;
   struct Sample {
     Real r = 0, got = 0, expected = 0;  // r / a; sigma_yy / 1 MPa
@@ -251,6 +252,21 @@ struct PlateHole {
 };
 PlateHole plateWithHole(Real cell_size, int hole_cells, Real width_over_d, const SphDef& sph,
                         Real transits = 40);
+// The SPH region of the plate with a hole: a square frame from inner to outer hole radii around
+// the hole (material points at its surface and at the plate's faces).
+SphDef holeFrame(Real cell_size, int hole_cells, Real width_over_d, Real inner = 1.5,
+                 Real outer = 3);
+
+// Particle-steps per second of `steps` steps of a 1 m copper plate of 2 x 2 points per cell,
+// shearing at 0.1 m/s, all material points or (sph) all SPH particles; the share of the step in
+// the SPH stage, and the stable step.
+struct Throughput {
+  long particles = 0;
+  double particle_steps_per_second = 0, sph_share = 0;
+  Real dt = 0;
+};
+Throughput throughput(Real cell_size, bool sph, int steps);
+
 // Kirsch's stress (Pa) at d from the centre of a hole of radius a in an infinite plate under a
 // remote tension S along y.
 struct Kirsch {
