@@ -222,7 +222,7 @@ INSTANTIATE_TEST_SUITE_P(
                                {"sph.smoothing_length=0.05"},
                                "--set sph.smoothing_length=0.05",
                                "sph.smoothing_length",
-                               "must be 0.5 to 1.5 cells"},
+                               "(0.5 to 1.5 cells: the kernel reaches twice it"},
                       BadScene{"SphUnknownBody",
                                "valid_sph.yaml",
                                {"sph.bodies=[nothing]"},

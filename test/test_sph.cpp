@@ -25,7 +25,9 @@
 //    material points alone as well), and within 1% of the run with material points alone
 //    (0.92%). The report's run (60 transits, 4-8 cells) is in docs/validation.
 //  - Contact: the resting square of seed 000 sec. 5.2 made of SPH particles carries its weight
-//    on the block within 1% with imp and particle_surface (0.99982 and 0.99979 W).
+//    on the block within 1% with imp and particle_surface (0.99982 and 0.99979 W); seed 002
+//    sec. 4.1's disk made of SPH particles slides on the FEM plate at g (sin - mu cos) within 2%
+//    (0.52% and 0.46%).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -253,5 +255,17 @@ TEST(Sph, SphSquareRestsOnABlockWithItsWeight) {
     EXPECT_NEAR(f.mean_force.y() / -f.weight, 1, 0.01) << couplingSchemeName(scheme);
     std::printf("%s: force on the block %.5f W, settled at %.2f s\n", couplingSchemeName(scheme),
                 f.mean_force.y() / -f.weight, f.settled_at);
+  }
+}
+
+TEST(Sph, SphDiskSlidesOnAnFemPlate) {
+  // Seed 002 sec. 4.1's disk on the FEM plate (1 cm cells, elements of 8 cells), its points SPH
+  // particles: sliding at mu = 0.2, the centre accelerates at g (sin - mu cos) within 2%, through
+  // the FEM body's segments with particle_surface and imp.
+  for (CouplingScheme scheme : {CouplingScheme::kParticleSurface, CouplingScheme::kImp}) {
+    const Real a = cases::femInclineAcceleration(0.2, 0.01, 0.08, scheme, true);
+    std::printf("%s: %.4f m/s^2 against %.4f\n", couplingSchemeName(scheme), a,
+                cases::inclineAnalytic(0.2));
+    EXPECT_NEAR(a / cases::inclineAnalytic(0.2), 1, 0.02) << couplingSchemeName(scheme);
   }
 }

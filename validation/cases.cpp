@@ -827,7 +827,8 @@ Compression compressMatrix(World& w, int plate, Real speed, Real max_settlement)
   return out;
 }
 
-Real femInclineAcceleration(Real mu, Real h, Real element_size, CouplingScheme scheme) {
+Real femInclineAcceleration(Real mu, Real h, Real element_size, CouplingScheme scheme,
+                            bool sph_disk) {
   const Real th = M_PI / 4, R = 0.05, g = 9.81, top = 0.1;
   WorldDef def;
   def.domain.min = Vec2(0, 0);
@@ -852,6 +853,7 @@ Real femInclineAcceleration(Real mu, Real h, Real element_size, CouplingScheme s
   // Released half a millimetre above contact, as inclineAcceleration's.
   const Real rp = h / std::sqrt(2.0);
   def.bodies.push_back(diskBody(Vec2(0.25, top + R + rp - 0.25 * h + 0.0005), R, 2));
+  if (sph_disk) def.sph.bodies = {0};
   World w(def);
   std::vector<Real> ts, xs;
   const Real x0 = measure(w).center_of_mass.x();

@@ -89,9 +89,11 @@ Real inclineAnalytic(Real mu);
 // triangles of edge element_size, E = 100 MPa, rho = 10000 kg/m^3, nu = 0.3: ten times the
 // disk's, as the seed's plate; its bottom face held) instead of a rigid incline. The plate lies
 // level and gravity is tilted by 45 deg, which is the same problem. R = element_size / cell_size.
-// Returns the fitted acceleration along the plate as inclineAcceleration does.
+// Returns the fitted acceleration along the plate as inclineAcceleration does. sph_disk: the
+// disk's points are SPH particles (seed 001), meeting the plate through the same scheme.
 Real femInclineAcceleration(Real mu, Real cell_size, Real element_size,
-                            CouplingScheme scheme = CouplingScheme::kParticleSurface);
+                            CouplingScheme scheme = CouplingScheme::kParticleSurface,
+                            bool sph_disk = false);
 
 // A plane-strain cantilever of FEM triangles under its own weight (1 x 0.05 m, E = 1 GPa,
 // rho = 1000 kg/m^3, nu = 0.3, clamped at x = 0), meshed at element_size.
@@ -239,9 +241,9 @@ struct PlateHole {
   Real fitted_concentration = 0;
   // Over the points whose stencil lies inside the material (more than 1.5 cells from the hole):
   // within a stencil of the free surface the nodes lack the material beyond it, and the points
-  // there do not converge pointwise (with material points alone the nearest are 5.2%, 4.3% and
-  // 8.2% low at 4, 6 and 8 cells per radius with material points alone; a fit through them gave
-  // 2.866, 2.970 and 2.903).
+  // there do not converge pointwise (with material points alone, 30 transits, the nearest are
+  // 5.2%, 4.3% and 8.2% low at 4, 6 and 8 cells per radius; a fit through them gave 2.866,
+  // 2.970 and 2.903).
   Real worst_inside = 0;
   struct Sample {
     Real r = 0, got = 0, expected = 0;  // r / a; sigma_yy / 1 MPa

@@ -110,8 +110,10 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
     p.image.color_by = render::ColorBy::kSpeed;
   } else if (color == "pressure") {
     p.image.color_by = render::ColorBy::kPressure;
+  } else if (color == "kind") {
+    p.image.color_by = render::ColorBy::kKind;
   } else {
-    return fail("parameter ~image/color_by must be speed or pressure, got '" + color + "'");
+    return fail("parameter ~image/color_by must be speed, pressure or kind, got '" + color + "'");
   }
   if (!(p.image.max_value >= 0) || !std::isfinite(p.image.max_value))
     return fail("parameter ~image/max_value must be a finite number >= 0 (0: auto)");

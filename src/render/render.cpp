@@ -43,9 +43,10 @@ void renderWorld(const World& world, const RenderDef& def, cv::Mat& image) {
   const std::size_t n = P.size();
   // Value of each point mapped to 0..255 and coloured with OpenCV's turbo map.
   cv::Mat values(1, static_cast<int>(std::max<std::size_t>(n, 1)), CV_8UC1, cv::Scalar(0));
-  Real top = def.max_value;
-  auto value = [&](std::size_t p) {
+  Real top = def.color_by == ColorBy::kKind ? 1 : def.max_value;
+  auto value = [&](std::size_t p) -> Real {
     if (def.color_by == ColorBy::kSpeed) return std::hypot(P.vx[p], P.vy[p]);
+    if (def.color_by == ColorBy::kKind) return P.kind[p];
     return -meanStress(Stress{P.sxx[p], P.syy[p], P.sxy[p], P.szz[p]});
   };
   if (!(top > 0)) {
@@ -78,9 +79,13 @@ void renderWorld(const World& world, const RenderDef& def, cv::Mat& image) {
     }
   }
   char label[96];
-  std::snprintf(label, sizeof(label), "t = %.3f s   colour: %s 0 - %.3g %s", world.time(),
-                def.color_by == ColorBy::kSpeed ? "speed" : "pressure", top,
-                def.color_by == ColorBy::kSpeed ? "m/s" : "Pa");
+  if (def.color_by == ColorBy::kKind)
+    std::snprintf(label, sizeof(label), "t = %.3f s   colour: material point (blue), SPH (red)",
+                  world.time());
+  else
+    std::snprintf(label, sizeof(label), "t = %.3f s   colour: %s 0 - %.3g %s", world.time(),
+                  def.color_by == ColorBy::kSpeed ? "speed" : "pressure", top,
+                  def.color_by == ColorBy::kSpeed ? "m/s" : "Pa");
   cv::putText(image, label, cv::Point(8, 20), cv::FONT_HERSHEY_SIMPLEX, 0.5,
               cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
 }

@@ -38,6 +38,7 @@ inline constexpr Range kTaitExponent{1, 15, "", true};    // gamma: 7 for water
 inline constexpr Range kViscosity{0, 1e6, "Pa s"};        // water 1e-3 to bitumen
 inline constexpr Range kStiffness{1, 1e13, "N/m per m"};  // contact springs
 inline constexpr Range kFriction{0, 10, ""};              // Coulomb coefficients
+inline constexpr Range kArtificialViscosity{0, 10, ""};   // SPH alpha, beta (1 is strong)
 inline constexpr Range kRestitution{0, 1, "", true};      // 0 would need an infinite damper
 inline constexpr Range kSpeed{0, 1e3, "m/s"};      // fastest point of a body, block or command
 inline constexpr Range kGravity{0, 1e4, "m/s^2"};  // magnitude: 1000 g, beyond any centrifuge

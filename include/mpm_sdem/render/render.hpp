@@ -11,7 +11,8 @@
 
 namespace mpm_sdem::render {
 
-enum class ColorBy { kSpeed, kPressure };
+// kKind: material points blue, SPH particles (seed 001) red.
+enum class ColorBy { kSpeed, kPressure, kKind };
 
 struct RenderDef {
   int width = 800;  // px; the height follows the domain's aspect ratio

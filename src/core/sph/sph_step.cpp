@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
-#include <utility>
 
 #include "mpm_sdem/core/mpm/constitutive.hpp"
 #include "sph/sph_kernel.hpp"
@@ -16,21 +14,19 @@ const char* sphKernelName(SphKernel k) {
 }
 
 Problem sphProblem(const SphDef& d, Real cell_size, bool stress_first, bool grid_coupling) {
-  auto n = [](Real v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.6g", v);
-    return std::string(b);
-  };
+  // h_s in [0.5, 1.5] cells: the kernel reaches 2 h_s, and the tiles (3 cells) are its cell list.
   const Real hs = d.smoothing_length > 0 ? d.smoothing_length : cell_size;
-  if (!(hs >= 0.5 * cell_size && hs <= 0.5 * Tiles::kSize * cell_size * (1 + 1e-12)))
+  const limits::Range cells{0.5 * cell_size, 0.5 * Tiles::kSize * cell_size * (1 + 1e-12), "m"};
+  if (std::string p = limits::rangeProblem(hs, cells); !p.empty())
     return {"smoothing_length",
-            "must be 0.5 to 1.5 cells (" + n(0.5 * cell_size) + " to " + n(1.5 * cell_size) +
-                " m: the kernel reaches twice it, and the grid's tiles of 3 cells are its cell "
-                "list), got " +
-                n(hs)};
-  for (const auto& [key, v] : {std::pair<const char*, Real>{"viscosity_alpha", d.viscosity_alpha},
-                               {"viscosity_beta", d.viscosity_beta}})
-    if (!(v >= 0 && v <= 10)) return {key, "must be 0 to 10, got " + n(v)};
+            p + " (0.5 to 1.5 cells: the kernel reaches twice it, and the grid's tiles of 3 "
+                "cells are its cell list)"};
+  if (std::string p = limits::rangeProblem(d.viscosity_alpha, limits::kArtificialViscosity);
+      !p.empty())
+    return {"viscosity_alpha", p};
+  if (std::string p = limits::rangeProblem(d.viscosity_beta, limits::kArtificialViscosity);
+      !p.empty())
+    return {"viscosity_beta", p};
   if (!stress_first)
     return {"regions",
             "SPH particles need solver.stress_update: usf (their stress is updated with the "
@@ -109,7 +105,9 @@ void forNeighbours(const Particles& P, const Tiles& T, const Grid& G, int a, Rea
       for (int q = T.start[u]; q < T.start[u + 1]; ++q) {
         const int b = T.order[q];
         const Real dx = xa - P.x[b], dy = ya - P.y[b], r2 = dx * dx + dy * dy;
-        if (r2 >= R2 || b == a) continue;
+        // A coincident pair (two points clamped into one corner) has no direction, and both
+        // kernels' gradients vanish at r = 0: skipped, as a itself.
+        if (r2 >= R2 || !(r2 > 0)) continue;
         const Real r = std::sqrt(r2);
         const KernelValue k = K::eval(r, R);
         f(b, dx, dy, k.dw * dx / r, k.dw * dy / r);
@@ -243,10 +241,12 @@ void sphVelocityGradient(Particles& P, const Tiles& T, const Grid& G, const SphS
 Real sphAcceleration(const Particles& P, const Tiles& T, const Grid& G, const SphSettings& s,
                      const std::vector<MaterialParams>& materials, const Vec2& gravity,
                      SphColumns& c) {
-  const Real hs = s.smoothingLength(), eps = Real(0.01) * hs * hs;
   Real mu_max = 0;
   withSphKernel(s.kernel, [&](auto k) {
     using K = decltype(k);
+    // Declared in here: clang 14 cannot capture the enclosing function's locals in a lambda
+    // inside an OpenMP region inside this generic lambda.
+    const Real hs = s.smoothingLength(), eps = Real(0.01) * hs * hs;
     const long tiles = static_cast<long>(T.start.size()) - 1;
 #pragma omp parallel for schedule(dynamic, 16) reduction(max : mu_max)
     for (long t = 0; t < tiles; ++t) {
