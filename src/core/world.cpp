@@ -77,10 +77,6 @@ World::~World() = default;
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 
-Real World::sphSupport() const {
-  return sph_ ? sph_->settings.support : 0;
-}
-
 World::World(const WorldDef& def) : def_(def) {
   if (const std::string p = sizeProblem(def.domain, def.cell_size, def.bodies); !p.empty())
     throw std::invalid_argument("the world " + p);

@@ -150,11 +150,6 @@ class World {
   const Particles& particles() const { return particles_; }
   Particles& particles() { return particles_; }
   const Grid& grid() const { return grid_; }
-  // The particles' bins, sorted by kind within a tile when there are SPH particles (Tiles).
-  const Tiles& tiles() const { return tiles_; }
-  // Whether the world has SPH particles or regions (WorldDef::sph), and its kernel radius (m).
-  bool hasSph() const { return sph_ != nullptr; }
-  Real sphSupport() const;
   // Memory held, in bytes: the particle columns with their tile bins, and the grid arrays.
   // Nodes the last step cleared and updated (the tiles within reach of a particle).
   struct Memory {
