@@ -46,11 +46,10 @@ void SphColumns::resize(std::size_t n) {
   for (auto* c : {&cxx, &cxy, &cyx, &cyy, &ax, &ay}) c->resize(n, 0);
 }
 
-long assignKinds(const std::vector<ShapeDef>& regions, const std::vector<char>& sph_body,
+void assignKinds(const std::vector<ShapeDef>& regions, const std::vector<char>& sph_body,
                  Particles& P) {
   const long n = static_cast<long>(P.size());
-  long changed = 0;
-#pragma omp parallel for schedule(static) reduction(+ : changed)
+#pragma omp parallel for schedule(static)
   for (long p = 0; p < n; ++p) {
     bool sph = sph_body[P.body[p]] != 0;
     for (std::size_t r = 0; !sph && r < regions.size(); ++r)
@@ -59,9 +58,7 @@ long assignKinds(const std::vector<ShapeDef>& regions, const std::vector<char>& 
     if (kind == P.kind[p]) continue;
     P.kind[p] = kind;
     P.bxx[p] = P.bxy[p] = P.byx[p] = P.byy[p] = 0;
-    ++changed;
   }
-  return changed;
 }
 
 namespace {
@@ -86,11 +83,9 @@ bool near(const Tiles& T, int t, bool (*what)(const Tiles&, int)) {
   return found;
 }
 
-// Call f(b, dx, dy, r, grad_x, grad_y) for every particle b != a within the support of particle
-// a (grad W_ab with respect to x_a). The tiles are the cell list: R <= kSize cells, so every
-// neighbour lies in the 3 x 3 tiles around a's.
-// Only the tiles the support's bounding box overlaps are read: 4 of the 9 on average for R =
-// 2 cells (the 3 x 3 block read every candidate at 15% of them within R; half the cost).
+// Call f(b, dx, dy, grad_x, grad_y) for every particle b != a within the support of particle a
+// ((dx, dy) = x_a - x_b, grad W_ab with respect to x_a). The tiles are the cell list (R <= kSize
+// cells): only those the support's bounding box overlaps are read, 2 x 2 to 3 x 3 of them.
 template <class K, class F>
 void forNeighbours(const Particles& P, const Tiles& T, const Grid& G, int a, Real R, F&& f) {
   const Real xa = P.x[a], ya = P.y[a], R2 = R * R;
@@ -116,14 +111,14 @@ void forNeighbours(const Particles& P, const Tiles& T, const Grid& G, int a, Rea
   }
 }
 
-// Run f(tile, a) for every SPH particle, the tiles shared among the threads (each particle
-// writes only its own columns).
+// Run f(a) for every SPH particle, the tiles shared among the threads (each particle writes
+// only its own columns).
 template <class F>
 void forEachSph(const Tiles& T, F&& f) {
   const long tiles = static_cast<long>(T.start.size()) - 1;
 #pragma omp parallel for schedule(dynamic, 16)
   for (long t = 0; t < tiles; ++t)
-    for (int q = T.mpm_end[t]; q < T.start[t + 1]; ++q) f(static_cast<int>(t), T.order[q]);
+    for (int q = T.mpm_end[t]; q < T.start[t + 1]; ++q) f(T.order[q]);
 }
 
 // The correction C_a = rho_a M^-T is applied where det(M) / rho_a^2 (1 with a full kernel
@@ -191,7 +186,7 @@ void sphVelocityGradient(Particles& P, const Tiles& T, const Grid& G, const SphS
                          SphColumns& c) {
   withSphKernel(s.kernel, [&](auto k) {
     using K = decltype(k);
-    forEachSph(T, [&](int, int a) {
+    forEachSph(T, [&](int a) {
       // A = sum_b m_b (v_b - v_a) (x) grad W and M = sum_b m_b (x_b - x_a) (x) grad W: for a
       // linear field v = L0 x, A = L0 M, so L = A M^-1 is exact wherever M is invertible (Bonet
       // and Lok 1999). Without the correction L = A / rho_a: eq. 2.9 with the volume m_b / rho_a
@@ -308,7 +303,6 @@ void sphKickDrift(Particles& P, const Tiles& T, const SphColumns& c, Real kick, 
       const Real ay = localDamping(c.ay[a], P.vy[a], damping);
       P.vx[a] += kick * ax;
       P.vy[a] += kick * ay;
-
       moveInside(P, a, s, P.vx[a], P.vy[a], clamped_count, bad);
     }
   }

@@ -33,9 +33,8 @@ struct SphSettings {
 };
 
 // Sets each particle's kind from its body (sph_body[b] != 0) and the regions; a particle that
-// changes kind starts without an APIC affine matrix (only material points carry one). Returns
-// how many changed.
-long assignKinds(const std::vector<ShapeDef>& regions, const std::vector<char>& sph_body,
+// changes kind starts without an APIC affine matrix (only material points carry one).
+void assignKinds(const std::vector<ShapeDef>& regions, const std::vector<char>& sph_body,
                  Particles& P);
 
 // The transition band of seed 001 sec. 4: an SPH particle takes part in the grid sums when its
