@@ -1,10 +1,12 @@
 // Block-block contact physics under both models: the restitution of the penalty springs as
 // asked for every kind of contact (closed form, drops), their substep bound at the strongest
-// damping, and Box2D's contacts with the scene's friction and restitution rule and touching
-// rounded outlines at rest. Part of the test_blocks executable.
+// damping, Box2D's contacts with the scene's friction and restitution rule and touching rounded
+// outlines at rest, the loads the blocks report, external loads and drives. Part of the
+// test_blocks executable.
 #include <gtest/gtest.h>
 
 #include "block_helpers.hpp"
+#include "mpm_sdem/core/rigid/block_checks.hpp"
 #include "mpm_sdem/core/rigid/blocks.hpp"
 
 using namespace mpm_sdem;
@@ -432,4 +434,32 @@ TEST(BlockLoads, ExternalLoadGivesItsImpulse) {
   EXPECT_NEAR(v.x(), force.x() * t / m.mass, 1e-5 * v.norm());
   EXPECT_NEAR(v.y(), force.y() * t / m.mass, 1e-5 * v.norm());
   EXPECT_NEAR(w, w_expected, 1e-5 * std::abs(w_expected));
+}
+
+// A drive holds the chosen velocity components whatever acts on the block and leaves the
+// others free (a wheel rig: towed at vx, turned at omega, sinking under gravity).
+TEST(BlockDrive, HoldsItsComponentsAndFreesTheRest) {
+  BlockDef wheel = test::diskBlock("wheel", Vec2(0, 0), 0.1, BodyType::kDynamic, 1000);
+  wheel.drive.hold_vx = wheel.drive.hold_angular = true;
+  wheel.drive.velocity = Vec2(0.3, 0);
+  wheel.drive.angular_velocity = -2;
+  EXPECT_TRUE(blockProblem(wheel, BlockContactModel::kPenalty).empty());
+  Blocks blocks({wheel}, BlockContactDef(), Vec2(0, -9.81));
+  const Real m = blocks.massProperties(0).mass, dt = 1e-3;
+  const Vec2 push(5, 2);  // along the held x and the free y
+  for (int n = 0; n < 100; ++n) {
+    blocks.addLoad(blocks.id(0), push, blocks.state(0).position + Vec2(0, 0.05), 0.7);
+    blocks.step(dt);
+  }
+  const BlockState& s = blocks.state(0);
+  EXPECT_NEAR(s.velocity.x(), 0.3, 1e-6);
+  EXPECT_NEAR(s.angular_velocity, -2, 1e-6);
+  // Free: gravity and the push's y component, 0.1 s (Box2D's single precision: 1e-5).
+  EXPECT_NEAR(s.velocity.y(), (-9.81 + push.y() / m) * 0.1, 1e-5);
+  EXPECT_NEAR(s.position.x(), 0.3 * 0.1, 1e-6);
+  EXPECT_NEAR(s.angle, -2 * 0.1, 1e-5);
+
+  BlockDef fixed = wheel;
+  fixed.type = BodyType::kKinematic;
+  EXPECT_EQ(blockProblem(fixed, BlockContactModel::kPenalty).key, "drive");
 }

@@ -408,7 +408,7 @@ BlockDef parseBlock(const Context& ctx, const YAML::Node& n, const std::string& 
   MapReader r(ctx, n, path,
               {"name", "type", "shape", "size", "vertices", "radius", "rounding", "discs",
                "disc_radius", "disc_pitch", "position", "angle", "velocity", "angular_velocity",
-               "density", "friction", "restitution", "adhesion"});
+               "density", "friction", "restitution", "adhesion", "drive"});
   BlockDef b;
   b.name = r.text("name");
   b.type = r.choiceOf<BodyType>(r.node("type"), r.path("type"),
@@ -498,6 +498,17 @@ BlockDef parseBlock(const Context& ctx, const YAML::Node& n, const std::string& 
   b.friction = r.number("friction", "(dimensionless)", b.friction);
   b.restitution = r.number("restitution", "(dimensionless)", b.restitution);
   b.adhesion = r.number("adhesion", "Pa", b.adhesion);
+  if (r.has("drive")) {
+    MapReader d(ctx, r.node("drive"), r.path("drive"),
+                {"velocity_x", "velocity_y", "angular_velocity"});
+    BlockDrive& drive = b.drive;
+    drive.hold_vx = d.has("velocity_x");
+    drive.hold_vy = d.has("velocity_y");
+    drive.hold_angular = d.has("angular_velocity");
+    drive.velocity = Vec2(d.number("velocity_x", "m/s", 0), d.number("velocity_y", "m/s", 0));
+    drive.angular_velocity = d.number("angular_velocity", "rad/s", 0);
+    r.require(drive.any(), "drive", "give velocity_x, velocity_y and/or angular_velocity");
+  }
   return b;
 }
 

@@ -74,7 +74,7 @@ MapReader::MapReader(const Context& ctx, const YAML::Node& node, std::string pat
     }
     if (known) continue;
     ctx_.fail(kv.first, this->path(describe(kv.first).c_str()),
-              "unknown key" + (best.empty() ? std::string() : "; did you mean '" + best + "'?") +
+              "unknown key" + (best.empty() ? std::string(".") : "; did you mean '" + best + "'?") +
                   " Valid keys here: " + valid);
   }
 }

@@ -88,6 +88,13 @@ Problem blockProblem(const BlockDef& d, BlockContactModel model) {
     return {"adhesion",
             "needs block_contact.model: penalty (Box2D's contact solver has no adhesion); remove "
             "it or switch the model"};
+  if (d.drive.any()) {
+    if (d.type != BodyType::kDynamic)
+      return {"drive",
+              "only a dynamic block has a drive (a kinematic one moves at its velocity already)"};
+    if (Problem p = twistProblem(d, d.drive.velocity, d.drive.angular_velocity); !p.empty())
+      return {"drive", p.message};
+  }
   Problem twist = twistProblem(d, d.velocity, d.angular_velocity);
   if (!twist.empty() && twist.key == "velocity" && d.velocity.squaredNorm() == 0)
     twist.key = "angular_velocity";

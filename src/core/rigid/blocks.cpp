@@ -93,6 +93,7 @@ BlockId Blocks::add(const BlockDef& def) {
   Body b;
   b.mass = m;
   b.type = d.type;
+  b.drive = d.drive;
   b.zeta = restitutionDampingRatio(def.restitution);
   const Real c = std::cos(d.angle), sn = std::sin(d.angle);
   b.kinematic_centre = d.position + Vec2(c * m.centroid.x() - sn * m.centroid.y(),

@@ -199,6 +199,20 @@ void Blocks::setVelocity(BlockId id, const Vec2& origin_velocity, Real angular_v
   refresh();
 }
 
+void Blocks::holdDrives() {
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    const BlockDrive& d = bodies_[i].drive;
+    if (bodies_[i].type != BodyType::kDynamic || !d.any()) continue;
+    const int k = static_cast<int>(i);
+    Vec2 v = b2_->velocity(k);
+    Real w = b2_->angularVelocity(k);
+    if (d.hold_vx) v.x() = d.velocity.x();
+    if (d.hold_vy) v.y() = d.velocity.y();
+    if (d.hold_angular) w = d.angular_velocity;
+    b2_->setVelocity(k, v, w);
+  }
+}
+
 void Blocks::refresh() {
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     Body& b = bodies_[i];
@@ -240,10 +254,18 @@ int Blocks::step(Real dt, Real max_substep) {
     }
     for (Coupling& c : block_contact_) c.contacts = 0;  // the last substep's count
     if (contact_.model == BlockContactModel::kPenalty) penalty_->apply(*this, h);
-    for (std::size_t i = 0; i < bodies_.size(); ++i)
-      if (bodies_[i].type == BodyType::kDynamic)
-        b2_->applyForce(static_cast<int>(i), bodies_[i].force, bodies_[i].torque);
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      Body& b = bodies_[i];
+      if (b.type != BodyType::kDynamic) continue;
+      // A held component moves at its value: the forces along it do nothing.
+      if (b.drive.hold_vx) b.force.x() = 0;
+      if (b.drive.hold_vy) b.force.y() = 0;
+      if (b.drive.hold_angular) b.torque = 0;
+      b2_->applyForce(static_cast<int>(i), b.force, b.torque);
+    }
+    holdDrives();
     b2_->step(h);
+    holdDrives();  // Box2D's own contacts (box2d model) and gravity may have changed them
     // Before refresh(): Box2D's contact points were found at the poses the step started from.
     if (contact_.model == BlockContactModel::kBox2D) b2_->reportContacts(h, *this);
     // A kinematic block moves with its twist exactly: Box2D's single-precision sum of small

@@ -32,6 +32,18 @@ enum class BodyType { kStatic, kKinematic, kDynamic };
 // applied through Box2D, or Box2D's own contact solver on the core polygon grown by the rounding.
 enum class BlockContactModel { kPenalty, kBox2D };
 
+// Velocity components of a dynamic block held at set values whatever acts on it, the others
+// free: a test rig's carriage and motor (a wheel towed at vx and turned at angular_velocity,
+// free to sink). A held component ignores the forces along it; the contact forces the block
+// feels are still reported (coupling(), blockContact()), so the rig's reaction is their negative.
+// Gravity acts within a substep on a held vy (Box2D adds it), an error of g h^2 per substep.
+struct BlockDrive {
+  bool hold_vx = false, hold_vy = false, hold_angular = false;
+  Vec2 velocity{0, 0};        // of the centre of mass (m/s), the held components
+  Real angular_velocity = 0;  // rad/s, when held
+  bool any() const { return hold_vx || hold_vy || hold_angular; }
+};
+
 struct BlockDef {
   std::string name;
   // The outline, one of two kinds. A spheropolygon: a convex core polygon in the block frame
@@ -52,6 +64,7 @@ struct BlockDef {
   // Adhesion between blocks (Pa: N/m per metre of contact length), penalty model only; a block
   // pair takes the larger (seed 003's wood: 30 Pa with wood, 60 Pa with the rigid boundary).
   Real adhesion = 0;
+  BlockDrive drive;  // dynamic blocks only; nothing held by default
 };
 
 struct BlockContactDef {
@@ -197,7 +210,8 @@ class Blocks final : public ContactBodies {
   void checkDef(const BlockDef& def) const;  // throws std::invalid_argument
   int checkedIndex(BlockId id) const;        // throws std::invalid_argument
   void layoutShapes();
-  void refresh();  // state and world vertices from Box2D (box2d_bodies.cpp)
+  void refresh();     // state and world vertices from Box2D (box2d_bodies.cpp)
+  void holdDrives();  // sets the held velocity components of driven blocks in Box2D
 
   // What every step reads and writes, one entry per block (hot); the definitions, names
   // included, stay in defs_ (cold).
@@ -205,6 +219,7 @@ class Blocks final : public ContactBodies {
     BlockState state;
     MassProperties mass;
     BodyType type = BodyType::kDynamic;
+    BlockDrive drive;
     Real zeta = 0;  // damping ratio of its spring contacts
     // Pose and twist of a kinematic block in double precision (centre of mass, world frame).
     Vec2 kinematic_centre{0, 0};
