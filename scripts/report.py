@@ -62,6 +62,10 @@ CASES = [
     ("bar", "Seed 001: 1D reversibility and bar under a stress boundary condition", True),
     ("sph", "Seed 001 (issue 19): the coupled MPM-SPH method on the seed's 1D bar, biaxial "
             "plate and plate with a hole, and the SPH particles' cost", True),
+    ("wheel", "Issue 20: a driven rigid wheel on sand (single-wheel rig, config/scenes/wheel.yaml):"
+              " drawbar pull, gross thrust and sinkage against slip at two loads and two cell"
+              " sizes, against Coulomb's bound W tan(phi) and the trends of Bekker and of Wong and"
+              " Reece", True),
     ("stability", "Stability on hard cases (a fixed step above the bound set by hand is refused "
                   "before the run: test_free_fall FixedStep.AboveTheCriticalStepIsRefused)", True),
 ]
@@ -386,6 +390,32 @@ def plot_compression(data, out):
     return finish(fig, out, "compression_force_settlement.png")
 
 
+def plot_wheel(data, out):
+    path = os.path.join(data, "wheel_sweep.csv")
+    if not os.path.exists(path):
+        return None
+    rows = read_csv(path)
+    fig, (pull, sink) = plt.subplots(1, 2, figsize=(10, 4))
+    for key in sorted({(r["load_n_m"], r["cell_m"]) for r in rows}):
+        sel = sorted((r for r in rows if (r["load_n_m"], r["cell_m"]) == key),
+                     key=lambda r: float(r["slip"]))
+        label = "W = %s N/m, h = %g mm" % (key[0], 1e3 * float(key[1]))
+        slip = [float(r["slip"]) for r in sel]
+        pull.plot(slip, [float(r["pull_n_m"]) / float(r["load_n_m"]) for r in sel], "o-",
+                  label=label)
+        sink.plot(slip, [1e3 * float(r["sinkage_m"]) for r in sel], "o-", label=label)
+    bound = [float(r["reference"]) for r in read_csv(os.path.join(data, "results.csv"))
+             if r["case"] == "wheel" and r["quantity"].startswith("drawbar pull")]
+    if bound:
+        pull.axhline(bound[0], color="k", ls=":", label="tan(phi): Coulomb's bound")
+    pull.set_xlabel("slip")
+    pull.set_ylabel("drawbar pull / load")
+    pull.legend(fontsize=7)
+    sink.set_xlabel("slip")
+    sink.set_ylabel("sinkage (mm)")
+    return finish(fig, out, "wheel_pull_sinkage.png")
+
+
 def family(quantity):
     """Rows of one quantity measured at different settings: the name up to its first comma."""
     return quantity.split(",")[0]
@@ -482,6 +512,7 @@ def main():
              "silo_convergence": plot_silo_convergence(data, out),
              "debris_flow": plot_debris_flow(data, out),
              "compression": plot_compression(data, out),
+             "wheel": plot_wheel(data, out),
              "water_gate": plot_water_gate(data, out),
              "water_gate_snapshots": plot_water_gate_snapshots(data, out)}
     lines = ["# Validation report", "",

@@ -1267,4 +1267,52 @@ Throughput throughput(Real h, bool sph, int steps) {
   return out;
 }
 
+namespace {
+
+int wheelIndex(const std::vector<BlockDef>& blocks) {
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+    if (blocks[i].name == "wheel") return static_cast<int>(i);
+  throw std::invalid_argument("the wheel rig needs a block named 'wheel'");
+}
+
+}  // namespace
+
+void setWheelRig(WorldDef& def, Real slip, Real load) {
+  BlockDef& wheel = def.blocks[wheelIndex(def.blocks)];
+  wheel.density *= load / (blockMass(wheel).mass * def.solver.gravity.norm());
+  const Real rim_speed = std::abs(wheel.drive.angular_velocity) * wheel.rounding;
+  wheel.drive.velocity.x() = (1 - slip) * rim_speed;
+}
+
+WheelRun runWheel(World& w, Real t_end) {
+  const int wheel = wheelIndex(w.def().blocks);
+  const Real radius = w.def().blocks[wheel].rounding;
+  const Real spin = w.def().blocks[wheel].drive.angular_velocity;
+  Real top = -std::numeric_limits<Real>::infinity();
+  for (const BodyDef& b : w.def().bodies)
+    if (b.name == "bed") top = b.shape.max.y();
+  WheelRun out;
+  out.radius = radius;
+  Real sum2 = 0;
+  int n = 0;
+  while (w.time() < t_end - 1e-12) {
+    w.step(std::fmin(w.chooseTimeStep().dt, t_end - w.time()));
+    const Blocks& B = *w.blocks();
+    const Real sinkage = top - (B.state(wheel).position.y() - radius);
+    out.final_sinkage = sinkage;
+    if (w.time() < t_end / 2) continue;
+    const Blocks::Coupling& c = B.coupling()[wheel];
+    out.pull += c.force.x();
+    sum2 += c.force.x() * c.force.x();
+    out.torque -= std::copysign(c.torque, spin);  // the motor's, in the sense of the spin
+    out.sinkage += sinkage;
+    ++n;
+  }
+  out.pull /= n;
+  out.torque /= n;
+  out.sinkage /= n;
+  out.pull_spread = std::sqrt(std::fmax(sum2 / n - out.pull * out.pull, Real(0)));
+  return out;
+}
+
 }  // namespace mpm_sdem::cases

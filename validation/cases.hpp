@@ -322,4 +322,21 @@ struct Compression {
 };
 Compression compressMatrix(World& w, int plate, Real speed, Real max_settlement);
 
+// A single-wheel test rig (terramechanics' soil bin) in plane strain, as config/scenes/wheel.yaml
+// sets it up: a rigid wheel (a disk block named "wheel" with a drive holding its angular
+// velocity and horizontal speed, free to sink) on a bed of sand (the body named "bed").
+// setWheelRig gives the wheel a load (its weight, N/m, through its density) and tows it at
+// (1 - slip) omega R, omega being its drive's.
+void setWheelRig(WorldDef& def, Real slip, Real load);
+// Runs the rig to t_end and averages over the last half: drawbar pull (the material's
+// horizontal force on the wheel, + forward, N/m), driving torque (the material's torque about
+// the axle, which resists the spin: the motor's, N m/m), sinkage (the bed's top as filled minus
+// the rim's lowest point, m), and the sinkage at the end.
+struct WheelRun {
+  Real pull = 0, torque = 0, sinkage = 0, final_sinkage = 0;
+  Real pull_spread = 0;  // standard deviation of the pull over the window (N/m)
+  Real radius = 0;       // the wheel's (m)
+};
+WheelRun runWheel(World& w, Real t_end);
+
 }  // namespace mpm_sdem::cases

@@ -1455,6 +1455,59 @@ void waterGate(const Options& o, Results& r) {
   std::fclose(stages);
 }
 
+// Issue 20's wheel (config/scenes/wheel.yaml): a rigid wheel driven at omega R = 0.1 m/s and
+// towed at (1 - slip) omega R over dry sand (phi = 30 deg), at two loads. Terramechanics has no
+// closed form for a rigid wheel in a Drucker-Prager continuum; its measured trends (Bekker 1969,
+// Wong and Reece 1967) are: drawbar pull rises with slip, sinkage with load and with slip
+// (slip sinkage), motion resistance with sinkage, and neither the gross thrust T / R nor the
+// pull exceeds Coulomb's W tan(phi) for a cohesionless soil (Bekker's maximum thrust; a smooth
+// wheel of friction 0.6 > tan 30 deg does not slip on its rim first). The rows give DP/W and
+// T/(W R) against that bound and the sinkage; the 5 mm runs show the resolution's effect.
+void wheel(const Options& o, Results& r) {
+  struct Run {
+    Real slip, load, h;
+  };
+  std::vector<Run> runs;
+  const Real t_end = o.fast ? 0.5 : 1.5;
+  if (o.fast) {
+    runs = {{0.1, 200, 0.01}, {0.7, 200, 0.01}};
+  } else {
+    for (Real load : {200.0, 400.0})
+      for (Real slip : {0.0, 0.1, 0.2, 0.4, 0.7}) runs.push_back({slip, load, 0.01});
+    for (Real load : {200.0, 400.0})
+      for (Real slip : {0.0, 0.4, 0.7}) runs.push_back({slip, load, 0.005});
+  }
+  const std::string path = std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/wheel.yaml";
+  FILE* sweep = std::fopen((o.out + "/wheel_sweep.csv").c_str(), "w");
+  std::fprintf(sweep, "cell_m,load_n_m,slip,pull_n_m,pull_sd_n_m,torque_nm_m,sinkage_m\n");
+  for (const Run& run : runs) {
+    Scene scene = loadScene(path, {"grid.cell_size=" + std::to_string(run.h)});
+    cases::setWheelRig(scene.world, run.slip, run.load);
+    const Real bound = std::tan(scene.world.materials[0].friction_angle);  // radians here
+    World w(scene.world);
+    const auto start = std::chrono::steady_clock::now();
+    const cases::WheelRun m = cases::runWheel(w, t_end);
+    const double wall = seconds(start);
+    std::fprintf(sweep, "%g,%g,%g,%.5g,%.4g,%.5g,%.5g\n", run.h, run.load, run.slip, m.pull,
+                 m.pull_spread, m.torque, m.sinkage);
+    char at[96], settings[160];
+    std::snprintf(at, sizeof at, ", W = %g N/m, slip %g, h %g mm", run.load, run.slip, 1e3 * run.h);
+    std::snprintf(settings, sizeof settings,
+                  "%.1f s, mean over the second half; pull sd %.3g N/m; %zu points", t_end,
+                  m.pull_spread, w.particles().size());
+    const std::string src = "Coulomb bound tan(phi) (Bekker 1969): never reached";
+    const long points = static_cast<long>(w.particles().size());
+    r.add("wheel", std::string("drawbar pull / load") + at, m.pull / run.load, bound, "-", src,
+          wall, settings, points, w.stepCount());
+    r.add("wheel", std::string("gross thrust T / (W R)") + at, m.torque / (run.load * m.radius),
+          bound, "-", src, wall, settings, points, w.stepCount());
+    r.add("wheel", std::string("sinkage") + at, m.sinkage, 0, "m",
+          "rises with load and slip (Bekker; Wong and Reece)", wall, settings, points,
+          w.stepCount());
+  }
+  std::fclose(sweep);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -1481,6 +1534,7 @@ int main(int argc, char** argv) {
       {"silo", siloDischarge},
       {"silo_convergence", siloConvergence},
       {"compression", compression},
+      {"wheel", wheel},
       {"stability", stability}};
   std::string names;
   for (const auto& entry : all) names += (names.empty() ? "" : ",") + std::string(entry.first);
