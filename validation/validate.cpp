@@ -1161,9 +1161,13 @@ void rolling(const Options& o, Results& r) {
     r.add("rolling", "rolling starts / (v0 / 3 mu g), " + name,
           k.roll_start / (c.v0 / (3 * c.mu * g)), 1, "-", source, wall, settings, points, steps);
   };
+  // CI (fast): 5 cells per radius, an eighth of the cost; test_rolling checks the physics at
+  // the report's 10.
+  const Real h = o.fast ? 0.01 : cases::ThrownDisk().cell_size;
   for (CouplingScheme s : kSchemes) {
     cases::ThrownDisk c;
     c.scheme = s;
+    c.cell_size = h;
     run(c, couplingSchemeName(s));
   }
   const std::pair<TransferScheme, const char*> transfers[] = {
@@ -1171,6 +1175,7 @@ void rolling(const Options& o, Results& r) {
   for (const auto& [t, name] : transfers) {
     cases::ThrownDisk c;
     c.transfer = t;
+    c.cell_size = h;
     run(c, name);
   }
   if (!o.fast) {
