@@ -44,14 +44,15 @@ void ObstacleDrivers::sync(const World& world, bool fresh) {
   commands_.erase(std::remove_if(commands_.begin(), commands_.end(),
                                  [&](const Command& c) { return gone(c.id); }),
                   commands_.end());
+  // A follower found by name: after a reset, or when a block of its name is spawned again.
   for (Follower& f : followers_) {
-    f.id = B ? B->find(f.name) : BlockId();
-    if (f.id.isNull())
-      throw std::runtime_error("parameter ~follow_tf: no block named '" + f.name +
-                               "' in the scene (a kinematic block must follow " + f.frame + ")");
-    if (B->def(B->indexOf(f.id)).type != BodyType::kKinematic)
-      throw std::runtime_error("parameter ~follow_tf: block '" + f.name +
-                               "' must be kinematic to follow a frame (body_type in the scene)");
+    const BlockId id = B ? B->find(f.name) : BlockId();
+    const bool kinematic = !id.isNull() && B->def(B->indexOf(id)).type == BodyType::kKinematic;
+    if (!kinematic && !f.id.isNull())
+      ROS_WARN("~follow_tf: block '%s' is gone or not kinematic; it follows %s no more",
+               f.name.c_str(), f.frame.c_str());
+    f.id = kinematic ? id : BlockId();
+    f.samples = 0;
   }
   for (int i = 0; B && i < B->count(); ++i) {
     const BlockDef& d = B->def(i);
@@ -67,6 +68,19 @@ void ObstacleDrivers::sync(const World& world, bool fresh) {
         "obstacles/" + name + "/cmd_vel", 10,
         [this, name](const geometry_msgs::Twist::ConstPtr& t) { onCmdVel(name, *t); });
     commands_.push_back(std::move(c));
+  }
+}
+
+void ObstacleDrivers::checkFollowers(const World& world) const {
+  const Blocks* B = world.blocks();
+  for (const Follower& f : followers_) {
+    const BlockId id = B ? B->find(f.name) : BlockId();
+    if (id.isNull())
+      throw std::runtime_error("parameter ~follow_tf: no block named '" + f.name +
+                               "' in the scene (a kinematic block must follow " + f.frame + ")");
+    if (B->def(B->indexOf(id)).type != BodyType::kKinematic)
+      throw std::runtime_error("parameter ~follow_tf: block '" + f.name +
+                               "' must be kinematic to follow a frame (body_type in the scene)");
   }
 }
 

@@ -27,9 +27,13 @@ class ObstacleDrivers {
  public:
   ObstacleDrivers(ros::NodeHandle& pnh, CommandQueue& queue, const NodeParams& params);
 
+  // At start: throws std::runtime_error when a ~follow_tf block is missing from the scene or
+  // not kinematic.
+  void checkFollowers(const World& world) const;
   // Loop thread, whenever blocks come and go or the world is rebuilt (fresh: after a reset,
-  // when ids from the old world mean nothing). Subscribes cmd_vel for each kinematic block.
-  // Throws std::runtime_error when a ~follow_tf block is missing or not kinematic.
+  // when ids from the old world mean nothing). Subscribes cmd_vel for each kinematic block; a
+  // follower whose block is gone (removed by a request) stops following until one of its name
+  // and kind is there again.
   void sync(const World& world, bool fresh = false);
   // Loop thread, before each step: adds the held loads, lapses old commands, steers the
   // followers.

@@ -176,13 +176,29 @@ void Publishers::publishBlocks(const World& world, const std_msgs::Header& heade
   if (arrows_due) arrows_.pub.publish(conversions::toForceArrows(states, arrow_scale_));
 }
 
-void Publishers::publishTerrain(const World& world, const std_msgs::Header& header) {
+Real Publishers::terrainColumn(const World& world) const {
+  return params_.terrain_resolution > 0 ? params_.terrain_resolution : world.def().cell_size;
+}
+
+int Publishers::terrainColumns(const World& world) const {
   const DomainDef& d = world.def().domain;
-  const Real dx =
-      params_.terrain_resolution > 0 ? params_.terrain_resolution : world.def().cell_size;
-  const int columns = static_cast<int>(std::ceil((d.max.x() - d.min.x()) / dx - 1e-9));
-  heightProfile(world.particles(), d.min.x(), dx, columns, heights_);
-  conversions::toTerrainCloud(heights_, d.min.x(), dx, header, terrain_cloud_);
+  return static_cast<int>(std::ceil((d.max.x() - d.min.x()) / terrainColumn(world) - 1e-9));
+}
+
+std::string Publishers::terrainProblem(const World& world) const {
+  // A message of 12 bytes a column: 1e5 columns is 1.2 MB at rates/terrain.
+  constexpr double kMaxColumns = 1e5;
+  const DomainDef& d = world.def().domain;
+  if ((d.max.x() - d.min.x()) / terrainColumn(world) <= kMaxColumns) return "";
+  return "parameter ~terrain/resolution " + std::to_string(params_.terrain_resolution) +
+         " m cuts the domain into more than 100000 columns; use at least " +
+         std::to_string((d.max.x() - d.min.x()) / kMaxColumns) + " m (0: the cell size)";
+}
+
+void Publishers::publishTerrain(const World& world, const std_msgs::Header& header) {
+  const Real x0 = world.def().domain.min.x(), dx = terrainColumn(world);
+  heightProfile(world.particles(), x0, dx, terrainColumns(world), heights_);
+  conversions::toTerrainCloud(heights_, x0, dx, header, terrain_cloud_);
   terrain_.pub.publish(terrain_cloud_);
 }
 

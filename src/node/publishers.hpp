@@ -35,6 +35,8 @@ class Publishers {
   // The set of blocks changed (spawn, remove, reset, a static block moved): the per-obstacle
   // topics follow, /tf_static is re-sent.
   void blocksChanged(const World& world);
+  // "" or why ~terrain cannot be drawn for this world (too many columns).
+  std::string terrainProblem(const World& world) const;
   // Restart the rate schedules at the world's time (after a reset).
   void restart(const World& world);
 
@@ -68,6 +70,8 @@ class Publishers {
   void publishClock(const std_msgs::Header& header);
   void publishBlocks(const World& world, const std_msgs::Header& header, bool force);
   void publishTerrain(const World& world, const std_msgs::Header& header);
+  Real terrainColumn(const World& world) const;  // m
+  int terrainColumns(const World& world) const;
   void publishStats(const World& world, const conversions::StatsInput& status,
                     const std_msgs::Header& header);
   // For the per-stage times in ~stats: the profile at the last message.

@@ -37,6 +37,9 @@ Simulation::Simulation(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
   else
     tuner_ = std::make_unique<ThreadTuner>(std::min(omp_get_max_threads(), limits::logicalCores()));
   dt_ = world_->chooseTimeStep();
+  drivers_.checkFollowers(*world_);
+  if (const std::string p = publishers_.terrainProblem(*world_); !p.empty())
+    throw std::runtime_error(p);
   drivers_.sync(*world_, true);
   openRecordings();
   publishers_.blocksChanged(*world_);

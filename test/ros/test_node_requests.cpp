@@ -322,6 +322,7 @@ TEST(Requests, BadParametersStopTheNodeBeforeItSimulates) {
       {"_scene:=" + dir.string(), "not a regular file"},
       {"_cmd_vel_timeout:=-1", "~cmd_vel_timeout"},
       {"_terrain/resolution:=-0.01", "~terrain/resolution"},
+      {"_terrain/resolution:=1e-9", "more than 100000 columns"},
       {"_follow_tf_time_constant:=0", "~follow_tf_time_constant"},
       // A dictionary cannot be given as _name:=value: set on the server first (as a launch
       // file's rosparam does), "follow_tf=" marking it here.
