@@ -117,6 +117,11 @@ Reply ObstacleDrivers::addLoad(World& world, const std::string& name, const Vec2
     return {false, "block '" + name +
                        "' is not dynamic: a load moves only dynamic blocks (command a kinematic "
                        "one's velocity instead)"};
+  // Each step adds every held load: a caller looping on requests must not slow the loop down.
+  constexpr std::size_t kMaxLoads = 1000;
+  if (loads_.size() >= kMaxLoads)
+    return {false, "already " + std::to_string(kMaxLoads) +
+                       " loads held; let some end or call ~clear_obstacle_wrenches"};
   const Real until = duration < 0 ? std::numeric_limits<Real>::infinity() : world.time() + duration;
   loads_.push_back({id, force, point, in_block_frame, torque, until});
   return {true, "holding a load on '" + name + "' " +

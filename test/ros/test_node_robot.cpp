@@ -5,6 +5,7 @@
 #include <geometry_msgs/WrenchStamped.h>
 #include <gtest/gtest.h>
 #include <mpm_sdem/ApplyObstacleWrench.h>
+#include <mpm_sdem/ClearObstacleWrenches.h>
 #include <mpm_sdem/GetObstacleState.h>
 #include <sensor_msgs/point_cloud2_iterator.h>
 #include <std_srvs/Empty.h>
@@ -78,6 +79,21 @@ TEST(Robot, WrenchOfTheRestingBoxAndAHeldLoad) {
   EXPECT_NE(a.response.message.find("not dynamic"), std::string::npos) << a.response.message;
   a.request.name = "nobody";
   EXPECT_FALSE(n.call("apply_obstacle_wrench", a).response.success);
+
+  // A caller looping on requests: at most 1000 loads held (each step adds them all), then
+  // refused until cleared.
+  a.request.name = "box";
+  a.request.wrench = geometry_msgs::Wrench();
+  a.request.duration = -1;
+  int held = 0;
+  for (int k = 0; k < 1001; ++k) held += n.call("apply_obstacle_wrench", a).response.success;
+  EXPECT_EQ(held, 1000);
+  mpm_sdem::ClearObstacleWrenches c;
+  c.request.name = "box";
+  c = n.call("clear_obstacle_wrenches", c);
+  EXPECT_TRUE(c.response.success);
+  EXPECT_EQ(c.response.message, "cleared 1000 loads");
+  EXPECT_TRUE(n.call("apply_obstacle_wrench", a).response.success);
 }
 
 // The blade is turned 90 degrees: linear.x of its cmd_vel (its own x axis) moves it along the
