@@ -9,6 +9,7 @@
 
 #include "mpm_sdem/render/render.hpp"
 #include "mpm_sdem/ros/bag_recorder.hpp"
+#include "mpm_sdem/scene/scene.hpp"
 
 namespace mpm_sdem::node {
 
@@ -24,9 +25,10 @@ struct NodeParams {
   int cloud_decimation = 1;  // publish every n-th material point
   double blocks_rate = 100;  // ~blocks, ~block_poses and tf
   double stats_rate = 10;
-  double image_rate = 5;     // only while ~image has subscribers
-  double clock_rate = 1000;  // /clock, only with /use_sim_time true
-  render::RenderDef image;
+  double image_rate = 5;              // only while ~image has subscribers
+  double clock_rate = 1000;           // /clock, only with /use_sim_time true
+  render::RenderDef image;            // its scale set by chooseImageScale once the scene is read
+  render::ViewRequest image_request;  // ~image/color_by and ~image/max_value, where given
   // Pacing: 0 runs as fast as possible; r > 0 keeps simulation time <= r * wall time.
   double real_time_factor = 0;
   bool start_paused = false;
@@ -46,5 +48,9 @@ struct NodeParams {
 
 // Fills params from the private node handle; false with a message on a bad value.
 bool loadParams(const ros::NodeHandle& pnh, NodeParams& params, std::string& error);
+
+// Sets params.image.scale from the ~image parameters, the scene's view and its default
+// (render::chooseScale); false with a message when ~image/max_value cannot top that scale.
+bool chooseImageScale(const Scene& scene, NodeParams& params, std::string& error);
 
 }  // namespace mpm_sdem::node
