@@ -106,7 +106,7 @@ Real penaltyRestitution(Drop drop, Real e) {
   for (int n = 0; n < 100000; ++n) {
     const Real vn = normalSpeed();
     blocks.step(dt);
-    const bool touching = blocks.blockContactForce(1).norm() > 0;
+    const bool touching = blocks.blockContact(1).force.norm() > 0;
     if (touching && v_in == 0) v_in = vn;
     if (!touching && v_in != 0) return -vn / v_in;
   }
@@ -370,4 +370,66 @@ TEST(Adhesion, RaisesTheFrictionLimitByMuCL) {
               slid);
   EXPECT_LT(stuck, 1e-4);  // the tangential springs' stretch, about F / (2 k_t) = 1e-5 m
   EXPECT_GT(slid, 0.05);   // 0.1 mu (W + c L) / m = 0.98 m/s^2: 0.12 m in 0.5 s
+}
+
+// The load the other blocks put on a block (blockContact) is what its outputs report (the
+// node's wrench, a loading plate's reading). A box at rest on a static floor, pushed sideways
+// above its centre by less than friction holds, carries its weight and the push through the
+// contact, and the push's moment about its centre: with the seed's springs (their mean over the
+// substeps) and with Box2D's contact impulses. The floor carries the reaction.
+TEST(BlockLoads, RestingBoxCarriesItsWeightWithEitherModel) {
+  for (BlockContactModel model : {BlockContactModel::kPenalty, BlockContactModel::kBox2D}) {
+    const Real a = 0.005;
+    BlockDef floor = test::boxBlock("floor", Vec2(0, -0.05), 0.5, 0.1, a, BodyType::kStatic);
+    BlockDef box = test::boxBlock("box", Vec2(0.02, 0.05 + 2 * a), 0.1, 0.1, a, BodyType::kDynamic);
+    box.density = 500;
+    BlockContactDef contact;
+    contact.model = model;
+    Blocks blocks({floor, box}, contact, Vec2(0, -9.81));
+    const Real weight = blocks.massProperties(1).mass * 9.81, dt = 1e-4;
+    const Vec2 push(0.2 * weight, 0), arm(0, 0.04);  // mu W = 0.5 W; tips over above 0.56 W
+    for (int n = 0; n < 10000; ++n) {                // settled by 1 s
+      blocks.addLoad(blocks.id(1), push, blocks.state(1).position + arm, 0);
+      blocks.step(dt, blocks.stableStep(0.1));
+    }
+    const Blocks::Coupling& on_box = blocks.blockContact(1);
+    const Blocks::Coupling& on_floor = blocks.blockContact(0);
+    const char* name = model == BlockContactModel::kPenalty ? "penalty" : "box2d";
+    std::printf(
+        "%s: force on the box (%.4f, %.4f) of W = %.4f N/m, torque %.2e N m/m, %d "
+        "contacts\n",
+        name, on_box.force.x(), on_box.force.y(), weight, on_box.torque, on_box.contacts);
+    // At rest the contact holds the weight to Box2D's single precision (1e-6) or the springs'
+    // damped residual motion, well inside 0.1%.
+    EXPECT_NEAR(on_box.force.y(), weight, 1e-3 * weight) << name;
+    EXPECT_NEAR(on_box.force.x(), -push.x(), 1e-3 * weight) << name;
+    EXPECT_NEAR(on_box.torque, -cross(arm, push), 1e-3 * weight * 0.05) << name;
+    EXPECT_GE(on_box.contacts, 2) << name;  // a face: at least its two corners
+    EXPECT_NEAR(on_floor.force.y(), -on_box.force.y(), 1e-9 * weight) << name;
+  }
+}
+
+// An external load (a robot's wrench request) acts for the steps it is added in: a force at a
+// point off the centre of mass and a torque change a free block's momenta by their impulses.
+TEST(BlockLoads, ExternalLoadGivesItsImpulse) {
+  BlockDef box = test::boxBlock("box", Vec2(0, 0), 0.2, 0.1, 0.005, BodyType::kDynamic);
+  Blocks blocks({box}, BlockContactDef(), Vec2(0, 0));
+  const MassProperties& m = blocks.massProperties(0);
+  const Vec2 force(3, -1), arm(0, 0.04);
+  const Real torque = 0.2, dt = 1e-3;
+  const int steps = 100;
+  for (int n = 0; n < steps; ++n) {
+    blocks.addLoad(blocks.id(0), force, blocks.state(0).position + arm, torque);
+    blocks.step(dt);
+  }
+  const Real t = steps * dt;
+  const Vec2 v = blocks.state(0).velocity;
+  const Real w = blocks.state(0).angular_velocity;
+  const Real w_expected = (torque + cross(arm, force)) * t / m.inertia;
+  std::printf("v (%.6f, %.6f) against (%.6f, %.6f) m/s; w %.6f against %.6f rad/s\n", v.x(), v.y(),
+              force.x() * t / m.mass, force.y() * t / m.mass, w, w_expected);
+  // Box2D integrates in single precision: 1e-5 of the values.
+  EXPECT_NEAR(v.x(), force.x() * t / m.mass, 1e-5 * v.norm());
+  EXPECT_NEAR(v.y(), force.y() * t / m.mass, 1e-5 * v.norm());
+  EXPECT_NEAR(w, w_expected, 1e-5 * std::abs(w_expected));
 }

@@ -816,7 +816,7 @@ Compression compressMatrix(World& w, int plate, Real speed, Real max_settlement)
   while (w.time() < give_up) {
     w.step(w.chooseTimeStep().dt);
     const Real y = B.state(plate).position.y();
-    const Real f = B.coupling()[plate].force.y() + B.blockContactForce(plate).y();
+    const Real f = B.coupling()[plate].force.y() + B.blockContact(plate).force.y();
     if (std::isnan(contact_y) && f > 0.01 * weight) contact_y = y;
     if (std::isnan(contact_y) || contact_y - y < next) continue;
     next += max_settlement / 100;

@@ -288,6 +288,11 @@ void World::setBlockVelocity(BlockId id, const Vec2& origin_velocity, Real angul
   blocks_->setVelocity(id, origin_velocity, angular_velocity);
 }
 
+void World::addBlockLoad(BlockId id, const Vec2& force, const Vec2& point, Real torque) {
+  if (!blocks_) throw std::invalid_argument("addBlockLoad: this world has no blocks");
+  blocks_->addLoad(id, force, point, torque);
+}
+
 World::Memory World::memory() const {
   Memory m;
   particles_.forEachColumn(

@@ -1,5 +1,6 @@
 #include "node_params.hpp"
 
+#include <cmath>
 #include <ctime>
 #include <filesystem>
 
@@ -74,6 +75,15 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
       readRate(pnh, "rates/stats", p.stats_rate, error) &&
       readRate(pnh, "rates/image", p.image_rate, error) &&
       readRate(pnh, "rates/clock", p.clock_rate, error) &&
+      readRate(pnh, "rates/terrain", p.terrain_rate, error) &&
+      read(pnh, "terrain/resolution", p.terrain_resolution, "a number (m; 0: the cell size)",
+           error) &&
+      read(pnh, "force_arrow_scale", p.force_arrow_scale, "a number (m per N/m; 0: automatic)",
+           error) &&
+      read(pnh, "cmd_vel_timeout", p.cmd_vel_timeout, "a number (s; 0: never)", error) &&
+      read(pnh, "follow_tf", p.follow_tf,
+           "a dictionary {block name: tf frame}, e.g. {blade: excavator/blade_link}", error) &&
+      read(pnh, "follow_tf_time_constant", p.follow_tf_time_constant, "a number (s)", error) &&
       read(pnh, "cloud_decimation", decimation, "a whole number >= 1", error) &&
       read(pnh, "image/width", p.image.width, "a whole number of pixels", error) &&
       read(pnh, "image/color_by", color, "speed, pressure or kind", error) &&
@@ -102,6 +112,25 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
   if (const std::string f = frameProblem(p.tf_prefix); !f.empty())
     return fail("parameter ~tf_prefix " + f);
   if (decimation < 1) return fail("parameter ~cloud_decimation must be >= 1");
+  auto nonNegative = [&](const char* key, double v, const char* unit) {
+    if (v >= 0 && std::isfinite(v)) return true;
+    error = std::string("parameter ~") + key + " must be a finite number >= 0 " + unit + ", got " +
+            std::to_string(v);
+    return false;
+  };
+  if (!nonNegative("terrain/resolution", p.terrain_resolution, "m (0: the cell size)") ||
+      !nonNegative("force_arrow_scale", p.force_arrow_scale, "m per N/m (0: automatic)") ||
+      !nonNegative("cmd_vel_timeout", p.cmd_vel_timeout, "s (0: never)"))
+    return false;
+  if (!(p.follow_tf_time_constant > 0) || !std::isfinite(p.follow_tf_time_constant))
+    return fail("parameter ~follow_tf_time_constant must be a finite number > 0 s, got " +
+                std::to_string(p.follow_tf_time_constant));
+  for (const auto& [block, frame] : p.follow_tf) {
+    if (const std::string n = limits::nameProblem(block); !n.empty())
+      return fail("parameter ~follow_tf: block name " + n);
+    if (const std::string f = frameProblem(frame); !f.empty())
+      return fail("parameter ~follow_tf/" + block + ": frame " + f);
+  }
   if (bag_decimation < 1) return fail("parameter ~bag_cloud_decimation must be >= 1");
   p.cloud_decimation = decimation;
   p.record_def.cloud_decimation = bag_decimation;

@@ -4,6 +4,7 @@
 
 #include <ros/node_handle.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -25,8 +26,19 @@ struct NodeParams {
   int cloud_decimation = 1;  // publish every n-th material point
   double blocks_rate = 100;  // ~blocks, ~block_poses and tf
   double stats_rate = 10;
-  double image_rate = 5;              // only while ~image has subscribers
-  double clock_rate = 1000;           // /clock, only with /use_sim_time true
+  double image_rate = 5;          // only while ~image has subscribers
+  double clock_rate = 1000;       // /clock, only with /use_sim_time true
+  double terrain_rate = 10;       // ~terrain
+  double terrain_resolution = 0;  // m, column width of ~terrain; 0: the grid's cell size
+  // ~force_arrows: metres of arrow per N/m of force; 0: the domain's larger side / 5 for the
+  // weight of all the material and blocks.
+  double force_arrow_scale = 0;
+  // Commanded obstacles. A kinematic block's ~obstacles/<name>/cmd_vel twist lapses to zero
+  // after this long without a new one (s of simulation time; 0: never), like
+  // diff_drive_controller's cmd_vel_timeout.
+  double cmd_vel_timeout = 0.5;
+  std::map<std::string, std::string> follow_tf;  // kinematic block name -> tf frame it follows
+  double follow_tf_time_constant = 0.05;         // s: how fast a follower closes on its frame
   render::RenderDef image;            // its scale set by chooseImageScale once the scene is read
   render::ViewRequest image_request;  // ~image/color_by and ~image/max_value, where given
   // Pacing: 0 runs as fast as possible; r > 0 keeps simulation time <= r * wall time.

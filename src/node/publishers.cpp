@@ -1,11 +1,15 @@
 #include "publishers.hpp"
 
+#include <geometry_msgs/WrenchStamped.h>
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/fill_image.h>
 #include <std_msgs/String.h>
 
+#include <algorithm>
+
 #include "mpm_sdem/core/diagnostics.hpp"
+#include "mpm_sdem/core/terrain.hpp"
 
 namespace mpm_sdem::node {
 
@@ -22,15 +26,16 @@ Profile since(const Profile& now, const Profile& then) {
 }  // namespace
 
 bool Publishers::Channel::due(Real t, bool force, bool always) {
+  if (force && latched) return clock.due(t, true);
   if (!always && pub.getNumSubscribers() == 0) return false;
   return clock.due(t, force);
 }
 
 Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParams& params,
                        const std::string& scene_text)
-    : params_(params) {
-  particles_ = {pnh.advertise<sensor_msgs::PointCloud2>("particles", 2),
-                SampleClock(params.particles_rate)};
+    : params_(params), pnh_(pnh) {
+  particles_ = {pnh.advertise<sensor_msgs::PointCloud2>("particles", 2, true),
+                SampleClock(params.particles_rate), true};
   blocks_ = {pnh.advertise<mpm_sdem::BlockStates>("blocks", 10), SampleClock(params.blocks_rate)};
   poses_ = {pnh.advertise<geometry_msgs::PoseArray>("block_poses", 10),
             SampleClock(params.blocks_rate)};
@@ -40,10 +45,26 @@ Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
   // FEM bodies' triangles coloured by von Mises stress, at the blocks' rate; latched, so a
   // late listener sees them while paused.
   fem_ = {pnh.advertise<visualization_msgs::Marker>("fem_mesh", 2, true),
-          SampleClock(params.blocks_rate)};
+          SampleClock(params.blocks_rate), true};
   fem_nodes_ = {pnh.advertise<sensor_msgs::PointCloud2>("fem_nodes", 2, true),
-                SampleClock(params.blocks_rate)};
-  markers_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
+                SampleClock(params.blocks_rate), true};
+  markers_ = {pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, true),
+              SampleClock(params.blocks_rate), true};
+  arrows_ = {pnh.advertise<visualization_msgs::MarkerArray>("force_arrows", 1, true),
+             SampleClock(params.blocks_rate), true};
+  terrain_ = {pnh.advertise<sensor_msgs::PointCloud2>("terrain", 2, true),
+              SampleClock(params.terrain_rate), true};
+  // What a listener needs to read the numbers (latched on the parameter server).
+  pnh.setParam("convention/plane",
+               "2D plane strain in the x-y plane of the fixed frame, y up against gravity; z is "
+               "out of the plane (z = 0 everywhere)");
+  pnh.setParam("convention/thickness_m", 1.0);
+  pnh.setParam("convention/force", "N per metre of out-of-plane thickness (N/m)");
+  pnh.setParam("convention/torque", "N m per metre of thickness, about z (N m/m)");
+  pnh.setParam("convention/mass", "kg per metre of thickness (kg/m)");
+  pnh.setParam("convention/wrench",
+               "~obstacles/<name>/wrench: the contact load of the material and the other blocks, "
+               "at the block frame's origin in its axes");
   scene_ = pnh.advertise<std_msgs::String>("scene", 1, true);
   nh.param("/use_sim_time", use_sim_time_, false);
   if (use_sim_time_)
@@ -54,13 +75,45 @@ Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
 }
 
 void Publishers::restart(const World& world) {
-  for (Channel* c : {&particles_, &blocks_, &poses_, &stats_, &image_, &clock_, &fem_, &fem_nodes_})
+  for (Channel* c : {&particles_, &blocks_, &poses_, &stats_, &image_, &clock_, &fem_, &fem_nodes_,
+                     &markers_, &arrows_, &terrain_})
     c->clock.restart();
   stats_profile_ = world.profile();
 }
 
 void Publishers::blocksChanged(const World& world) {
-  markers_.publish(conversions::toMarkers(world, params_.tf_prefix, ros::Time(0)));
+  const Blocks* B = world.blocks();
+  // One wrench topic per block, made and dropped with it.
+  std::vector<Obstacle> kept;
+  for (int i = 0; B && i < B->count(); ++i) {
+    const std::string& name = B->def(i).name;
+    auto it = std::find_if(obstacles_.begin(), obstacles_.end(),
+                           [&](const Obstacle& o) { return o.name == name; });
+    kept.push_back(it != obstacles_.end()
+                       ? *it
+                       : Obstacle{name, pnh_.advertise<geometry_msgs::WrenchStamped>(
+                                            "obstacles/" + name + "/wrench", 10)});
+  }
+  obstacles_.swap(kept);
+  // The arrows' scale: the whole weight (material and dynamic blocks) a fifth of the domain.
+  Real mass = 0;
+  for (Real m : world.particles().mass) mass += m;
+  for (int i = 0; B && i < B->count(); ++i)
+    if (B->def(i).type == BodyType::kDynamic) mass += B->massProperties(i).mass;
+  const Vec2 extent = world.def().domain.max - world.def().domain.min;
+  const Real weight = mass * world.def().solver.gravity.norm();
+  arrow_scale_ = params_.force_arrow_scale > 0 ? params_.force_arrow_scale
+                 : weight > 0                  ? 0.2 * extent.maxCoeff() / weight
+                                               : 0;
+  // The domain's frame and the static blocks, once (a new broadcaster: removed blocks go).
+  std_msgs::Header header;
+  header.stamp = conversions::toRosTime(world.time());
+  header.frame_id = params_.fixed_frame;
+  std::vector<geometry_msgs::TransformStamped> fixed = conversions::toTransforms(
+      conversions::toBlockStates(world, header), params_.tf_prefix, conversions::Frames::kStatic);
+  fixed.push_back(conversions::domainTransform(world, header, params_.tf_prefix));
+  tf_static_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
+  tf_static_->sendTransform(fixed);
 }
 
 void Publishers::publishClock(const std_msgs::Header& header) {
@@ -88,6 +141,51 @@ void Publishers::publishIdle(const World& world, const conversions::StatsInput& 
   publishStats(world, status, header);
 }
 
+void Publishers::publishBlocks(const World& world, const std_msgs::Header& header, bool force) {
+  const Real t = world.time();
+  // Block states feed tf and the wrenches, which are always sent (other nodes look frames up
+  // without subscribing to us, and a wrench topic has its own listeners).
+  const bool blocks_due = blocks_.due(t, force, true);
+  const bool poses_due = poses_.due(t, force);
+  const bool markers_due = markers_.due(t, force);
+  const bool arrows_due = arrows_.due(t, force);
+  if (!world.blocks()) {
+    if (markers_due) markers_.pub.publish(conversions::toMarkers(world, header));
+    return;
+  }
+  if (!(blocks_due || poses_due || markers_due || arrows_due)) return;
+  const mpm_sdem::BlockStates states = conversions::toBlockStates(world, header);
+  if (blocks_due) {
+    blocks_.pub.publish(states);
+    const auto moving =
+        conversions::toTransforms(states, params_.tf_prefix, conversions::Frames::kMoving);
+    if (!moving.empty()) tf_.sendTransform(moving);
+    for (std::size_t i = 0; i < states.blocks.size() && i < obstacles_.size(); ++i) {
+      if (obstacles_[i].name != states.blocks[i].name ||
+          obstacles_[i].wrench.getNumSubscribers() == 0)
+        continue;
+      geometry_msgs::WrenchStamped w;
+      w.header.stamp = header.stamp;
+      w.header.frame_id = conversions::blockFrame(params_.tf_prefix, states.blocks[i].name);
+      w.wrench = conversions::toWrench(states.blocks[i]);
+      obstacles_[i].wrench.publish(w);
+    }
+  }
+  if (poses_due) poses_.pub.publish(conversions::toPoseArray(states));
+  if (markers_due) markers_.pub.publish(conversions::toMarkers(world, header));
+  if (arrows_due) arrows_.pub.publish(conversions::toForceArrows(states, arrow_scale_));
+}
+
+void Publishers::publishTerrain(const World& world, const std_msgs::Header& header) {
+  const DomainDef& d = world.def().domain;
+  const Real dx =
+      params_.terrain_resolution > 0 ? params_.terrain_resolution : world.def().cell_size;
+  const int columns = static_cast<int>(std::ceil((d.max.x() - d.min.x()) / dx - 1e-9));
+  heightProfile(world.particles(), d.min.x(), dx, columns, heights_);
+  conversions::toTerrainCloud(heights_, d.min.x(), dx, header, terrain_cloud_);
+  terrain_.pub.publish(terrain_cloud_);
+}
+
 void Publishers::publish(const World& world, const conversions::StatsInput& status, bool force) {
   const Real t = world.time();
   std_msgs::Header header;
@@ -99,18 +197,8 @@ void Publishers::publish(const World& world, const conversions::StatsInput& stat
     conversions::toPointCloud(world, params_.cloud_decimation, header, cloud_);
     particles_.pub.publish(cloud_);
   }
-  // Block states feed tf, which is always sent (other nodes look frames up without
-  // subscribing to us).
-  const bool blocks_due = blocks_.due(t, force, true);
-  const bool poses_due = poses_.due(t, force);
-  if ((blocks_due || poses_due) && world.blocks()) {
-    const mpm_sdem::BlockStates states = conversions::toBlockStates(world, header);
-    if (blocks_due) {
-      blocks_.pub.publish(states);
-      tf_.sendTransform(conversions::toTransforms(states, params_.tf_prefix));
-    }
-    if (poses_due) poses_.pub.publish(conversions::toPoseArray(states));
-  }
+  publishBlocks(world, header, force);
+  if (terrain_.due(t, force)) publishTerrain(world, header);
   if (world.femBodies() && fem_.due(t, force))
     fem_.pub.publish(conversions::toFemMarker(world, header));
   if (world.femBodies() && fem_nodes_.due(t, force)) {

@@ -1,11 +1,19 @@
 // Everything the node publishes, each at its own rate in simulation time and only when someone
-// listens (tf always): ~particles, ~blocks, ~block_poses, tf, ~markers, ~stats, ~image, /clock.
+// listens (tf always): ~particles, ~blocks, ~block_poses, tf, ~markers, ~force_arrows,
+// ~terrain, ~obstacles/<name>/wrench, ~stats, ~image, /clock. Static blocks and the domain's
+// frame go on /tf_static whenever the blocks change. The latched topics (particles, markers,
+// arrows, terrain, stats, FEM) are also sent on every forced publication (start, pause,
+// commands), listened to or not, so that a viewer that connects while the node is paused
+// (rviz after a start_paused launch) gets the current state at once.
 #pragma once
 
 #include <ros/ros.h>
+#include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
 #include <chrono>
+#include <memory>
+#include <vector>
 
 #include "mpm_sdem/core/world.hpp"
 #include "mpm_sdem/ros/conversions.hpp"
@@ -24,7 +32,8 @@ class Publishers {
   void publish(const World& world, const conversions::StatsInput& status, bool force = false);
   // While paused, every half second: /clock at the world's time and ~stats.
   void publishIdle(const World& world, const conversions::StatsInput& status);
-  // The set of blocks changed (spawn, remove, reset): markers are re-sent.
+  // The set of blocks changed (spawn, remove, reset, a static block moved): the per-obstacle
+  // topics follow, /tf_static is re-sent.
   void blocksChanged(const World& world);
   // Restart the rate schedules at the world's time (after a reset).
   void restart(const World& world);
@@ -33,18 +42,32 @@ class Publishers {
   struct Channel {
     ros::Publisher pub;
     SampleClock clock;
+    bool latched = false;  // a forced publication goes out without listeners
     // Due at t (and advances the schedule); listeners required unless always.
     bool due(Real t, bool force, bool always = false);
   };
+  struct Obstacle {
+    std::string name;
+    ros::Publisher wrench;  // ~obstacles/<name>/wrench
+  };
 
   const NodeParams& params_;
-  Channel particles_, blocks_, poses_, stats_, image_, clock_, fem_, fem_nodes_;
-  ros::Publisher markers_, scene_;
+  ros::NodeHandle pnh_;
+  Channel particles_, blocks_, poses_, stats_, image_, clock_, fem_, fem_nodes_, markers_, arrows_,
+      terrain_;
+  ros::Publisher scene_;
+  std::vector<Obstacle> obstacles_;
   tf2_ros::TransformBroadcaster tf_;
+  // Replaced when the blocks change: its latched message then holds only the blocks there are.
+  std::unique_ptr<tf2_ros::StaticTransformBroadcaster> tf_static_;
+  Real arrow_scale_ = 0;       // m per N/m
+  std::vector<Real> heights_;  // ~terrain's columns, reused
   bool use_sim_time_ = false;
-  sensor_msgs::PointCloud2 cloud_, fem_cloud_;
+  sensor_msgs::PointCloud2 cloud_, fem_cloud_, terrain_cloud_;
   cv::Mat frame_;
   void publishClock(const std_msgs::Header& header);
+  void publishBlocks(const World& world, const std_msgs::Header& header, bool force);
+  void publishTerrain(const World& world, const std_msgs::Header& header);
   void publishStats(const World& world, const conversions::StatsInput& status,
                     const std_msgs::Header& header);
   // For the per-stage times in ~stats: the profile at the last message.

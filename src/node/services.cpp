@@ -1,5 +1,7 @@
 #include "services.hpp"
 
+#include <tf2/LinearMath/Transform.h>
+
 #include <cmath>
 #include <cstdio>
 
@@ -75,6 +77,23 @@ Services::Services(ros::NodeHandle& pnh, CommandQueue& queue) : queue_(queue) {
   trigger("pause", &Simulation::pause);
   trigger("resume", &Simulation::resume);
   trigger("reset", &Simulation::reset);
+  // gazebo_ros's names, std_srvs/Empty: no reply to read, so a refusal is logged (answer()).
+  using Empty = std_srvs::Empty;
+  auto empty = [this, &pnh](const char* name, Reply (Simulation::*f)()) {
+    servers_.push_back(pnh.advertiseService<Empty::Request, Empty::Response>(
+        name, [this, f, name](Empty::Request&, Empty::Response&) {
+          const Reply r = queue_.call([f](Simulation& s) { return (s.*f)(); });
+          if (!r.success) ROS_WARN_THROTTLE(1, "~%s refused: %s", name, r.message.c_str());
+          return true;
+        }));
+  };
+  empty("pause_physics", &Simulation::pause);
+  empty("unpause_physics", &Simulation::resume);
+  empty("reset_simulation", &Simulation::reset);
+  servers_.push_back(pnh.advertiseService("get_obstacle_state", &Services::getState, this));
+  servers_.push_back(pnh.advertiseService("apply_obstacle_wrench", &Services::applyWrench, this));
+  servers_.push_back(
+      pnh.advertiseService("clear_obstacle_wrenches", &Services::clearWrenches, this));
   command_sub_ = pnh.subscribe("obstacle_cmd", 10, &Services::obstacleCommand, this);
 }
 
@@ -190,6 +209,107 @@ bool Services::step(mpm_sdem::StepSimulation::Request& req,
   res.step = step;
   res.sim_time = time;
   return answer(res, r);
+}
+
+bool Services::getState(mpm_sdem::GetObstacleState::Request& req,
+                        mpm_sdem::GetObstacleState::Response& res) {
+  if (const std::string p = limits::nameProblem(req.name); !p.empty())
+    return answer(res, {false, "name " + p});
+  const std::string name = req.name, frame = req.reference_frame;
+  mpm_sdem::GetObstacleState::Response out;
+  const Reply r = queue_.call([&](Simulation& s) -> Reply {
+    World& w = s.world();
+    const BlockId id = findBlock(w, name);
+    if (id.isNull()) return {false, "no block named '" + name + "'"};
+    const std::string& fixed = s.params().fixed_frame;
+    std_msgs::Header h;
+    h.stamp = conversions::toRosTime(w.time());
+    h.frame_id = fixed;
+    const mpm_sdem::RigidBlockState b =
+        conversions::toBlockStates(w, h).blocks[w.blocks()->indexOf(id)];
+    // The reference frame's pose in the fixed frame, from tf (latest): pose and twist into it.
+    geometry_msgs::TransformStamped into;
+    into.transform.rotation.w = 1;
+    if (!frame.empty() && frame != fixed) {
+      try {
+        into = s.drivers().tf().lookupTransform(frame, fixed, ros::Time(0));
+      } catch (const tf2::TransformException& e) {
+        return {false, "reference_frame '" + frame + "': no transform from " + fixed + " (" +
+                           e.what() + ")"};
+      }
+    }
+    out.header = h;
+    out.header.frame_id = frame.empty() ? fixed : frame;
+    out.state = b;
+    const auto& q = into.transform.rotation;
+    const auto& t = into.transform.translation;
+    const tf2::Transform T(tf2::Quaternion(q.x, q.y, q.z, q.w), tf2::Vector3(t.x, t.y, t.z));
+    const auto& bq = b.pose.orientation;
+    const auto& bp = b.pose.position;
+    const tf2::Transform pose =
+        T * tf2::Transform(tf2::Quaternion(bq.x, bq.y, bq.z, bq.w), tf2::Vector3(bp.x, bp.y, bp.z));
+    out.pose.position.x = pose.getOrigin().x();
+    out.pose.position.y = pose.getOrigin().y();
+    out.pose.position.z = pose.getOrigin().z();
+    const tf2::Quaternion pq = pose.getRotation();
+    out.pose.orientation.x = pq.x();
+    out.pose.orientation.y = pq.y();
+    out.pose.orientation.z = pq.z();
+    out.pose.orientation.w = pq.w();
+    // Velocities are vectors: rotated into the reference frame's axes only.
+    const tf2::Vector3 v = T.getBasis() * tf2::Vector3(b.twist.linear.x, b.twist.linear.y, 0);
+    const tf2::Vector3 spin = T.getBasis() * tf2::Vector3(0, 0, b.twist.angular.z);
+    out.twist.linear.x = v.x(), out.twist.linear.y = v.y(), out.twist.linear.z = v.z();
+    out.twist.angular.x = spin.x(), out.twist.angular.y = spin.y(), out.twist.angular.z = spin.z();
+    out.wrench = conversions::toWrench(b);
+    return {true, "state of '" + name + "' at t = " + std::to_string(w.time()) + " s"};
+  });
+  if (r.success) res = out;
+  return answer(res, r);
+}
+
+bool Services::applyWrench(mpm_sdem::ApplyObstacleWrench::Request& req,
+                           mpm_sdem::ApplyObstacleWrench::Response& res) {
+  if (const std::string p = limits::nameProblem(req.name); !p.empty())
+    return answer(res, {false, "name " + p});
+  const geometry_msgs::Wrench& wr = req.wrench;
+  const double values[] = {wr.force.x,
+                           wr.force.y,
+                           wr.force.z,
+                           wr.torque.x,
+                           wr.torque.y,
+                           wr.torque.z,
+                           req.reference_point.x,
+                           req.reference_point.y,
+                           req.duration};
+  for (double v : values)
+    if (!std::isfinite(v)) return answer(res, {false, "every number must be finite"});
+  if (wr.force.z != 0 || wr.torque.x != 0 || wr.torque.y != 0)
+    return answer(res, {false,
+                        "wrench.force.z, torque.x and torque.y must be 0: the simulation is the "
+                        "x-y plane (a load out of it does nothing)"});
+  if (req.duration == 0)
+    return answer(res, {false, "duration must be > 0 s, or < 0 to hold until cleared"});
+  const mpm_sdem::ApplyObstacleWrench::Request r = req;
+  return answer(res, queue_.call([r](Simulation& s) -> Reply {
+    const Reply out =
+        s.drivers().addLoad(s.world(), r.name, Vec2(r.wrench.force.x, r.wrench.force.y),
+                            Vec2(r.reference_point.x, r.reference_point.y), r.in_block_frame,
+                            r.wrench.torque.z, r.duration);
+    if (out.success) s.noteRequest("~apply_obstacle_wrench on '" + r.name + "'");
+    return out;
+  }));
+}
+
+bool Services::clearWrenches(mpm_sdem::ClearObstacleWrenches::Request& req,
+                             mpm_sdem::ClearObstacleWrenches::Response& res) {
+  if (!req.name.empty())
+    if (const std::string p = limits::nameProblem(req.name); !p.empty())
+      return answer(res, {false, "name " + p});
+  const std::string name = req.name;
+  return answer(res, queue_.call([name](Simulation& s) -> Reply {
+    return s.drivers().clearLoads(s.world(), name);
+  }));
 }
 
 void Services::obstacleCommand(const mpm_sdem::ObstacleCommand::ConstPtr& msg) {

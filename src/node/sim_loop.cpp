@@ -29,6 +29,7 @@ Simulation::Simulation(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
       scene_(std::move(scene)),
       scene_text_(std::move(scene_text)),
       world_(std::make_unique<World>(scene_.world)),
+      drivers_(pnh, commands_, params_),
       publishers_(nh, pnh, params_, scene_text_),
       paused_(params.start_paused) {
   if (params_.threads > 0)
@@ -36,6 +37,7 @@ Simulation::Simulation(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
   else
     tuner_ = std::make_unique<ThreadTuner>(std::min(omp_get_max_threads(), limits::logicalCores()));
   dt_ = world_->chooseTimeStep();
+  drivers_.sync(*world_, true);
   openRecordings();
   publishers_.blocksChanged(*world_);
 }
@@ -149,6 +151,7 @@ bool Simulation::advance() {
   }
   const bool to_end = params_.end_action != EndAction::kContinue && !end_reached_;
   const Real h = to_end ? stepTowards(dt_.dt, scene_.end_time, world_->time()) : dt_.dt;
+  drivers_.beforeStep(*world_);
   const StepInfo info = world_->step(h);
   if (tuner_) tuner_->afterStep(std::chrono::duration<double>(Clock::now() - start).count());
   if (!info.finite) {
@@ -249,6 +252,7 @@ Reply Simulation::reset() {
   last_request_.clear();
   real_time_.clear();
   dt_ = world_->chooseTimeStep();
+  drivers_.sync(*world_, true);  // held loads and commands end with the run they were for
   recording_ = params_.record_after_reset;
   openRecordings();
   publishers_.restart(*world_);
@@ -260,7 +264,9 @@ Reply Simulation::reset() {
     note +=
         "; the recording of the run before it is closed (~record_after_reset: true records "
         "each run)";
-  return {true, "reset to t = 0 (spawned obstacles removed)" + note};
+  return {
+      true,
+      "reset to t = 0 (spawned obstacles removed, held loads and velocity commands ended)" + note};
 }
 
 Reply Simulation::step(long n) {
@@ -277,6 +283,7 @@ Reply Simulation::step(long n) {
 
 void Simulation::blocksChanged() {
   dt_ = world_->chooseTimeStep();
+  drivers_.sync(*world_);
   publishers_.blocksChanged(*world_);
   if (bag_) bag_->blocksChanged(*world_);
   publishers_.publish(*world_, status(), true);

@@ -16,6 +16,7 @@
 #include "mpm_sdem/ros/bag_recorder.hpp"
 #include "mpm_sdem/scene/scene.hpp"
 #include "node_params.hpp"
+#include "obstacle_drivers.hpp"
 #include "publishers.hpp"
 
 namespace mpm_sdem::node {
@@ -35,12 +36,14 @@ class Simulation {
   // For commands, on the loop thread.
   World& world() { return *world_; }
   const NodeParams& params() const { return params_; }
+  ObstacleDrivers& drivers() { return drivers_; }
   Reply pause();  // also cancels the steps ~step asked for
   Reply resume();
   Reply reset();
   // Queues n steps, taken by the loop between commands while paused; answers at once.
   Reply step(long n);
-  // After a spawn or remove: markers and the time step change.
+  // After a spawn, a remove or a move: the time step, the per-obstacle topics and /tf_static
+  // follow.
   void blocksChanged();
   // A request that changed the world (said in the error if the state then fails).
   void noteRequest(const std::string& what);
@@ -63,6 +66,7 @@ class Simulation {
   std::string scene_text_;
   std::unique_ptr<World> world_;
   CommandQueue commands_;
+  ObstacleDrivers drivers_;
   Publishers publishers_;
   std::unique_ptr<BagRecorder> bag_;
   std::unique_ptr<render::VideoRecorder> video_;

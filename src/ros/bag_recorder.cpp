@@ -1,5 +1,6 @@
 #include "mpm_sdem/ros/bag_recorder.hpp"
 
+#include <geometry_msgs/WrenchStamped.h>
 #include <rosbag/bag.h>
 #include <std_msgs/String.h>
 #include <tf2_msgs/TFMessage.h>
@@ -69,8 +70,15 @@ void BagRecorder::write(const std::string& topic, Real t, const M& msg, bool lat
 
 void BagRecorder::blocksChanged(const World& world) {
   if (!bag_->isOpen()) return;
-  write(def_.ns + "/markers", world.time(),
-        conversions::toMarkers(world, def_.tf_prefix, ros::Time(0)), true);
+  // The domain's frame and the static blocks, as the node sends them on /tf_static.
+  std_msgs::Header header;
+  header.stamp = conversions::toRosTime(world.time());
+  header.frame_id = def_.fixed_frame;
+  tf2_msgs::TFMessage tf;
+  tf.transforms = conversions::toTransforms(conversions::toBlockStates(world, header),
+                                            def_.tf_prefix, conversions::Frames::kStatic);
+  tf.transforms.push_back(conversions::domainTransform(world, header, def_.tf_prefix));
+  write("/tf_static", world.time(), tf, true);
 }
 
 void BagRecorder::record(const World& world, const conversions::StatsInput& stats) {
@@ -96,9 +104,17 @@ void BagRecorder::record(const World& world, const conversions::StatsInput& stat
     const mpm_sdem::BlockStates blocks = conversions::toBlockStates(world, header);
     write(def_.ns + "/blocks", t, blocks);
     write(def_.ns + "/block_poses", t, conversions::toPoseArray(blocks));
+    write(def_.ns + "/markers", t, conversions::toMarkers(world, header), true);
     tf2_msgs::TFMessage tf;
-    tf.transforms = conversions::toTransforms(blocks, def_.tf_prefix);
+    tf.transforms = conversions::toTransforms(blocks, def_.tf_prefix, conversions::Frames::kMoving);
     if (!tf.transforms.empty()) write("/tf", t, tf);
+    for (const mpm_sdem::RigidBlockState& b : blocks.blocks) {
+      geometry_msgs::WrenchStamped w;
+      w.header.stamp = header.stamp;
+      w.header.frame_id = conversions::blockFrame(def_.tf_prefix, b.name);
+      w.wrench = conversions::toWrench(b);
+      write(def_.ns + "/obstacles/" + b.name + "/wrench", t, w);
+    }
     write(def_.ns + "/stats", t, conversions::toStats(world, measure(world), stats, header));
   }
 }

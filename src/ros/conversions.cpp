@@ -2,6 +2,7 @@
 
 #include <sensor_msgs/point_cloud2_iterator.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -97,7 +98,7 @@ mpm_sdem::BlockStates toBlockStates(const World& world, const std_msgs::Header& 
     m.name = B->def(i).name;
     m.body_type = fromBodyType(B->def(i).type);
     m.pose = planarPose(origin, s.angle);
-    const Vec2 v = B->velocityAt(i, origin);
+    const Vec2 v = B->velocityAt(B->firstShape(i), origin);  // a shape's, any of the block's
     m.twist.linear.x = v.x();
     m.twist.linear.y = v.y();
     m.twist.angular.z = s.angular_velocity;
@@ -108,8 +109,72 @@ mpm_sdem::BlockStates toBlockStates(const World& world, const std_msgs::Header& 
     m.coupling_force.y = c.force.y();
     m.coupling_torque = c.torque;
     m.contact_count = static_cast<std::uint32_t>(c.contacts);
+    const Blocks::Coupling& k = B->blockContact(i);
+    m.block_force.x = k.force.x();
+    m.block_force.y = k.force.y();
+    m.block_torque = k.torque;
+    m.block_contact_count = static_cast<std::uint32_t>(k.contacts);
   }
   return out;
+}
+
+geometry_msgs::Wrench toWrench(const mpm_sdem::RigidBlockState& b) {
+  // About the frame's origin instead of the centre of mass, then in the block's axes.
+  const Vec2 f(b.coupling_force.x + b.block_force.x, b.coupling_force.y + b.block_force.y);
+  const Vec2 r(b.center_of_mass.x - b.pose.position.x, b.center_of_mass.y - b.pose.position.y);
+  const Real angle = 2 * std::atan2(b.pose.orientation.z, b.pose.orientation.w);
+  const Real c = std::cos(angle), s = std::sin(angle);
+  geometry_msgs::Wrench w;
+  w.force.x = c * f.x() + s * f.y();
+  w.force.y = -s * f.x() + c * f.y();
+  w.torque.z = b.coupling_torque + b.block_torque + cross(r, f);
+  return w;
+}
+
+visualization_msgs::MarkerArray toForceArrows(const mpm_sdem::BlockStates& states,
+                                              Real metres_per_newton) {
+  visualization_msgs::MarkerArray out;
+  for (std::size_t i = 0; i < states.blocks.size(); ++i) {
+    const mpm_sdem::RigidBlockState& b = states.blocks[i];
+    visualization_msgs::Marker m;
+    m.header = states.header;
+    m.ns = "force";
+    m.id = static_cast<int>(i);
+    m.type = visualization_msgs::Marker::ARROW;
+    const Vec2 f(b.coupling_force.x + b.block_force.x, b.coupling_force.y + b.block_force.y);
+    // A block without load has no arrow (DELETE removes the one it had).
+    const Real length = f.norm() * metres_per_newton;
+    m.action = length > 0 ? visualization_msgs::Marker::ADD : visualization_msgs::Marker::DELETE;
+    geometry_msgs::Point from = b.center_of_mass, to = from;
+    to.x += f.x() * metres_per_newton;
+    to.y += f.y() * metres_per_newton;
+    m.points = {from, to};
+    m.pose.orientation.w = 1;
+    // Shaft and head widths (m) in proportion to the arrow, within limits that stay visible.
+    m.scale.x = std::clamp(0.05 * length, 0.002, 0.02);
+    m.scale.y = 2 * m.scale.x;
+    m.scale.z = 3 * m.scale.x;
+    m.color.r = 1;
+    m.color.g = 0.85f;
+    m.color.a = 1;
+    out.markers.push_back(m);
+  }
+  return out;
+}
+
+void toTerrainCloud(const std::vector<Real>& height, Real x0, Real dx,
+                    const std_msgs::Header& header, sensor_msgs::PointCloud2& cloud) {
+  cloud.header = header;
+  sensor_msgs::PointCloud2Modifier mod(cloud);
+  mod.setPointCloud2FieldsByString(1, "xyz");
+  mod.resize(height.size());
+  cloud.is_dense = false;  // empty columns are NaN
+  sensor_msgs::PointCloud2Iterator<float> x(cloud, "x");
+  for (std::size_t c = 0; c < height.size(); ++c, ++x) {
+    x[0] = static_cast<float>(x0 + (c + 0.5) * dx);
+    x[1] = static_cast<float>(height[c]);
+    x[2] = 0.f;
+  }
 }
 
 geometry_msgs::PoseArray toPoseArray(const mpm_sdem::BlockStates& states) {
@@ -124,9 +189,11 @@ std::string blockFrame(const std::string& prefix, const std::string& name) {
 }
 
 std::vector<geometry_msgs::TransformStamped> toTransforms(const mpm_sdem::BlockStates& states,
-                                                          const std::string& prefix) {
+                                                          const std::string& prefix, Frames which) {
   std::vector<geometry_msgs::TransformStamped> out;
   for (const auto& b : states.blocks) {
+    const bool fixed = b.body_type == mpm_sdem::RigidBlockState::STATIC;
+    if (fixed != (which == Frames::kStatic)) continue;
     geometry_msgs::TransformStamped t;
     t.header = states.header;
     t.child_frame_id = blockFrame(prefix, b.name);
@@ -136,6 +203,17 @@ std::vector<geometry_msgs::TransformStamped> toTransforms(const mpm_sdem::BlockS
     out.push_back(t);
   }
   return out;
+}
+
+geometry_msgs::TransformStamped domainTransform(const World& world, const std_msgs::Header& header,
+                                                const std::string& prefix) {
+  geometry_msgs::TransformStamped t;
+  t.header = header;
+  t.child_frame_id = blockFrame(prefix, "domain");
+  t.transform.translation.x = world.def().domain.min.x();
+  t.transform.translation.y = world.def().domain.min.y();
+  t.transform.rotation.w = 1;
+  return t;
 }
 
 visualization_msgs::Marker toFemMarker(const World& world, const std_msgs::Header& header) {
@@ -204,32 +282,31 @@ void toFemCloud(const World& world, const std_msgs::Header& header,
   }
 }
 
-visualization_msgs::MarkerArray toMarkers(const World& world, const std::string& tf_prefix,
-                                          const ros::Time& stamp) {
+visualization_msgs::MarkerArray toMarkers(const World& world, const std_msgs::Header& header) {
   visualization_msgs::MarkerArray out;
   visualization_msgs::Marker clear;
   clear.action = visualization_msgs::Marker::DELETEALL;
   out.markers.push_back(clear);
   const Blocks* B = world.blocks();
   if (!B) return out;
+  // Sizes that read at the scale of the whole domain: lines 0.3% of its larger side, names 3%.
+  const Vec2 extent = world.def().domain.max - world.def().domain.min;
+  const Real line = 0.003 * extent.maxCoeff(), text = 0.03 * extent.maxCoeff();
   int id = 0;
   for (int i = 0; i < B->count(); ++i) {
     const BlockDef& d = B->def(i);
     visualization_msgs::Marker m;
-    m.header.frame_id = blockFrame(tf_prefix, d.name);
-    m.header.stamp = stamp;
-    m.frame_locked = true;
+    m.header = header;
     m.ns = "outline";
     m.type = visualization_msgs::Marker::LINE_STRIP;
-    m.pose.orientation.w = 1;
+    m.pose = planarPose(B->origin(i), B->state(i).angle);  // the points are in the block frame
     m.color.a = 1;
     m.color.r = d.type == BodyType::kDynamic ? 0.9f : 0.5f;
     m.color.g = d.type == BodyType::kKinematic ? 0.8f : 0.5f;
     m.color.b = 0.5f;
-    Real smallest = std::numeric_limits<Real>::infinity();
     for (const Spheropolygon& part : B->parts(i)) {  // one outline per disc of a cluster
       m.id = id++;
-      m.scale.x = 0.25 * part.rounding;
+      m.scale.x = line;
       m.points.clear();
       for (const Vec2& p : roundedOutline(part.core, part.rounding, 6)) {
         geometry_msgs::Point q;
@@ -238,7 +315,6 @@ visualization_msgs::MarkerArray toMarkers(const World& world, const std::string&
         m.points.push_back(q);
       }
       out.markers.push_back(m);
-      smallest = std::min(smallest, part.rounding);
     }
     visualization_msgs::Marker label = m;
     label.ns = "name";
@@ -246,9 +322,8 @@ visualization_msgs::MarkerArray toMarkers(const World& world, const std::string&
     label.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
     label.points.clear();
     label.text = d.name;
-    label.scale.z = std::max(0.01, 4 * smallest);
-    label.pose.position.x = B->massProperties(i).centroid.x();
-    label.pose.position.y = B->massProperties(i).centroid.y();
+    label.scale.z = text;
+    label.pose = planarPose(B->state(i).position, 0);
     label.color.r = label.color.g = label.color.b = 1;
     out.markers.push_back(label);
   }

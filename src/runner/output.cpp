@@ -32,7 +32,7 @@ void TimeSeriesWriter::write(const World& w, const Diagnostics& d, const TimeSte
 
 BlockSeriesWriter::BlockSeriesWriter(const std::string& path) : out_(openCsv(path)) {
   out_ << "time,block,name,x,y,angle,vx,vy,angular_velocity,coupling_force_x,coupling_force_y,"
-          "coupling_torque,contacts\n";
+          "coupling_torque,contacts,block_force_x,block_force_y,block_torque,block_contacts\n";
   out_.flush();
 }
 
@@ -40,11 +40,13 @@ void BlockSeriesWriter::write(const World& w) {
   const Blocks& B = *w.blocks();
   for (int b = 0; b < B.count(); ++b) {
     const BlockState& s = B.state(b);
-    const Blocks::Coupling& c = B.coupling()[b];
+    const Blocks::Coupling& c = B.coupling()[b];    // from the material
+    const Blocks::Coupling& k = B.blockContact(b);  // from the other blocks
     out_ << w.time() << ',' << b << ',' << B.def(b).name << ',' << s.position.x() << ','
          << s.position.y() << ',' << s.angle << ',' << s.velocity.x() << ',' << s.velocity.y()
          << ',' << s.angular_velocity << ',' << c.force.x() << ',' << c.force.y() << ',' << c.torque
-         << ',' << c.contacts << '\n';
+         << ',' << c.contacts << ',' << k.force.x() << ',' << k.force.y() << ',' << k.torque << ','
+         << k.contacts << '\n';
   }
   out_.flush();
 }

@@ -67,15 +67,19 @@ TEST(Bag, NodeBagHasTheTopicsAndMatchesTheHeadlessRunner) {
                           ".runner_out --bag " + runner_bag + " 2>/dev/null";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
 
-  // 0.3 s at the default rates: the scene and the block outlines once, clouds at 30 Hz (0 to
-  // 0.3 s: 10), states at 100 Hz (31).
+  // 0.3 s at the default rates: the scene and /tf_static (the domain and the static post) once,
+  // clouds at 30 Hz (0 to 0.3 s: 10), states at 100 Hz (31): blocks, poses, outlines, stats, the
+  // dynamic box on /tf and each block's wrench.
   const auto counts = topicCounts(node_bag);
   const std::map<std::string, long> expected = {{"/mpm_sdem/scene", 1},
-                                                {"/mpm_sdem/markers", 1},
+                                                {"/tf_static", 1},
                                                 {"/mpm_sdem/particles", 10},
                                                 {"/mpm_sdem/blocks", 31},
                                                 {"/mpm_sdem/block_poses", 31},
+                                                {"/mpm_sdem/markers", 31},
                                                 {"/mpm_sdem/stats", 31},
+                                                {"/mpm_sdem/obstacles/box/wrench", 31},
+                                                {"/mpm_sdem/obstacles/post/wrench", 31},
                                                 {"/tf", 31}};
   EXPECT_EQ(counts, expected);
   EXPECT_EQ(topicCounts(runner_bag), expected);

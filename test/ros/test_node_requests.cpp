@@ -319,13 +319,25 @@ TEST(Requests, BadParametersStopTheNodeBeforeItSimulates) {
       {"_video:=" + dir.string(), "is a directory"},
       {"_video:=" + (dir / "x.gif").string(), "must end in .avi, .mp4, .mkv"},
       {"_scene:=/dev/zero", "not a regular file"},
-      {"_scene:=" + dir.string(), "not a regular file"}};
+      {"_scene:=" + dir.string(), "not a regular file"},
+      {"_cmd_vel_timeout:=-1", "~cmd_vel_timeout"},
+      {"_terrain/resolution:=-0.01", "~terrain/resolution"},
+      {"_follow_tf_time_constant:=0", "~follow_tf_time_constant"},
+      // A dictionary cannot be given as _name:=value: set on the server first (as a launch
+      // file's rosparam does), "follow_tf=" marking it here.
+      {"follow_tf={nobody: target}", "no block named 'nobody'"},
+      {"follow_tf={post: target}", "'post' must be kinematic"},
+      {"follow_tf={box: /target}", "~follow_tf/box: frame"}};
   int k = 0;
   for (const auto& [args, reason] : cases) {
     const fs::path log = dir / ("log" + std::to_string(k++));
-    const std::string cmd = std::string("timeout 30 ") + MPM_SDEM_NODE + " __name:=bad" +
-                            std::to_string(k) + " _scene:=" + scene + " " + args + " >" +
-                            log.string() + " 2>&1";
+    const std::string name = "bad" + std::to_string(k);
+    const bool dict = args.rfind("follow_tf=", 0) == 0;
+    const std::string set =
+        dict ? "rosparam set /" + name + "/follow_tf '" + args.substr(10) + "' && " : "";
+    const std::string cmd = set + "timeout 30 " + MPM_SDEM_NODE + " __name:=" + name +
+                            " _scene:=" + scene + " " + (dict ? "" : args) + " >" + log.string() +
+                            " 2>&1";
     const int status = std::system(cmd.c_str());
     ASSERT_TRUE(WIFEXITED(status)) << args;
     EXPECT_EQ(WEXITSTATUS(status), 1) << args << " (124: it hung)";

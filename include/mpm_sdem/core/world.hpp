@@ -134,6 +134,10 @@ class World {
   // velocity (Blocks::setPose, setVelocity).
   void setBlockPose(BlockId id, const Vec2& origin, Real angle);
   void setBlockVelocity(BlockId id, const Vec2& origin_velocity, Real angular_velocity);
+  // An external load on a block for the next step only: a force (N/m, world frame) at a point
+  // (m, world frame) and a torque (N m/m). Moves dynamic blocks only; a caller that holds a
+  // load adds it before every step it acts in (the node's ~apply_obstacle_wrench).
+  void addBlockLoad(BlockId id, const Vec2& force, const Vec2& point, Real torque);
 
   const WorldDef& def() const { return def_; }
   const std::vector<MaterialParams>& materialParams() const { return params_; }

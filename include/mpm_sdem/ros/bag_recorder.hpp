@@ -40,11 +40,13 @@ class BagRecorder {
 
   // Writes what is due at the world's current time: a cloud every 1/cloud_rate s (with the FEM
   // bodies' nodes, <ns>/fem_nodes, and triangles, <ns>/fem_mesh, when there are any) and the states
-  // every 1/state_rate s of simulation time (both at the first call, with the markers). stats
-  // supplies what the world does not know (time step, real-time factor, stage times).
+  // every 1/state_rate s of simulation time (both at the first call): <ns>/blocks,
+  // <ns>/block_poses, the outlines for rviz (<ns>/markers), /tf of the moving blocks, each block's
+  // <ns>/obstacles/<name>/wrench and <ns>/stats. stats supplies what the world does not know
+  // (time step, real-time factor, stage times).
   void record(const World& world, const conversions::StatsInput& stats);
-  // The block outlines for rviz (<ns>/markers, latched on playback): written at the first
-  // record() and again after blocks are added or removed.
+  // /tf_static (the domain's frame and the static blocks, latched on playback): written at the
+  // first record() and again after blocks are added or removed.
   void blocksChanged(const World& world);
   // Closes the bag and renames it to its final name; idempotent.
   void close();

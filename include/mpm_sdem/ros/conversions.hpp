@@ -4,6 +4,7 @@
 
 #include <geometry_msgs/PoseArray.h>
 #include <geometry_msgs/TransformStamped.h>
+#include <geometry_msgs/Wrench.h>
 #include <mpm_sdem/BlockStates.h>
 #include <mpm_sdem/SimStats.h>
 #include <mpm_sdem/SpawnObstacle.h>
@@ -30,13 +31,34 @@ void toPointCloud(const World& world, int decimation, const std_msgs::Header& he
 
 mpm_sdem::BlockStates toBlockStates(const World& world, const std_msgs::Header& header);
 geometry_msgs::PoseArray toPoseArray(const mpm_sdem::BlockStates& states);
-// One transform per block: header frame -> "<prefix>/<name>" (prefix may be empty).
+// A block's contact load (material and other blocks) as a wrench at its frame's origin in its
+// own axes (geometry_msgs/WrenchStamped convention): force x, y (N/m) and torque z (N m/m),
+// per metre of out-of-plane thickness.
+geometry_msgs::Wrench toWrench(const mpm_sdem::RigidBlockState& block);
+// One ARROW per block from its centre of mass along its contact force (material and blocks),
+// metres_per_newton long per N/m, in the states' frame; DELETE for a block without load.
+visualization_msgs::MarkerArray toForceArrows(const mpm_sdem::BlockStates& states,
+                                              Real metres_per_newton);
+// A height profile (core/terrain.hpp) as a cloud of one point per column: float32 x (the
+// column's centre), y (the height; NaN for an empty column), z = 0, in the header's frame.
+void toTerrainCloud(const std::vector<Real>& height, Real x0, Real dx,
+                    const std_msgs::Header& header, sensor_msgs::PointCloud2& cloud);
+// One transform per block of the kind asked for: header frame -> "<prefix>/<name>" (prefix may
+// be empty). Static blocks belong on /tf_static, the others on /tf.
+enum class Frames { kStatic, kMoving };
 std::vector<geometry_msgs::TransformStamped> toTransforms(const mpm_sdem::BlockStates& states,
-                                                          const std::string& prefix);
+                                                          const std::string& prefix, Frames which);
+// The domain's frame, "<prefix>/domain": its lower-left corner, axes of the header's frame. On
+// /tf_static from the start, so the fixed frame exists for tf listeners (rviz) in every scene.
+geometry_msgs::TransformStamped domainTransform(const World& world, const std_msgs::Header& header,
+                                                const std::string& prefix);
 std::string blockFrame(const std::string& prefix, const std::string& name);
 
-// A LINE_STRIP per block tracing its rounded outline in the block's own tf frame (frame_locked,
-// so rviz moves it with tf), plus a text label. Blocks that disappeared get DELETEALL first.
+// A LINE_STRIP per block (per disc of a cluster) tracing its rounded outline, posed at the
+// block's frame in the header's (fixed) frame, and its name at its centre of mass; line width and
+// text size in proportion to the domain. DELETEALL first removes blocks that disappeared. In the
+// fixed frame, not the blocks' tf frames: rviz draws them without tf (a late rviz while paused).
+visualization_msgs::MarkerArray toMarkers(const World& world, const std_msgs::Header& header);
 // The FEM bodies' triangles as one TRIANGLE_LIST in the header's (fixed) frame, each coloured by
 // its von Mises stress on a fixed scale: blue at 0 to red at 1% of its body's Young's modulus
 // (the stress of 1% strain) and beyond; the same colours in every message.
@@ -46,9 +68,6 @@ visualization_msgs::Marker toFemMarker(const World& world, const std_msgs::Heade
 // the node's triangles), uint16 body (index in the scene's fem_bodies).
 void toFemCloud(const World& world, const std_msgs::Header& header,
                 sensor_msgs::PointCloud2& cloud);
-
-visualization_msgs::MarkerArray toMarkers(const World& world, const std::string& tf_prefix,
-                                          const ros::Time& stamp);
 
 struct StatsInput {
   TimeStepChoice dt;

@@ -17,14 +17,6 @@ Problem rangeOf(const char* key, Real v, const limits::Range& r) {
   return {key, limits::rangeProblem(v, r)};
 }
 
-// Farthest reach of the rounded outline from the block frame's origin (m).
-Real reach(const BlockDef& d) {
-  Real r = 0;
-  for (const Spheropolygon& part : blockParts(d))
-    for (const Vec2& v : part.core) r = std::fmax(r, v.norm() + part.rounding);
-  return r;
-}
-
 Problem outlineProblem(const BlockDef& d) {
   if (!d.discs.empty()) {
     if (!d.core.empty())
@@ -51,16 +43,23 @@ Problem outlineProblem(const BlockDef& d) {
 
 }  // namespace
 
+Real blockReach(const BlockDef& d) {
+  Real r = 0;
+  for (const Spheropolygon& part : blockParts(d))
+    for (const Vec2& v : part.core) r = std::fmax(r, v.norm() + part.rounding);
+  return r;
+}
+
 Problem twistProblem(const BlockDef& d, const Vec2& v, Real w) {
   if (!v.allFinite() || !std::isfinite(w))
     return {"velocity", "must be finite numbers (no NaN or infinity)"};
   if (d.type == BodyType::kStatic && (v.squaredNorm() > 0 || w != 0))
     return {"velocity", "a static block does not move: make it kinematic to give it a velocity"};
-  const Real speed = v.norm() + std::abs(w) * reach(d);
+  const Real speed = v.norm() + std::abs(w) * blockReach(d);
   if (speed > limits::kSpeed.max)
     return {"velocity",
             "its fastest point would move at " + num(speed) + " m/s (|v| + |w| * reach " +
-                num(reach(d)) + " m); at most " + num(limits::kSpeed.max) +
+                num(blockReach(d)) + " m); at most " + num(limits::kSpeed.max) +
                 " m/s, beyond which the material's stable step collapses (seed 000 eq. 51)"};
   return {};
 }

@@ -107,7 +107,7 @@ BlockId Blocks::add(const BlockDef& def) {
   lattices_.emplace_back();
   bodies_.push_back(b);
   coupling_.emplace_back();
-  block_force_.emplace_back(0, 0);
+  block_contact_.emplace_back();
   layoutShapes();
   refresh();
   return id;
@@ -122,7 +122,7 @@ void Blocks::remove(BlockId id) {
   lattices_.erase(lattices_.begin() + i);
   bodies_.erase(bodies_.begin() + i);
   coupling_.erase(coupling_.begin() + i);
-  block_force_.erase(block_force_.begin() + i);
+  block_contact_.erase(block_contact_.begin() + i);
   // The slot is free for the next block, under a new generation: this id names nothing now.
   slot_place_[id.slot] = -1;
   ++slot_generation_[id.slot];
@@ -281,9 +281,12 @@ void Blocks::interiorPoints(int s, Real spacing, std::vector<Vec2>& points, Real
 void Blocks::beginCoupling(Real dt) {
   for (Coupling& c : coupling_) c = Coupling();
   for (Body& b : bodies_) {
-    const bool dynamic = b.type == BodyType::kDynamic;
-    b.trial_v = b.state.velocity + (dynamic ? Vec2(dt * gravity_) : Vec2(0, 0));
+    b.trial_v = b.state.velocity;
     b.trial_w = b.state.angular_velocity;
+    if (b.type != BodyType::kDynamic) continue;
+    // Gravity and the external loads added so far (the material's come after this call).
+    b.trial_v += dt * (gravity_ + b.force / b.mass.mass);
+    b.trial_w += dt * b.torque / b.mass.inertia;
   }
 }
 
@@ -296,6 +299,31 @@ Vec2 Blocks::trialVelocityAt(int s, const Vec2& p) const {
 void Blocks::addForce(int i, const Vec2& f, const Vec2& point) {
   bodies_[i].force += f;
   bodies_[i].torque += cross(point - bodies_[i].state.position, f);
+}
+
+void Blocks::addTorque(int i, Real torque) {
+  bodies_[i].torque += torque;
+}
+
+void Blocks::addLoad(BlockId id, const Vec2& force, const Vec2& point, Real torque) {
+  const int i = checkedIndex(id);
+  addForce(i, force, point);
+  addTorque(i, torque);
+}
+
+void Blocks::addContactForce(int a, int b, const Vec2& f, const Vec2& point) {
+  addForce(a, f, point);
+  addForce(b, -f, point);
+  recordContactForce(a, b, f, point);
+}
+
+void Blocks::recordContactForce(int a, int b, const Vec2& f, const Vec2& point) {
+  for (const auto& [i, fi] : {std::pair<int, Vec2>(a, f), std::pair<int, Vec2>(b, -f)}) {
+    Coupling& c = block_contact_[i];
+    c.force += substep_share_ * fi;
+    c.torque += substep_share_ * cross(point - bodies_[i].state.position, fi);
+    ++c.contacts;
+  }
 }
 
 void Blocks::applyForce(int s, const Vec2& f, const Vec2& point) {

@@ -101,12 +101,15 @@ void Box2DBodies::add(const BlockDef& d, const std::vector<Spheropolygon>& parts
     body->SetLinearVelocity(toB2(d.velocity, scale_));
     body->SetAngularVelocity(static_cast<float>(d.angular_velocity));
   }
+  // The body's place in the list, for reportContacts.
+  body->GetUserData().pointer = w_->bodies.size();
   w_->bodies.push_back(body);
 }
 
 void Box2DBodies::remove(int i) {
   w_->world.DestroyBody(w_->bodies[i]);
   w_->bodies.erase(w_->bodies.begin() + i);
+  for (std::size_t k = i; k < w_->bodies.size(); ++k) w_->bodies[k]->GetUserData().pointer = k;
 }
 
 Vec2 Box2DBodies::origin(int i) const {
@@ -139,6 +142,26 @@ void Box2DBodies::applyForce(int i, const Vec2& f, Real torque) {
 
 void Box2DBodies::step(Real h) {
   w_->world.Step(static_cast<float>(h), 8, 3);
+}
+
+void Box2DBodies::reportContacts(Real h, Blocks& blocks) const {
+  for (b2Contact* c = w_->world.GetContactList(); c; c = c->GetNext()) {
+    if (!c->IsTouching() || !c->IsEnabled()) continue;
+    const b2Manifold* m = c->GetManifold();
+    b2WorldManifold wm;
+    c->GetWorldManifold(&wm);
+    const int a = static_cast<int>(c->GetFixtureA()->GetBody()->GetUserData().pointer);
+    const int b = static_cast<int>(c->GetFixtureB()->GetBody()->GetUserData().pointer);
+    // The solver's impulse on body B at each point (b2ContactSolver: P = normal impulse along
+    // the manifold normal, A to B, plus tangent impulse along cross(normal, 1)); B2D impulses
+    // are kg Box2D-units/s, so SI divides by the scale, and the step's mean force by h.
+    const Vec2 n(wm.normal.x, wm.normal.y), t(wm.normal.y, -wm.normal.x);
+    for (int k = 0; k < m->pointCount; ++k) {
+      const b2ManifoldPoint& p = m->points[k];
+      const Vec2 on_b = (p.normalImpulse * n + p.tangentImpulse * t) / (scale_ * h);
+      blocks.recordContactForce(a, b, -on_b, fromB2(wm.points[k], scale_));
+    }
+  }
 }
 
 }  // namespace detail
@@ -208,21 +231,21 @@ int Blocks::step(Real dt, Real max_substep) {
     b.held_force = b.force;
     b.held_torque = b.torque;
   }
-  for (Vec2& f : block_force_) f.setZero();
+  for (Coupling& c : block_contact_) c = Coupling();
+  substep_share_ = Real(1) / substeps;
   for (int s = 0; s < substeps; ++s) {
     for (Body& b : bodies_) {
       b.force = b.held_force;
       b.torque = b.held_torque;
     }
-    if (contact_.model == BlockContactModel::kPenalty) {
-      penalty_->apply(*this, h);
-      for (std::size_t i = 0; i < bodies_.size(); ++i)
-        block_force_[i] += (bodies_[i].force - bodies_[i].held_force) / substeps;
-    }
+    for (Coupling& c : block_contact_) c.contacts = 0;  // the last substep's count
+    if (contact_.model == BlockContactModel::kPenalty) penalty_->apply(*this, h);
     for (std::size_t i = 0; i < bodies_.size(); ++i)
       if (bodies_[i].type == BodyType::kDynamic)
         b2_->applyForce(static_cast<int>(i), bodies_[i].force, bodies_[i].torque);
     b2_->step(h);
+    // Before refresh(): Box2D's contact points were found at the poses the step started from.
+    if (contact_.model == BlockContactModel::kBox2D) b2_->reportContacts(h, *this);
     // A kinematic block moves with its twist exactly: Box2D's single-precision sum of small
     // steps drifts (93 um over 10,000 steps, RuntimeBlocks.KinematicBlockFollowsItsTwist), so
     // its pose is summed here in double and set.

@@ -120,8 +120,7 @@ void PenaltyContacts::pair(Blocks& B, int i, int j, Real h) {
     }
     next_history_.emplace_back(key, delta);
     const Vec2 f = (push - pull) * s.normal + ft;
-    B.addForce(B.owner(a), f, s.point);
-    B.addForce(B.owner(b), -f, s.point);
+    B.addContactForce(B.owner(a), B.owner(b), f, s.point);
   }
 }
 

@@ -15,7 +15,7 @@ namespace mpm_sdem::detail {
 class PenaltyContacts {
  public:
   explicit PenaltyContacts(const BlockContactDef& def) : def_(def) {}
-  // Adds the springs' forces on every block (Blocks::addForce) for a substep of h.
+  // Adds the springs' forces on every block (Blocks::addContactForce) for a substep of h.
   void apply(Blocks& blocks, Real h);
   // The largest stable substep (contactTimeStep, eq. 39), infinite when no spring can form.
   Real stableStep(const Blocks& blocks, Real kappa2) const;

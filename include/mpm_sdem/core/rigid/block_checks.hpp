@@ -12,6 +12,8 @@ namespace mpm_sdem {
 // Its own values: name, outline (core and rounding, or discs), pose, density (dynamic blocks),
 // friction, restitution, adhesion (penalty model only) and twist (see twistProblem).
 Problem blockProblem(const BlockDef& def, BlockContactModel model);
+// Farthest reach of the rounded outline from the block frame's origin (m).
+Real blockReach(const BlockDef& def);
 // A twist for this block (v of the point its velocity refers to, m/s; w, rad/s): none for a
 // static block, and no point faster than limits::kSpeed (|v| + |w| times the block's reach
 // from its frame origin), which would collapse the material's step (seed 000 eq. 51).

@@ -113,8 +113,13 @@ class Blocks final : public ContactBodies {
   // kinematic block keeps them until told otherwise; a dynamic one starts from them.
   void setVelocity(BlockId id, const Vec2& origin_velocity, Real angular_velocity);
   Real lengthScale() const { return scale_; }
-  // Forces for the next step, world frame (N/m), applied at a point (m); cleared by step().
+  // Forces for the next step, world frame (N/m), applied at a point (m), and torques (N m/m);
+  // cleared by step(). A dynamic block's trial velocity (beginCoupling) includes what was
+  // added before the exchange with the material: an external load acts on it too.
   void addForce(int i, const Vec2& force, const Vec2& point);
+  void addTorque(int i, Real torque);
+  // Both for the next step on the block of that id; throws like remove().
+  void addLoad(BlockId id, const Vec2& force, const Vec2& point, Real torque);
   // The block that contact shape s belongs to (a spheropolygon is one shape; a cluster one per
   // disc), and block i's shapes: firstShape(i) .. firstShape(i) + shapesOf(i) - 1.
   int owner(int s) const { return shapes_[s].block; }
@@ -169,17 +174,24 @@ class Blocks final : public ContactBodies {
   // unchanged through all substeps. Returns the number of substeps.
   int step(Real dt, Real max_substep = std::numeric_limits<Real>::infinity()) override;
 
-  // What the material did to each block in the last step (for outputs).
+  // A load on one block in the last step (for outputs): what the material did to it
+  // (coupling), or what the other blocks did (blockContact).
   struct Coupling {
     Vec2 force{0, 0};  // N/m
     Real torque = 0;   // N m/m about the centre of mass
     int contacts = 0;
   };
   const std::vector<Coupling>& coupling() const { return coupling_; }
-  // The force of the other blocks' springs on block i, averaged over the last step's substeps
-  // (N/m; penalty model only, zero with Box2D's contacts). With coupling()[i].force, the load a
-  // kinematic block such as a loading plate carries.
-  const Vec2& blockContactForce(int i) const { return block_force_[i]; }
+  // The contact forces of the other blocks on block i, averaged over the last step's substeps,
+  // with either contact model (the penalty springs, or Box2D's contact impulses over each
+  // substep); contacts: the springs or Box2D manifold points of the last substep. With
+  // coupling()[i], the load a kinematic block such as a loading plate or a blade carries.
+  const Coupling& blockContact(int i) const { return block_contact_[i]; }
+  // For the block-block contact models, during step(): a contact force between blocks a and b
+  // (force on a, -force on b) at a point (m). addContactForce applies it for the substep
+  // (penalty springs); recordContactForce only notes what Box2D's solver applied.
+  void addContactForce(int a, int b, const Vec2& force_on_a, const Vec2& point);
+  void recordContactForce(int a, int b, const Vec2& force_on_a, const Vec2& point);
 
  private:
   void checkDef(const BlockDef& def) const;  // throws std::invalid_argument
@@ -231,14 +243,15 @@ class Blocks final : public ContactBodies {
   std::vector<Lattice> lattices_;
   std::vector<Body> bodies_;  // hot
   std::vector<Shape> shapes_;
-  std::vector<Vec2> world_vertices_;  // the shapes' core vertices, world frame
-  std::vector<Coupling> coupling_;    // records for outputs
-  std::vector<Vec2> block_force_;     // mean spring force from the other blocks, last step
+  std::vector<Vec2> world_vertices_;     // the shapes' core vertices, world frame
+  std::vector<Coupling> coupling_;       // records for outputs
+  std::vector<Coupling> block_contact_;  // from the other blocks, last step
   // Slot table: the place of the block in each slot (-1 free), its generation, free slots.
   std::vector<int> slot_place_;
   std::vector<std::uint32_t> slot_generation_;
   std::vector<int> free_slots_;
   Real max_zeta_ = 0;
+  Real substep_share_ = 1;  // 1 / substeps of the step under way
   Vec2 gravity_{0, 0};
   BlockContactDef contact_;
   Real scale_ = 1;

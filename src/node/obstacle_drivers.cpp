@@ -1,0 +1,193 @@
+#include "obstacle_drivers.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "mpm_sdem/core/rigid/block_checks.hpp"
+#include "sim_loop.hpp"
+
+namespace mpm_sdem::node {
+
+namespace {
+
+Vec2 rotated(Real angle, const Vec2& v) {
+  const Real c = std::cos(angle), s = std::sin(angle);
+  return Vec2(c * v.x() - s * v.y(), s * v.x() + c * v.y());
+}
+
+Real wrapped(Real angle) {
+  return std::remainder(angle, 2 * M_PI);
+}
+
+// The block of that id, or -1 when it is gone.
+int place(const World& world, BlockId id) {
+  return world.blocks() ? world.blocks()->indexOf(id) : -1;
+}
+
+}  // namespace
+
+ObstacleDrivers::ObstacleDrivers(ros::NodeHandle& pnh, CommandQueue& queue,
+                                 const NodeParams& params)
+    : pnh_(pnh), queue_(queue), params_(params), listener_(tf_) {
+  for (const auto& [name, frame] : params.follow_tf)
+    followers_.push_back({name, frame, {}, {}, {}});
+}
+
+void ObstacleDrivers::sync(const World& world, bool fresh) {
+  if (fresh) loads_.clear();
+  const Blocks* B = world.blocks();
+  auto gone = [&](BlockId id) { return fresh || place(world, id) < 0; };
+  loads_.erase(
+      std::remove_if(loads_.begin(), loads_.end(), [&](const Load& l) { return gone(l.id); }),
+      loads_.end());
+  commands_.erase(std::remove_if(commands_.begin(), commands_.end(),
+                                 [&](const Command& c) { return gone(c.id); }),
+                  commands_.end());
+  for (Follower& f : followers_) {
+    f.id = B ? B->find(f.name) : BlockId();
+    if (f.id.isNull())
+      throw std::runtime_error("parameter ~follow_tf: no block named '" + f.name +
+                               "' in the scene (a kinematic block must follow " + f.frame + ")");
+    if (B->def(B->indexOf(f.id)).type != BodyType::kKinematic)
+      throw std::runtime_error("parameter ~follow_tf: block '" + f.name +
+                               "' must be kinematic to follow a frame (body_type in the scene)");
+  }
+  for (int i = 0; B && i < B->count(); ++i) {
+    const BlockDef& d = B->def(i);
+    const bool follows = params_.follow_tf.count(d.name) > 0;
+    const bool known = std::any_of(commands_.begin(), commands_.end(),
+                                   [&](const Command& c) { return c.id == B->id(i); });
+    if (d.type != BodyType::kKinematic || follows || known) continue;
+    Command c;
+    c.id = B->id(i);
+    c.name = d.name;
+    const std::string name = d.name;
+    c.sub = pnh_.subscribe<geometry_msgs::Twist>(
+        "obstacles/" + name + "/cmd_vel", 10,
+        [this, name](const geometry_msgs::Twist::ConstPtr& t) { onCmdVel(name, *t); });
+    commands_.push_back(std::move(c));
+  }
+}
+
+void ObstacleDrivers::onCmdVel(const std::string& name, const geometry_msgs::Twist& t) {
+  // Callback thread: the loop applies it. Only the plane's components count (diff_drive's
+  // rule for the ones it cannot follow: ignored).
+  const Vec2 v_body(t.linear.x, t.linear.y);
+  const Real w = t.angular.z;
+  queue_.post([this, name, v_body, w](Simulation& s) -> Reply {
+    World& world = s.world();
+    const auto it = std::find_if(commands_.begin(), commands_.end(),
+                                 [&](const Command& c) { return c.name == name; });
+    if (it == commands_.end() || place(world, it->id) < 0) return {false, "gone"};
+    const Blocks& B = *world.blocks();
+    const int i = place(world, it->id);
+    const Vec2 v = rotated(B.state(i).angle, v_body);  // the block's axes -> fixed frame
+    if (const Problem p = twistProblem(B.def(i), v, w); !p.empty()) {
+      ROS_WARN_THROTTLE(1, "~obstacles/%s/cmd_vel ignored: %s", name.c_str(), p.message.c_str());
+      return {false, p.message};
+    }
+    world.setBlockVelocity(it->id, v, w);
+    it->last = world.time();
+    it->moving = v.squaredNorm() > 0 || w != 0;
+    return {true, ""};
+  });
+}
+
+Reply ObstacleDrivers::addLoad(World& world, const std::string& name, const Vec2& force,
+                               const Vec2& point, bool in_block_frame, Real torque, Real duration) {
+  const BlockId id = world.blocks() ? world.blocks()->find(name) : BlockId();
+  if (id.isNull()) return {false, "no block named '" + name + "'"};
+  const Blocks& B = *world.blocks();
+  if (B.def(B.indexOf(id)).type != BodyType::kDynamic)
+    return {false, "block '" + name +
+                       "' is not dynamic: a load moves only dynamic blocks (command a kinematic "
+                       "one's velocity instead)"};
+  const Real until = duration < 0 ? std::numeric_limits<Real>::infinity() : world.time() + duration;
+  loads_.push_back({id, force, point, in_block_frame, torque, until});
+  return {true, "holding a load on '" + name + "' " +
+                    (duration < 0 ? std::string("until cleared")
+                                  : "until t = " + std::to_string(until) + " s")};
+}
+
+Reply ObstacleDrivers::clearLoads(const World& world, const std::string& name) {
+  const BlockId id = world.blocks() && !name.empty() ? world.blocks()->find(name) : BlockId();
+  if (!name.empty() && id.isNull()) return {false, "no block named '" + name + "'"};
+  const std::size_t before = loads_.size();
+  loads_.erase(std::remove_if(loads_.begin(), loads_.end(),
+                              [&](const Load& l) { return name.empty() || l.id == id; }),
+               loads_.end());
+  return {true, "cleared " + std::to_string(before - loads_.size()) + " loads"};
+}
+
+void ObstacleDrivers::beforeStep(World& world) {
+  const Real t = world.time();
+  // A load acts in the steps that start before its end.
+  loads_.erase(
+      std::remove_if(loads_.begin(), loads_.end(),
+                     [&](const Load& l) { return !(t < l.until) || place(world, l.id) < 0; }),
+      loads_.end());
+  for (const Load& l : loads_) {
+    const Blocks& B = *world.blocks();
+    const int i = place(world, l.id);
+    const Real angle = B.state(i).angle;
+    const Vec2 force = l.in_block_frame ? rotated(angle, l.force) : l.force;
+    world.addBlockLoad(l.id, force, B.origin(i) + rotated(angle, l.point), l.torque);
+  }
+  for (Command& c : commands_) {
+    if (!c.moving || !(params_.cmd_vel_timeout > 0) || t - c.last <= params_.cmd_vel_timeout)
+      continue;
+    c.moving = false;
+    if (place(world, c.id) < 0) continue;
+    world.setBlockVelocity(c.id, Vec2(0, 0), 0);
+    ROS_INFO("~obstacles/%s/cmd_vel: no command for %g s; '%s' stopped at t = %.4f s",
+             c.name.c_str(), params_.cmd_vel_timeout, c.name.c_str(), t);
+  }
+  for (Follower& f : followers_) steer(world, f);
+}
+
+void ObstacleDrivers::steer(World& world, Follower& f) {
+  const int i = place(world, f.id);
+  if (i < 0) return;
+  geometry_msgs::TransformStamped ts;
+  try {
+    ts = tf_.lookupTransform(params_.fixed_frame, f.frame, ros::Time(0));
+  } catch (const tf2::TransformException& e) {
+    ROS_WARN_THROTTLE(5, "~follow_tf: '%s' holds still: no transform %s -> %s yet (%s)",
+                      f.name.c_str(), params_.fixed_frame.c_str(), f.frame.c_str(), e.what());
+    world.setBlockVelocity(f.id, Vec2(0, 0), 0);
+    return;
+  }
+  const geometry_msgs::Quaternion& q = ts.transform.rotation;
+  const Vec2 p(ts.transform.translation.x, ts.transform.translation.y);
+  const Real yaw = std::atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z));
+  if (f.samples == 0 || ts.header.stamp != f.stamp[1]) {
+    f.stamp[0] = f.stamp[1], f.position[0] = f.position[1], f.angle[0] = f.angle[1];
+    f.stamp[1] = ts.header.stamp, f.position[1] = p, f.angle[1] = yaw;
+    f.samples = std::min(f.samples + 1, 2);
+  }
+  // The frame's velocity from its last two samples (its publisher's clock; ROS time, which is
+  // ours with /use_sim_time), and where that puts it now; a sample older than 0.5 s is held.
+  Vec2 v_ff(0, 0);
+  Real w_ff = 0;
+  const Real gap = (f.stamp[1] - f.stamp[0]).toSec();
+  if (f.samples == 2 && gap > 0 && gap < 0.5) {
+    v_ff = (f.position[1] - f.position[0]) / gap;
+    w_ff = wrapped(f.angle[1] - f.angle[0]) / gap;
+  }
+  const Real ahead = std::clamp((ros::Time::now() - f.stamp[1]).toSec(), 0.0, 0.5);
+  const Blocks& B = *world.blocks();
+  const Real tau = params_.follow_tf_time_constant;
+  Vec2 v = v_ff + (f.position[1] + ahead * v_ff - B.origin(i)) / tau;
+  Real w = w_ff + wrapped(f.angle[1] + ahead * w_ff - B.state(i).angle) / tau;
+  // Far from its frame (a jump), a block closes in at the fastest speed the step allows.
+  const BlockDef& d = B.def(i);
+  const Real speed = v.norm() + std::abs(w) * blockReach(d);
+  if (speed > limits::kSpeed.max) {
+    v *= limits::kSpeed.max / speed;
+    w *= limits::kSpeed.max / speed;
+  }
+  world.setBlockVelocity(f.id, v, w);
+}
+
+}  // namespace mpm_sdem::node

@@ -1,0 +1,84 @@
+// What moves obstacles between steps besides one-off requests (the loop calls beforeStep before
+// every step):
+// - loads held for a while (~apply_obstacle_wrench, gazebo's apply_body_wrench);
+// - velocity commands on ~obstacles/<name>/cmd_vel, in the block's own axes like a robot base's,
+//   that lapse to zero after ~cmd_vel_timeout of simulation time without a new one
+//   (diff_drive_controller's rule);
+// - kinematic blocks that follow a tf frame (~follow_tf: a robot's blade link): each step their
+//   twist is the frame's velocity plus the pose error over ~follow_tf_time_constant.
+// Blocks are held by id, so a removed block's drivers lapse with it.
+#pragma once
+
+#include <geometry_msgs/Twist.h>
+#include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "mpm_sdem/core/world.hpp"
+#include "node_params.hpp"
+
+namespace mpm_sdem::node {
+
+class ObstacleDrivers {
+ public:
+  ObstacleDrivers(ros::NodeHandle& pnh, CommandQueue& queue, const NodeParams& params);
+
+  // Loop thread, whenever blocks come and go or the world is rebuilt (fresh: after a reset,
+  // when ids from the old world mean nothing). Subscribes cmd_vel for each kinematic block.
+  // Throws std::runtime_error when a ~follow_tf block is missing or not kinematic.
+  void sync(const World& world, bool fresh = false);
+  // Loop thread, before each step: adds the held loads, lapses old commands, steers the
+  // followers.
+  void beforeStep(World& world);
+
+  // Loop thread, from requests. A load's force (N/m) acts at point (block frame, m), in the
+  // block's axes when in_block_frame, else the fixed frame's; torque in N m/m; for duration s
+  // of simulation time (< 0: until cleared).
+  Reply addLoad(World& world, const std::string& name, const Vec2& force, const Vec2& point,
+                bool in_block_frame, Real torque, Real duration);
+  Reply clearLoads(const World& world, const std::string& name);  // "" clears all
+
+  // The tf buffer (also for ~get_obstacle_state's reference frames).
+  const tf2_ros::Buffer& tf() const { return tf_; }
+
+ private:
+  struct Load {
+    BlockId id;
+    Vec2 force, point;
+    bool in_block_frame;
+    Real torque, until;  // until: s of simulation time, infinite for "until cleared"
+  };
+  struct Command {
+    BlockId id;
+    std::string name;
+    ros::Subscriber sub;
+    Real last = 0;  // simulation time of the last command
+    bool moving = false;
+  };
+  struct Follower {
+    std::string name, frame;
+    BlockId id;
+    // The frame's last two distinct samples, for its velocity.
+    ros::Time stamp[2];
+    Vec2 position[2];
+    Real angle[2] = {0, 0};
+    int samples = 0;
+  };
+  void onCmdVel(const std::string& name, const geometry_msgs::Twist& twist);
+  void steer(World& world, Follower& f);
+
+  ros::NodeHandle pnh_;
+  CommandQueue& queue_;
+  const NodeParams& params_;
+  std::vector<Load> loads_;
+  std::vector<Command> commands_;
+  std::vector<Follower> followers_;
+  tf2_ros::Buffer tf_;
+  tf2_ros::TransformListener listener_;
+};
+
+}  // namespace mpm_sdem::node
