@@ -105,8 +105,9 @@ const cv::Mat& colourMap() {
 
 int colourIndex(Real value, Real max_value) {
   // Truncated, not rounded: only values at the top reach 255, and 1 mm/s on a 2 m/s scale is
-  // the bottom colour, as at rest.
-  return static_cast<int>(std::clamp(255 * value / max_value, 0.0, 255.0));
+  // the bottom colour, as at rest. NaN (a state about to be refused) at the bottom too.
+  if (!(value > 0)) return 0;
+  return static_cast<int>(std::min(255 * value / max_value, 255.0));
 }
 
 Layout layoutFor(const cv::Size& image, const PixelFrame& frame) {
