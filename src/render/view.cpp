@@ -59,7 +59,7 @@ ColorScale chooseScale(const ViewRequest& parameter, const ViewRequest& scene,
     s.origin = describe("scene view.max_value", s.max_value, s.color_by);
   } else {
     s.max_value = defaultMaxValue(world, s.color_by);
-    s.origin = describe("the scene's default (no view.max_value):", s.max_value, s.color_by);
+    s.origin = describe("the scene's default,", s.max_value, s.color_by);
   }
   return s;
 }
