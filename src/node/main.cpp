@@ -42,6 +42,12 @@ int main(int argc, char** argv) {
     ROS_FATAL("%s", e.what());
     return 1;
   }
+  if (!node::chooseImageScale(scene, params, error)) {
+    ROS_FATAL("%s", error.c_str());
+    return 1;
+  }
+  ROS_INFO("~image and video colours: %s (%s)", render::colorByName(params.image.scale.color_by),
+           params.image.scale.origin.c_str());
   try {
     node::Simulation sim(nh, pnh, params, std::move(scene), text.str());
     node::Services services(pnh, sim.commands());

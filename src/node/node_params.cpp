@@ -63,7 +63,8 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
         "mpm_sdem)/config/scenes/debris_impact.yaml";
     return false;
   }
-  std::string end = "pause", color = "speed";
+  std::string end = "pause", color;
+  double max_value = 0;
   int decimation = p.cloud_decimation, bag_decimation = p.record_def.cloud_decimation;
   const bool ok =
       read(pnh, "set", p.overrides, "a list of \"key=value\" strings", error) &&
@@ -85,8 +86,8 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
       read(pnh, "follow_tf_time_constant", p.follow_tf_time_constant, "a number (s)", error) &&
       read(pnh, "cloud_decimation", decimation, "a whole number >= 1", error) &&
       read(pnh, "image/width", p.image.width, "a whole number of pixels", error) &&
-      read(pnh, "image/color_by", color, "speed or pressure", error) &&
-      read(pnh, "image/max_value", p.image.max_value, "a number (m/s or Pa; 0: auto)", error) &&
+      read(pnh, "image/color_by", color, "speed, pressure or kind", error) &&
+      read(pnh, "image/max_value", max_value, "a number (m/s or Pa)", error) &&
       read(pnh, "real_time_factor", p.real_time_factor, "a number (0: as fast as possible)",
            error) &&
       read(pnh, "start_paused", p.start_paused, "true or false", error) &&
@@ -135,17 +136,19 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
   p.record_def.cloud_decimation = bag_decimation;
   if (p.image.width < 16 || p.image.width > 8192)
     return fail("parameter ~image/width must be 16 to 8192 px");
-  if (color == "speed") {
-    p.image.color_by = render::ColorBy::kSpeed;
-  } else if (color == "pressure") {
-    p.image.color_by = render::ColorBy::kPressure;
-  } else if (color == "kind") {
-    p.image.color_by = render::ColorBy::kKind;
-  } else {
-    return fail("parameter ~image/color_by must be speed, pressure or kind, got '" + color + "'");
+  if (pnh.hasParam("image/color_by")) {
+    if (color == "speed") {
+      p.image_request.color_by = render::ColorBy::kSpeed;
+    } else if (color == "pressure") {
+      p.image_request.color_by = render::ColorBy::kPressure;
+    } else if (color == "kind") {
+      p.image_request.color_by = render::ColorBy::kKind;
+    } else {
+      return fail("parameter ~image/color_by must be speed, pressure or kind, got '" + color + "'");
+    }
   }
-  if (!(p.image.max_value >= 0) || !std::isfinite(p.image.max_value))
-    return fail("parameter ~image/max_value must be a finite number >= 0 (0: auto)");
+  // Its range depends on the quantity, which the scene may choose: checked in chooseImageScale.
+  if (pnh.hasParam("image/max_value")) p.image_request.max_value = max_value;
   if (!(p.real_time_factor >= 0) || !std::isfinite(p.real_time_factor))
     return fail("parameter ~real_time_factor must be >= 0 (0: as fast as possible)");
   if (end == "pause") {
@@ -174,6 +177,26 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
   p.record_def.fixed_frame = p.fixed_frame;
   p.record_def.tf_prefix = p.tf_prefix;
   p.record_def.ns = pnh.getNamespace();
+  return true;
+}
+
+bool chooseImageScale(const Scene& scene, NodeParams& p, std::string& error) {
+  p.image.scale = render::chooseScale(p.image_request, scene.view, scene.world);
+  const render::ColorBy c = p.image.scale.color_by;
+  if (!p.image_request.max_value) return true;
+  if (c == render::ColorBy::kKind) {
+    error =
+        "parameter ~image/max_value applies only to color_by speed or pressure; the pictures "
+        "show kinds (" +
+        std::string(p.image_request.color_by ? "~image/color_by" : "the scene's view.color_by") +
+        "): leave ~image/max_value out or set ~image/color_by";
+    return false;
+  }
+  if (const std::string r = render::maxValueProblem(c, *p.image_request.max_value); !r.empty()) {
+    error = "parameter ~image/max_value " + r + " (the top of the " + render::colorByName(c) +
+            " colours; leave it out for the scene's view.max_value or its default)";
+    return false;
+  }
   return true;
 }
 

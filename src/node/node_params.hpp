@@ -10,6 +10,7 @@
 
 #include "mpm_sdem/render/render.hpp"
 #include "mpm_sdem/ros/bag_recorder.hpp"
+#include "mpm_sdem/scene/scene.hpp"
 
 namespace mpm_sdem::node {
 
@@ -38,7 +39,8 @@ struct NodeParams {
   double cmd_vel_timeout = 0.5;
   std::map<std::string, std::string> follow_tf;  // kinematic block name -> tf frame it follows
   double follow_tf_time_constant = 0.05;         // s: how fast a follower closes on its frame
-  render::RenderDef image;
+  render::RenderDef image;            // its scale set by chooseImageScale once the scene is read
+  render::ViewRequest image_request;  // ~image/color_by and ~image/max_value, where given
   // Pacing: 0 runs as fast as possible; r > 0 keeps simulation time <= r * wall time.
   double real_time_factor = 0;
   bool start_paused = false;
@@ -58,5 +60,9 @@ struct NodeParams {
 
 // Fills params from the private node handle; false with a message on a bad value.
 bool loadParams(const ros::NodeHandle& pnh, NodeParams& params, std::string& error);
+
+// Sets params.image.scale from the ~image parameters, the scene's view and its default
+// (render::chooseScale); false with a message when ~image/max_value cannot top that scale.
+bool chooseImageScale(const Scene& scene, NodeParams& params, std::string& error);
 
 }  // namespace mpm_sdem::node

@@ -5,6 +5,7 @@
 
 #include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/mpm/constitutive.hpp"
+#include "overlays.hpp"
 
 namespace mpm_sdem::render {
 
@@ -30,64 +31,65 @@ cv::Size imageSize(const World& world, int width) {
 }  // namespace
 
 void renderWorld(const World& world, const RenderDef& def, cv::Mat& image) {
+  const ColorScale& scale = def.scale;
+  if (!(scale.max_value > 0))
+    throw std::invalid_argument("renderWorld: the colour scale's top must be > 0 (chooseScale)");
   const cv::Size size = imageSize(world, def.width);
   image.create(size, CV_8UC3);
-  image.setTo(cv::Scalar(32, 32, 32));
+  image.setTo(detail::kBackground);
   const DomainDef& dom = world.def().domain;
-  const double px = size.width / (dom.max.x() - dom.min.x());  // pixels per metre
-  auto toPixel = [&](const Vec2& p) {
-    return cv::Point(static_cast<int>((p.x() - dom.min.x()) * px),
-                     static_cast<int>((dom.max.y() - p.y()) * px));
-  };
+  const detail::PixelFrame frame{Vec2(dom.min.x(), dom.max.y()),
+                                 size.width / (dom.max.x() - dom.min.x())};
   const Particles& P = world.particles();
-  const std::size_t n = P.size();
-  // Value of each point mapped to 0..255 and coloured with OpenCV's turbo map.
-  cv::Mat values(1, static_cast<int>(std::max<std::size_t>(n, 1)), CV_8UC1, cv::Scalar(0));
-  Real top = def.color_by == ColorBy::kKind ? 1 : def.max_value;
   auto value = [&](std::size_t p) -> Real {
-    if (def.color_by == ColorBy::kSpeed) return std::hypot(P.vx[p], P.vy[p]);
-    if (def.color_by == ColorBy::kKind) return P.kind[p];
+    if (scale.color_by == ColorBy::kSpeed) return std::hypot(P.vx[p], P.vy[p]);
+    if (scale.color_by == ColorBy::kKind) return P.kind[p];
     return -meanStress(Stress{P.sxx[p], P.syy[p], P.sxy[p], P.szz[p]});
   };
-  if (!(top > 0)) {
-    for (std::size_t p = 0; p < n; ++p) top = std::max(top, value(p));
-  }
-  for (std::size_t p = 0; p < n && top > 0; ++p) {
-    values.at<std::uint8_t>(0, static_cast<int>(p)) =
-        static_cast<std::uint8_t>(std::clamp(255 * value(p) / top, 0.0, 255.0));
-  }
-  cv::Mat colours;
-  cv::applyColorMap(values, colours, cv::COLORMAP_TURBO);
   // A point covers its share of a cell: h / sqrt(points per cell), at least one pixel.
   int ppc = 1;
   for (const BodyDef& b : world.def().bodies) ppc = std::max(ppc, b.points_per_cell);
-  const int radius =
-      std::max(1, static_cast<int>(std::lround(0.5 * world.def().cell_size / ppc * px)));
-  for (std::size_t p = 0; p < n; ++p) {
-    const cv::Vec3b c = colours.at<cv::Vec3b>(0, static_cast<int>(p));
-    cv::circle(image, toPixel(Vec2(P.x[p], P.y[p])), radius, cv::Scalar(c[0], c[1], c[2]),
-               cv::FILLED);
+  const int radius = std::max(
+      1, static_cast<int>(std::lround(0.5 * world.def().cell_size / ppc * frame.per_metre)));
+  const cv::Mat& map = detail::colourMap();
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const cv::Vec3b c = map.at<cv::Vec3b>(0, detail::colourIndex(value(p), scale.max_value));
+    cv::circle(image, frame(Vec2(P.x[p], P.y[p])), radius, cv::Scalar(c), cv::FILLED);
   }
-  if (const Blocks* B = world.blocks()) {
-    for (int s = 0; s < B->shapeCount(); ++s) {  // a cluster drawn disc by disc
-      const cv::Scalar colour =
-          B->movable(s) ? cv::Scalar(90, 170, 230) : cv::Scalar(170, 170, 170);
-      const std::vector<Vec2> core(B->coreVertices(s), B->coreVertices(s) + B->coreVertexCount(s));
-      std::vector<cv::Point> outline;
-      for (const Vec2& p : roundedOutline(core, B->rounding(s), 6)) outline.push_back(toPixel(p));
-      cv::fillConvexPoly(image, outline, colour, cv::LINE_AA);
+  std::vector<detail::NameTag> names;
+  if (const FemBodies* fem = world.femBodies()) {
+    for (int e = 0; e < fem->totalElements(); ++e) {
+      const std::array<int, 3>& n = fem->elementNodes(e);
+      const cv::Point corners[3] = {frame(fem->position(n[0])), frame(fem->position(n[1])),
+                                    frame(fem->position(n[2]))};
+      cv::fillConvexPoly(image, corners, 3, cv::Scalar(150, 190, 150), cv::LINE_AA);
+    }
+    for (int b = 0; b < fem->count(); ++b) {
+      Vec2 sum(0, 0);
+      for (int k = 0; k < fem->nodeCount(b); ++k) sum += fem->position(fem->firstNode(b) + k);
+      names.push_back({fem->def(b).name, sum / std::max(1, fem->nodeCount(b))});
     }
   }
-  char label[96];
-  if (def.color_by == ColorBy::kKind)
-    std::snprintf(label, sizeof(label), "t = %.3f s   colour: material point (blue), SPH (red)",
-                  world.time());
-  else
-    std::snprintf(label, sizeof(label), "t = %.3f s   colour: %s 0 - %.3g %s", world.time(),
-                  def.color_by == ColorBy::kSpeed ? "speed" : "pressure", top,
-                  def.color_by == ColorBy::kSpeed ? "m/s" : "Pa");
-  cv::putText(image, label, cv::Point(8, 20), cv::FONT_HERSHEY_SIMPLEX, 0.5,
-              cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  if (const Blocks* blocks = world.blocks()) {
+    for (int s = 0; s < blocks->shapeCount(); ++s) {  // a cluster drawn disc by disc
+      const cv::Scalar colour =
+          blocks->movable(s) ? cv::Scalar(90, 170, 230) : cv::Scalar(170, 170, 170);
+      const std::vector<Vec2> core(blocks->coreVertices(s),
+                                   blocks->coreVertices(s) + blocks->coreVertexCount(s));
+      std::vector<cv::Point> outline;
+      for (const Vec2& p : roundedOutline(core, blocks->rounding(s), 6))
+        outline.push_back(frame(p));
+      cv::fillConvexPoly(image, outline, colour, cv::LINE_AA);
+    }
+    for (int b = 0; b < blocks->count(); ++b)
+      names.push_back({blocks->def(b).name, blocks->state(b).position});
+  }
+  if (size.width < detail::kMinOverlayWidth) return;
+  const detail::Layout layout = detail::layoutFor(size, frame);
+  detail::drawNames(image, layout, names, frame);
+  detail::drawScaleBar(image, layout);
+  detail::drawTime(image, layout, world.time());
+  detail::drawColorBar(image, layout, scale);
 }
 
 std::string videoPathProblem(const std::string& path) {

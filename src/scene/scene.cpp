@@ -767,12 +767,37 @@ void parseSph(const Context& ctx, const MapReader& top, Scene& s) {
   r.require(p.empty(), p.key.c_str(), p.message);
 }
 
+// The pictures' quantity and the top of their colour scale; max_value alone colours speeds.
+void parseView(const Context& ctx, const MapReader& top, Scene& s) {
+  if (!top.has("view")) return;
+  MapReader r(ctx, top.node("view"), "view", {"color_by", "max_value"});
+  using render::ColorBy;
+  if (r.has("color_by") || r.has("max_value")) {
+    s.view.color_by = r.choice<ColorBy>(
+        "color_by",
+        {{"speed", ColorBy::kSpeed}, {"pressure", ColorBy::kPressure}, {"kind", ColorBy::kKind}},
+        ColorBy::kSpeed);
+  }
+  if (r.has("max_value")) {
+    const ColorBy c = *s.view.color_by;
+    r.require(c != ColorBy::kKind, "max_value",
+              "applies only to color_by speed or pressure; leave it out with color_by kind");
+    const Real v = r.number("max_value", render::colorByUnit(c));
+    const std::string problem = render::maxValueProblem(c, v);
+    r.require(problem.empty(), "max_value",
+              problem + " (the top of the " + render::colorByName(c) +
+                  " colours; leave it out for the scene's default)");
+    s.view.max_value = v;
+  }
+}
+
 Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& source) {
   Scene s;
   s.source = source;
-  MapReader top(ctx, root, "",
-                {"name", "description", "domain", "grid", "solver", "time", "materials", "bodies",
-                 "output", "limits", "blocks", "block_contact", "coupling", "fem_bodies", "sph"});
+  MapReader top(
+      ctx, root, "",
+      {"name", "description", "domain", "grid", "solver", "time", "materials", "bodies", "output",
+       "limits", "blocks", "block_contact", "coupling", "fem_bodies", "sph", "view"});
   s.name = top.has("name") ? top.name("name") : "";
   s.description = top.text("description", "");
   top.require(s.description.size() <= 4096, "description",
@@ -809,6 +834,7 @@ Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& s
     s.output.particles = o.boolean("particles", s.output.particles);
   }
   if (s.output.interval <= 0) s.output.interval = s.end_time / 100;
+  parseView(ctx, top, s);
   if (top.has("limits")) {
     MapReader l(ctx, top.node("limits"), "limits", {"energy_growth"});
     s.limits.energy_growth =

@@ -48,6 +48,10 @@ inline constexpr Range kCoordinate{-1e5, 1e5, "m"};  // domain corners and posit
 inline constexpr Range kAngle{-1e4, 1e4, "rad"};     // block angles (Box2D keeps a float)
 inline constexpr Range kEndTime{0, 1e6, "s", true};  // time.end
 inline constexpr Range kTimeStep{1e-9, 1e3, "s"};    // fixed time.dt, time.dt_max
+// Top of a picture's colour scale (the scene's view.max_value, the node's ~image/max_value):
+// above 0, or every point would be drawn at the top colour.
+inline constexpr Range kScaleSpeed{0, 1e3, "m/s", true};     // the fastest speed accepted
+inline constexpr Range kScalePressure{0, 1e13, "Pa", true};  // the stiffest modulus accepted
 // No chosen step may fall below this: a simulated second would take more than a billion steps.
 inline constexpr Real kMinTimeStep = kTimeStep.min;
 inline constexpr std::size_t kMaxNameLength = 64;

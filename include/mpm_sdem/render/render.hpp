@@ -1,5 +1,6 @@
-// Pictures of a world with OpenCV: material points coloured by speed or pressure, blocks drawn
-// with their rounding. Used for the node's ~image topic and for videos. Not part of the core.
+// Pictures of a world with OpenCV: material points coloured by speed, pressure or kind on a
+// fixed scale, blocks drawn with their rounding and named, a colour bar, a scale bar and the time.
+// Used for the node's ~image topic and for videos. Not part of the core.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -8,19 +9,18 @@
 
 #include "mpm_sdem/core/sample_clock.hpp"
 #include "mpm_sdem/core/world.hpp"
+#include "mpm_sdem/render/view.hpp"
 
 namespace mpm_sdem::render {
 
-// kKind: material points blue, SPH particles (seed 001) red.
-enum class ColorBy { kSpeed, kPressure, kKind };
-
 struct RenderDef {
-  int width = 800;  // px; the height follows the domain's aspect ratio
-  ColorBy color_by = ColorBy::kSpeed;
-  Real max_value = 0;  // m/s or Pa at the top of the colour map; 0: the frame's largest value
+  int width = 800;   // px; the height follows the domain's aspect ratio
+  ColorScale scale;  // chooseScale: fixed for the run
 };
 
-// Draws the world into image (CV_8UC3, BGR), reallocated only when its size changes.
+// Draws the world into image (CV_8UC3, BGR), reallocated only when its size changes. The
+// overlays (time, scale bar, colour bar, block names) are left out below 320 px, where they
+// would cover the picture.
 void renderWorld(const World& world, const RenderDef& def, cv::Mat& image);
 
 // "" or why a video cannot be written there (limits::outputFileProblem: .avi, .mp4 or .mkv).

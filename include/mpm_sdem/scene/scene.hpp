@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mpm_sdem/core/world.hpp"
+#include "mpm_sdem/render/view.hpp"
 
 namespace mpm_sdem {
 
@@ -29,6 +30,9 @@ struct Scene {
   Real end_time = 0;  // s
   OutputDef output;
   LimitsDef limits;
+  // The quantity and colour scale of the node's pictures and videos (the section `view`); the
+  // node's ~image parameters win over it (render::chooseScale).
+  render::ViewRequest view;
 };
 
 // One message, already formatted as "file:line:column: key: problem; fix".
