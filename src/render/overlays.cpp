@@ -72,8 +72,8 @@ std::string lengthText(Real metres) {
   return text;
 }
 
-// The unit the colour bar's numbers are written in, for short tick labels: kPa rather than
-// "20000" Pa, mm/s rather than "0.005" m/s.
+// The unit the colour bar's numbers are written in, for short tick labels of at most three
+// digits: kPa rather than "4000" Pa, mm/s rather than "0.005" m/s.
 struct DisplayUnit {
   Real factor;
   const char* name;
@@ -81,9 +81,9 @@ struct DisplayUnit {
 DisplayUnit displayUnit(const ColorScale& s) {
   if (s.color_by == ColorBy::kSpeed)
     return s.max_value < 0.1 ? DisplayUnit{1e3, "mm/s"} : DisplayUnit{1, "m/s"};
-  if (s.max_value >= 1e10) return {1e-9, "GPa"};
-  if (s.max_value >= 1e7) return {1e-6, "MPa"};
-  if (s.max_value >= 1e4) return {1e-3, "kPa"};
+  if (s.max_value >= 1e9) return {1e-9, "GPa"};
+  if (s.max_value >= 1e6) return {1e-6, "MPa"};
+  if (s.max_value >= 1e3) return {1e-3, "kPa"};
   return {1, "Pa"};
 }
 
@@ -188,12 +188,26 @@ void drawColorBar(cv::Mat& image, const Layout& l, const ColorScale& scale) {
   std::vector<Real> ticks;
   for (int k = 0; k * step < top - 0.6 * step; ++k) ticks.push_back(k * step);
   ticks.push_back(top);
+  // Every tick marked; a label that would touch its left neighbour's or the top's is left out
+  // (long numbers on a narrow bar), the top's always kept.
+  auto text = [](Real v) {
+    char t[32];
+    std::snprintf(t, sizeof(t), "%g", v);
+    return std::string(t);
+  };
+  const double size = 0.9;
+  const int gap = l.margin / 2;
+  auto at = [&](Real v) { return r.x + static_cast<int>(std::lround(v / top * (r.width - 1))); };
+  const int top_left = at(top) - textSize(text(top), l, size).width / 2;
+  int free_from = r.x - l.margin;
   for (const Real v : ticks) {
-    const int x = r.x + static_cast<int>(std::lround(v / top * (r.width - 1)));
+    const int x = at(v);
     cv::line(image, cv::Point(x, r.br().y), cv::Point(x, r.br().y + tick), kText, l.thickness);
-    char text[32];
-    std::snprintf(text, sizeof(text), "%g", v);
-    centred(image, text, x, labels_y, l, 0.9);
+    const int half = textSize(text(v), l, size).width / 2;
+    const bool last = v == ticks.back();
+    if (!last && (x - half < free_from || x + half + gap > top_left)) continue;
+    centred(image, text(v), x, labels_y, l, size);
+    free_from = x + half + gap;
   }
 }
 
