@@ -35,11 +35,11 @@ void toPointCloud(const World& world, int decimation, const std_msgs::Header& he
   cloud.header = header;
   sensor_msgs::PointCloud2Modifier mod(cloud);
   mod.setPointCloud2Fields(
-      9, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32, "z", 1,
-      sensor_msgs::PointField::FLOAT32, "vx", 1, sensor_msgs::PointField::FLOAT32, "vy", 1,
-      sensor_msgs::PointField::FLOAT32, "pressure", 1, sensor_msgs::PointField::FLOAT32,
-      "von_mises", 1, sensor_msgs::PointField::FLOAT32, "material", 1,
-      sensor_msgs::PointField::UINT16, "kind", 1, sensor_msgs::PointField::UINT8);
+      10, "x", 1, sensor_msgs::PointField::FLOAT32, "y", 1, sensor_msgs::PointField::FLOAT32, "z",
+      1, sensor_msgs::PointField::FLOAT32, "vx", 1, sensor_msgs::PointField::FLOAT32, "vy", 1,
+      sensor_msgs::PointField::FLOAT32, "speed", 1, sensor_msgs::PointField::FLOAT32, "pressure", 1,
+      sensor_msgs::PointField::FLOAT32, "von_mises", 1, sensor_msgs::PointField::FLOAT32,
+      "material", 1, sensor_msgs::PointField::UINT16, "kind", 1, sensor_msgs::PointField::UINT8);
   mod.resize(n);  // height 1, width n, dense
   sensor_msgs::PointCloud2Iterator<float> x(cloud, "x"), vx(cloud, "vx"), p(cloud, "pressure");
   sensor_msgs::PointCloud2Iterator<std::uint16_t> mat(cloud, "material");
@@ -50,6 +50,7 @@ void toPointCloud(const World& world, int decimation, const std_msgs::Header& he
     x[2] = 0.f;
     vx[0] = static_cast<float>(P.vx[i]);
     vx[1] = static_cast<float>(P.vy[i]);
+    vx[2] = static_cast<float>(std::hypot(P.vx[i], P.vy[i]));  // rviz colours by one field
     const Stress s{P.sxx[i], P.syy[i], P.sxy[i], P.szz[i]};
     p[0] = static_cast<float>(-meanStress(s));
     p[1] = static_cast<float>(std::sqrt(3.0) * equivalentShear(s));  // sqrt(3 J2)
@@ -289,9 +290,10 @@ visualization_msgs::MarkerArray toMarkers(const World& world, const std_msgs::He
   out.markers.push_back(clear);
   const Blocks* B = world.blocks();
   if (!B) return out;
-  // Sizes that read at the scale of the whole domain: lines 0.3% of its larger side, names 3%.
+  // Sizes that read at the scale of the whole domain: lines 0.3% of its larger side, names 1%
+  // (larger names cover small blocks' outlines).
   const Vec2 extent = world.def().domain.max - world.def().domain.min;
-  const Real line = 0.003 * extent.maxCoeff(), text = 0.03 * extent.maxCoeff();
+  const Real line = 0.003 * extent.maxCoeff(), text = 0.01 * extent.maxCoeff();
   int id = 0;
   for (int i = 0; i < B->count(); ++i) {
     const BlockDef& d = B->def(i);
@@ -323,7 +325,9 @@ visualization_msgs::MarkerArray toMarkers(const World& world, const std_msgs::He
     label.points.clear();
     label.text = d.name;
     label.scale.z = text;
-    label.pose = planarPose(B->state(i).position, 0);
+    // Just above the block, clear of its outline.
+    const Box box = B->blockBounds(i);
+    label.pose = planarPose(Vec2(0.5 * (box.min.x() + box.max.x()), box.max.y() + text), 0);
     label.color.r = label.color.g = label.color.b = 1;
     out.markers.push_back(label);
   }

@@ -24,7 +24,7 @@ from PIL import ImageGrab
 
 WIDTH, HEIGHT = 1280, 960
 BACKGROUND = (48, 48, 48)  # the config's Background Color
-# The Particles display colours vx from Min Color (0 m/s) to Max Color (1.5 m/s); at rest all
+# The Particles display colours speed from Min Color (0 m/s) to Max Color (1.5 m/s); at rest all
 # particles take Min Color.
 PARTICLE_MIN, PARTICLE_MAX = (70, 110, 230), (230, 40, 20)
 DRAW_TIMEOUT = 35.0  # s for rviz to start and draw; the .test file's limit is 50 s

@@ -34,8 +34,8 @@ TEST(Node, PublishesCloudBlocksAndTf) {
   EXPECT_EQ(c.header.frame_id, "world");
   std::vector<std::string> fields;
   for (const auto& f : c.fields) fields.push_back(f.name);
-  EXPECT_EQ(fields, (std::vector<std::string>{"x", "y", "z", "vx", "vy", "pressure", "von_mises",
-                                              "material", "kind"}));
+  EXPECT_EQ(fields, (std::vector<std::string>{"x", "y", "z", "vx", "vy", "speed", "pressure",
+                                              "von_mises", "material", "kind"}));
   RigidBlockState box;
   ASSERT_TRUE(n.block("box", box));
   EXPECT_EQ(box.body_type, RigidBlockState::DYNAMIC);

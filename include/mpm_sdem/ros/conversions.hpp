@@ -24,7 +24,7 @@ namespace mpm_sdem::conversions {
 ros::Time toRosTime(Real t);
 
 // Every decimation-th material point as an unordered cloud (height 1) in the header's frame:
-// float32 x, y, z (z = 0, m), vx, vy (m/s), pressure (Pa, positive in compression) and
+// float32 x, y, z (z = 0, m), vx, vy, speed (m/s), pressure (Pa, positive in compression) and
 // von_mises (Pa, plane strain), uint16 material (index in the scene's materials).
 void toPointCloud(const World& world, int decimation, const std_msgs::Header& header,
                   sensor_msgs::PointCloud2& cloud);
@@ -55,7 +55,7 @@ geometry_msgs::TransformStamped domainTransform(const World& world, const std_ms
 std::string blockFrame(const std::string& prefix, const std::string& name);
 
 // A LINE_STRIP per block (per disc of a cluster) tracing its rounded outline, posed at the
-// block's frame in the header's (fixed) frame, and its name at its centre of mass; line width and
+// block's frame in the header's (fixed) frame, and its name just above it; line width and
 // text size in proportion to the domain. DELETEALL first removes blocks that disappeared. In the
 // fixed frame, not the blocks' tf frames: rviz draws them without tf (a late rviz while paused).
 visualization_msgs::MarkerArray toMarkers(const World& world, const std_msgs::Header& header);
