@@ -47,6 +47,9 @@ CASES = [
                  "granular bed against the spheropolygon of the same outline (depth, velocity "
                  "after, cost), and the incline's disk on an incline made of discs", True),
     ("compression", "Seed 000 sec. 7: granular matrix compression", True),
+    ("blade", "Issue 20: an excavator blade (vertical, kinematic, 5 cm/s) through a layer of sand "
+              "against Reece's earth-moving equation with McKyes' N_gamma (smooth blade: exact; "
+              "friction 0.3: planar wedge), three depths at three cell sizes", True),
     ("fem_cantilever", "Seed 002 sec. 2.3: an FEM cantilever (plane-strain linear triangles, "
                        "corotational) under its own weight against Euler-Bernoulli, three meshes",
      True),
@@ -414,6 +417,51 @@ def plot_wheel(data, out):
     sink.set_xlabel("slip")
     sink.set_ylabel("sinkage (mm)")
     return finish(fig, out, "wheel_pull_sinkage.png")
+def plot_blade(data, out):
+    """Force on the blade over Reece's (q = 0) against its advance over the depth, per blade
+    friction: the three depths (colours) at each cell size (line styles); in black, the shipped
+    scene file's start (unstressed layer, blade at full speed at once)."""
+    path = os.path.join(data, "blade.csv")
+    if not os.path.exists(path):
+        return None
+    # A run ends where the settings change or the displacement falls back; of runs with the
+    # same settings (the deeper layer's), the first is drawn.
+    series, last_x = [], None
+    for r in read_csv(path):
+        key = (float(r["friction"]), float(r["depth_m"]), float(r["cell_m"]),
+               float(r["speed_m_s"]), r["start"])
+        x = float(r["displacement_m"])
+        if not series or series[-1][0] != key or x < last_x:
+            series.append((key, []))
+        series[-1][1].append(r)
+        last_x = x
+    runs = OrderedDict()
+    for key, rows in series:
+        runs.setdefault(key, rows)
+    frictions = sorted({k[0] for k in runs})
+    fig, axes = plt.subplots(1, len(frictions), figsize=(6 * len(frictions), 4.2), squeeze=False)
+    colours = {0.04: "tab:red", 0.06: "tab:green", 0.08: "tab:blue"}
+    styles = {0.01: ":", 0.005: "--", 0.0025: "-"}
+    for ax, mu in zip(axes[0], frictions):
+        for (f, d, h, v, start), rows in runs.items():
+            if f != mu or v != 0.05 or d not in colours or h not in styles:
+                continue
+            reece = float(rows[0]["reece_n_m"])
+            scene = start == "scene"
+            ax.plot([float(r["displacement_m"]) / d for r in rows],
+                    [float(r["horizontal_n_m"]) / reece for r in rows],
+                    "-" if scene else styles[h], lw=0.6 if scene else 0.9,
+                    color="k" if scene else colours[d],
+                    label=("d %.0f cm, h %.1f mm" % (100 * d, 1000 * h)) +
+                    (", the scene file's start" if scene else ""))
+        ax.axhline(1, color="k", lw=0.8)
+        ax.axvspan(0.05, 0.3, color="0.9", zorder=0)
+        ax.set_xlabel("blade advance x / d")
+        ax.set_ylabel("horizontal force / Reece's (q = 0)")
+        ax.set_title("blade friction %.1f" % mu)
+        ax.set_ylim(0, 2.6)
+        ax.legend(fontsize=6, ncol=3)
+    return finish(fig, out, "blade_force.png")
 
 
 def family(quantity):
@@ -514,6 +562,7 @@ def main():
              "debris_flow": plot_debris_flow(data, out),
              "compression": plot_compression(data, out),
              "wheel": plot_wheel(data, out),
+             "blade": plot_blade(data, out),
              "water_gate": plot_water_gate(data, out),
              "water_gate_snapshots": plot_water_gate_snapshots(data, out)}
     lines = ["# Validation report", "",

@@ -1,6 +1,6 @@
 // Test 8: bad scene input is refused with one message naming the file, line, key and a valid
 // value, and the runner exits non-zero before simulating (no output written). The shipped scenes
-// parse.
+// parse and take steps.
 #include <gtest/gtest.h>
 
 #include <sys/stat.h>
@@ -558,4 +558,21 @@ TEST(SceneErrors, ShippedScenesParse) {
     EXPECT_NO_THROW(loadScene(e.path().string())) << e.path();
   }
   EXPECT_GE(n, 1);
+}
+
+// Every shipped scene builds its world and steps: a few steps, all positions finite.
+TEST(SceneErrors, ShippedScenesStep) {
+  namespace fs = std::filesystem;
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(test::sourcePath("config/scenes"))) {
+    if (e.path().extension() != ".yaml") continue;
+    ++n;
+    World w(loadScene(e.path().string()).world);
+    for (int i = 0; i < 5; ++i) {
+      const StepInfo info = w.step(w.chooseTimeStep().dt);
+      ASSERT_TRUE(info.finite) << e.path() << " step " << i;
+    }
+    EXPECT_GT(w.time(), 0) << e.path();
+  }
+  EXPECT_GE(n, 8);
 }

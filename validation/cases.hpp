@@ -338,5 +338,87 @@ struct WheelRun {
   Real radius = 0;       // the wheel's (m)
 };
 WheelRun runWheel(World& w, Real t_end);
+// Issue 20's excavator blade: a kinematic blade pushed horizontally through a layer of sand on a
+// rigid floor (plane strain, per metre of width). The layer, `bed` deep on a sticky floor, is
+// Drucker-Prager sand (rho = 1500 kg/m^3, E = 1 MPa, nu = 0.3, phi, no dilation or cohesion); the
+// blade a plate `thickness` thick with `rounding`, at rake angle alpha from the horizontal (90
+// deg: vertical; below 90 its top leans back, away from the direction of travel), its lower end
+// cut horizontal `depth` below the free surface and its front face at x = 5 cm where it meets
+// the surface. Ahead of the blade the layer is full; behind it, it has been cut down to the
+// blade's lower end. Domain 0.4 m long; IMP coupling with springs per metre of contact.
+// config/scenes/excavator_blade.yaml is this world at depth 6 cm, 5 mm cells, friction 0.3.
+struct Blade {
+  Real depth = 0.06;         // d: from the free surface to the blade's lowest point (m)
+  Real cell_size = 0.005;    // h (m)
+  int points_per_cell = 2;   // per direction
+  Real rake = 90;            // alpha (deg)
+  Real friction = 0.3;       // blade-sand Coulomb coefficient, tan(delta)
+  Real speed = 0.05;         // m/s, +x
+  Real friction_angle = 35;  // deg: the material's phi (eq. 35's cone)
+  Real bed = 0.16;           // m: the layer's depth above the floor
+  Real thickness = 0.01;     // m: the blade's, across its faces, rounding included
+  Real rounding = 0.002;     // m
+  Real damping = 0;          // SolverDef::damping
+  // pushBlade only:
+  bool geostatic = true;  // start from the layer's weight as its stress
+  Real ramp = 0.05;       // s over which the blade's speed is eased in
+};
+WorldDef excavatorBlade(const Blade& c);
+// Pushes excavatorBlade's blade (block 0) until it has travelled `travel` (m): the horizontal
+// and vertical forces of the material on it (N/m, the resistance positive against the motion,
+// the vertical positive upwards), each averaged over the steps of a sample every `travel` / 200.
+struct BladePush {
+  std::vector<Real> displacement, horizontal, vertical;  // m, N/m, N/m
+  long steps = 0;
+  std::size_t points = 0;
+  Real seconds = 0;  // wall
+};
+BladePush pushBlade(World& w, const Blade& c, Real travel);
+// McKyes (1985) for a wide blade (Reece's fundamental earth-moving equation with c = q = 0):
+// the soil wedge ahead of a blade of rake alpha, failing along a plane from the blade's tip at
+// beta to the horizontal, in soil of friction angle phi against a blade of friction angle delta.
+// The force on the blade is F = gamma d^2 N_gamma (per metre of width), inclined at delta to the
+// blade's normal, with N_gamma = (cot alpha + cot beta) / (2 [cos(alpha + delta) + sin(alpha +
+// delta) cot(beta + phi)]) at the beta that minimises it. The blade pushes the wedge along
+// (sin(alpha + delta), cos(alpha + delta)) (the friction on the wedge against its rise along the
+// blade), so the wedge pushes back on the blade with a horizontal resistance F sin(alpha + delta)
+// and lifts it by -F cos(alpha + delta) (for a vertical blade: F sin(delta), upwards).
+struct Reece {
+  Real n_gamma = 0;     // -
+  Real beta = 0;        // rad
+  Real horizontal = 0;  // N_gamma sin(alpha + delta): H = gamma d^2 horizontal
+  Real vertical = 0;    // -N_gamma cos(alpha + delta): V = gamma d^2 vertical, upwards on the blade
+};
+Reece reece(Real alpha, Real phi, Real delta);
+// Reece's horizontal force for excavatorBlade's world (N/m): gamma d^2 N_gamma sin(alpha + delta)
+// with the material's in-plane friction angle (flowingFrictionAngle: the Drucker-Prager cone of
+// eq. 35 without dilation flows in plane strain at asin(q_phi), 33.0 deg for phi = 35 deg) and
+// delta = atan(friction).
+Real reeceHorizontal(const Blade& c);
+// How fast the free surface over McKyes' wedge rises per metre the blade advances: the wedge
+// slides along the failure plane while the blade slides along its face, so it rises at
+// v sin(alpha) sin(beta) / sin(alpha + beta) (tan beta for a vertical blade). Its weight is
+// Reece's surcharge q = gamma r x at the blade's advance x, adding q d N_q with N_q = 2 N_gamma.
+Real wedgeRise(const Blade& c);
+// The horizontal force of a push over the blade's advance x from `from` to `to` depths (after
+// the blade's start, while the heap ahead of it is still small against d): the least-squares line
+// H = onset + slope x, its value at x = 0 (the force on a level surface, which Reece's equation
+// with q = 0 describes) and its standard error; the mean and the largest sample; the mean
+// vertical force (upwards on the blade positive).
+struct BladeForce {
+  Real onset = 0, onset_error = 0;  // N/m
+  Real slope = 0;                   // N/m per m of advance
+  Real mean = 0, mean_error = 0;    // N/m
+  Real peak = 0;                    // N/m
+  Real vertical = 0;                // N/m
+};
+BladeForce bladeForce(const BladePush& p, Real depth, Real from = 0.05, Real to = 0.3);
+// A power law y = A x^k fitted by weighted least squares to log y against log x (weights from
+// the relative errors y_error / y): the exponent k and its standard error.
+struct PowerLaw {
+  Real exponent = 0, error = 0;
+};
+PowerLaw powerLaw(const std::vector<Real>& x, const std::vector<Real>& y,
+                  const std::vector<Real>& y_error);
 
 }  // namespace mpm_sdem::cases

@@ -21,6 +21,7 @@
 
 #include "cases.hpp"
 #include "mpm_sdem/core/diagnostics.hpp"
+#include "mpm_sdem/core/mpm/material.hpp"
 #include "mpm_sdem/core/world.hpp"
 #include "mpm_sdem/scene/scene.hpp"
 
@@ -1511,6 +1512,196 @@ void wheel(const Options& o, Results& r) {
           w.stepCount());
   }
   std::fclose(sweep);
+// Issue 20: the excavator blade (cases::excavatorBlade) against Reece's fundamental earth-moving
+// equation with McKyes' N_gamma for a wide blade (cases::reece): a vertical blade, smooth
+// (delta = 0, where the planar wedge is Rankine's passive state, an exact solution) and rough
+// (friction 0.3, delta = 16.7 deg, where a planar failure surface is known to overestimate the
+// passive force), at three depths and three cell sizes each. The force is read over the blade's
+// advance x from 0.05 d to 0.3 d (the heap ahead of it then still small): its line's value at
+// x = 0 (onset: a level surface, q = 0) and its mean (against Reece with the surcharge
+// q = gamma r x of the wedge's rise at the window's middle). Per cell size and per friction: the
+// exponent of the onset force against d; per depth: the onset force extrapolated to h = 0 from
+// the two finest cells (first order: the blade's edge smeared over a cell or two makes the
+// failing wedge deeper by a length proportional to h). Then the blade's speed and time step (the
+// grid transfers dissipate in the shear bands, per step), and a deeper layer (the floor).
+// "2.5 mm" for 0.0025 m.
+std::string millimetres(Real metres) {
+  char t[32];
+  std::snprintf(t, sizeof t, "%.1f mm", 1000 * metres);
+  return t;
+}
+
+void blade(const Options& o, Results& r) {
+  FILE* series = std::fopen((o.out + "/blade.csv").c_str(), "w");
+  std::fprintf(series,
+               "friction,depth_m,cell_m,speed_m_s,start,displacement_m,horizontal_n_m,"
+               "vertical_n_m,reece_n_m\n");
+  const std::vector<Real> depths = {0.04, 0.06, 0.08};
+  const std::vector<Real> cells =
+      o.fast ? std::vector<Real>{0.01} : std::vector<Real>{0.01, 0.005, 0.0025};
+  const Real from = 0.05, to = 0.3;
+  const std::string source = "Reece / McKyes (1985) N_gamma, planar wedge";
+  struct Run {
+    cases::BladeForce force;
+    Real reece = 0;
+  };
+  auto push = [&](const cases::Blade& c, const std::string& tag) {
+    World w(cases::excavatorBlade(c));
+    const cases::BladePush p = cases::pushBlade(w, c, to * c.depth);
+    const cases::BladeForce f = cases::bladeForce(p, c.depth, from, to);
+    const Real reece = cases::reeceHorizontal(c);
+    for (std::size_t i = 0; i < p.displacement.size(); ++i)
+      std::fprintf(series, "%g,%g,%g,%g,%s,%.6g,%.6g,%.6g,%.6g\n", c.friction, c.depth, c.cell_size,
+                   c.speed, c.geostatic ? "eased" : "scene", p.displacement[i], p.horizontal[i],
+                   p.vertical[i], reece);
+    std::fflush(series);
+    const Real phi = flowingFrictionAngle(c.friction_angle * M_PI / 180);
+    const cases::Reece k = cases::reece(c.rake * M_PI / 180, phi, std::atan(c.friction));
+    const Real rise = cases::wedgeRise(c), mid = 0.5 * (from + to) * c.depth;
+    char settings[320];
+    std::snprintf(settings, sizeof settings,
+                  "d/h %.0f, v %g m/s (v^2/(g d) %.4f), %zu points, %ld steps; onset %.1f +- %.1f "
+                  "N/m, mean %.1f +- %.1f, peak %.1f, vertical %.1f (Reece %.1f); phi %.1f deg, "
+                  "delta %.1f deg, beta %.1f deg, N_gamma %.3f",
+                  c.depth / c.cell_size, c.speed, c.speed * c.speed / (9.81 * c.depth), p.points,
+                  p.steps, f.onset, f.onset_error, f.mean, f.mean_error, f.peak, f.vertical,
+                  std::fabs(k.vertical) < 1e-9 ? 0.0 : 1500 * 9.81 * c.depth * c.depth * k.vertical,
+                  phi * 180 / M_PI, std::atan(c.friction) * 180 / M_PI, k.beta * 180 / M_PI,
+                  k.n_gamma);
+    r.add("blade", "onset force" + tag, f.onset, reece, "N/m", source + " (q = 0)", p.seconds,
+          settings, static_cast<long>(p.points), p.steps);
+    // Reece's q term for the heap: q = gamma r x over the wedge, N_q = 2 N_gamma.
+    r.add("blade", "mean force" + tag, f.mean, reece * (1 + 2 * rise * mid / c.depth), "N/m",
+          source + " with q = gamma r x at x = 0.175 d", p.seconds, settings,
+          static_cast<long>(p.points), p.steps);
+    return Run{f, reece};
+  };
+  auto name = [](Real mu, Real d, Real h) {
+    char t[96];
+    std::snprintf(t, sizeof t, ", friction %.1f, d %.0f cm, h %.1f mm", mu, 100 * d, 1000 * h);
+    return std::string(t);
+  };
+  auto power = [&](const std::string& q, const cases::PowerLaw& k, const std::string& over) {
+    r.add("blade", q, k.exponent, 2, "-", "Reece (gamma d^2 N_gamma)", 0,
+          "+- " + std::to_string(k.error).substr(0, 5) + " (standard error), " + over);
+  };
+  for (const Real mu : {0.0, 0.3}) {
+    std::vector<std::vector<Run>> runs;  // [cell][depth]
+    const std::string tag = mu == 0 ? ", friction 0.0" : ", friction 0.3";
+    for (const Real h : cells) {
+      runs.emplace_back();
+      std::vector<Real> onset, error;
+      for (const Real d : depths) {
+        cases::Blade c;
+        c.depth = d;
+        c.cell_size = h;
+        c.friction = mu;
+        runs.back().push_back(push(c, name(mu, d, h)));
+        onset.push_back(runs.back().back().force.onset);
+        error.push_back(runs.back().back().force.onset_error);
+      }
+      power("exponent of the onset force in d" + tag + ", h " + millimetres(h),
+            cases::powerLaw(depths, onset, error), "d 4, 6, 8 cm");
+    }
+    if (cells.size() < 3) continue;
+    // The onset force over Reece's against h / d over the nine runs: R0 + A h / d, least
+    // squares; R0 is the converged ratio if the error is of first order in h / d.
+    LineFit fit;
+    for (std::size_t k = 0; k < cells.size(); ++k)
+      for (std::size_t i = 0; i < depths.size(); ++i)
+        fit.add(cells[k] / depths[i], runs[k][i].force.onset / runs[k][i].reece);
+    const Real slope = fit.slope(), r0 = (fit.sy - slope * fit.sx) / fit.n;
+    Real see = 0;
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+      for (std::size_t i = 0; i < depths.size(); ++i) {
+        const Real e =
+            runs[k][i].force.onset / runs[k][i].reece - r0 - slope * cells[k] / depths[i];
+        see += e * e;
+      }
+    }
+    const Real sxx = fit.sxx - fit.sx * fit.sx / fit.n;
+    const Real r0_error =
+        std::sqrt(see / (fit.n - 2) * (1 / fit.n + fit.sx * fit.sx / fit.n / fit.n / sxx));
+    {
+      char settings[160];
+      const std::string q = "onset force / Reece at h / d -> 0" + tag;
+      std::snprintf(settings, sizeof settings,
+                    "R0 + A h / d over the nine runs: R0 +- %.3f (standard error), A %.2f, "
+                    "residuals %.3f rms",
+                    r0_error, slope, std::sqrt(see / fit.n));
+      r.add("blade", q, r0, 1, "-", source + " (q = 0)", 0, settings);
+    }
+    // Per depth, Richardson from the two finest cells (first order).
+    std::vector<Real> extrapolated, error;
+    for (std::size_t i = 0; i < depths.size(); ++i) {
+      const cases::BladeForce& fine = runs[cells.size() - 1][i].force;
+      const cases::BladeForce& coarse = runs[cells.size() - 2][i].force;
+      extrapolated.push_back(2 * fine.onset - coarse.onset);
+      error.push_back(std::hypot(2 * fine.onset_error, coarse.onset_error));
+      char settings[160];
+      const std::string q = "onset force at h -> 0" + tag + ", d " +
+                            std::to_string(std::lround(100 * depths[i])) + " cm";
+      std::snprintf(settings, sizeof settings, "2 F(%.1f mm) - F(%.1f mm) +- %.1f N/m",
+                    1000 * cells.back(), 1000 * cells[cells.size() - 2], error.back());
+      r.add("blade", q, extrapolated.back(), runs.back()[i].reece, "N/m", source + " (q = 0)", 0,
+            settings);
+    }
+    power(std::string("exponent of the onset force in d") + tag + ", h -> 0",
+          cases::powerLaw(depths, extrapolated, error), "Richardson per depth, d 4, 6, 8 cm");
+    // At the same h / d: d = 4 cm against 8 cm with the cell halved and kept.
+    for (std::size_t k = 0; k + 1 < cells.size(); ++k) {
+      const Run &a = runs[k + 1][0], &b = runs[k][2];  // d 4 cm at h / 2, d 8 cm at h
+      const std::string q = "exponent of the onset force in d" + tag + ", h / d 1/" +
+                            std::to_string(std::lround(depths[2] / cells[k]));
+      power(q,
+            cases::powerLaw({depths[0], depths[2]}, {a.force.onset, b.force.onset},
+                            {a.force.onset_error, b.force.onset_error}),
+            "d 4 cm at h " + millimetres(cells[k + 1]) + " and 8 cm at " + millimetres(cells[k]));
+    }
+  }
+  if (!o.fast) {
+    // The speed and the step at one depth and cell: the force grows with v and with the steps
+    // per second (kappa_1 halved), not as the sand's inertia (rho v^2 d, 0.2% here) would.
+    for (const Real mu : {0.0, 0.3}) {
+      for (const Real v : {0.025, 0.1}) {
+        cases::Blade c;
+        c.friction = mu;
+        c.speed = v;
+        c.ramp = 0.05 * 0.05 / v;  // over the same advance
+        char t[64];
+        std::snprintf(t, sizeof t, ", v %g m/s", v);
+        push(c, name(mu, c.depth, c.cell_size) + t);
+      }
+    }
+    cases::Blade c;
+    c.friction = 0;
+    WorldDef def = cases::excavatorBlade(c);
+    def.time_step.cfl = 0.15;
+    World w(def);
+    const cases::BladePush p = cases::pushBlade(w, c, to * c.depth);
+    const cases::BladeForce f = cases::bladeForce(p, c.depth, from, to);
+    r.add("blade", "onset force" + name(0, c.depth, c.cell_size) + ", cfl 0.15", f.onset,
+          cases::reeceHorizontal(c), "N/m", source + " (q = 0)", p.seconds,
+          "kappa_1 0.15 instead of 0.3: twice the steps", static_cast<long>(p.points), p.steps);
+    // The shipped scene file's start: the layer unstressed under gravity and the blade at full
+    // speed at once (a scene has no initial stress and no speed schedule).
+    {
+      cases::Blade scene;
+      scene.geostatic = false;
+      scene.ramp = 0;
+      push(scene, name(scene.friction, scene.depth, scene.cell_size) +
+                      ", as config/scenes/excavator_blade.yaml starts");
+    }
+    // The floor 1.5 d below the edge instead of d.
+    for (const Real mu : {0.0, 0.3}) {
+      cases::Blade deep;
+      deep.depth = 0.08;
+      deep.friction = mu;
+      deep.bed = 0.2;
+      push(deep, name(mu, deep.depth, deep.cell_size) + ", layer 20 cm");
+    }
+  }
+  std::fclose(series);
 }
 
 }  // namespace
@@ -1540,6 +1731,7 @@ int main(int argc, char** argv) {
       {"silo_convergence", siloConvergence},
       {"compression", compression},
       {"wheel", wheel},
+      {"blade", blade},
       {"stability", stability}};
   std::string names;
   for (const auto& entry : all) names += (names.empty() ? "" : ",") + std::string(entry.first);

@@ -1,0 +1,224 @@
+// Issue 20's robot scenes.
+//  - The shipped scenes excavator_blade, rock_into_bed and silo build the worlds of their
+//    validation cases (cases::excavatorBlade, rockIntoBed, silo): the same domain, grid,
+//    materials, material points (positions, masses, volumes) and blocks (outlines, types,
+//    friction, restitution, velocities and masses); the silo's plates as its file explains.
+//  - The excavator blade against Reece's fundamental earth-moving equation with McKyes' N_gamma,
+//    at the CI resolution (5 mm cells: the edge 8, 12 and 16 cells deep), for a smooth vertical
+//    blade, where the planar wedge is Rankine's passive state and exact. The bands come from the
+//    validation report's study at 10, 5 and 2.5 mm (docs/validation/REPORT.md, case blade).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "cases.hpp"
+#include "helpers.hpp"
+#include "mpm_sdem/core/rigid/blocks.hpp"
+#include "mpm_sdem/core/rigid/spheropolygon.hpp"
+#include "mpm_sdem/scene/scene.hpp"
+
+using namespace mpm_sdem;
+
+namespace {
+
+// The material points of a world, sorted by position, as (x, y, mass, volume).
+std::vector<std::array<Real, 4>> points(const WorldDef& def) {
+  World w(def);
+  const Particles& P = w.particles();
+  std::vector<std::array<Real, 4>> out;
+  for (std::size_t p = 0; p < P.size(); ++p)
+    out.push_back({P.x[p], P.y[p], P.mass[p], P.volume0[p]});
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// A block's outline in the world: its core's vertices, sorted, and its rounding.
+std::vector<Vec2> worldCore(const BlockDef& b) {
+  std::vector<Vec2> core = placedParts(b)[0].core;
+  // By x, then y, with x rounded to a nanometre (the case's vertical edges carry cot(90 deg),
+  // 6e-17, in their x).
+  auto key = [](const Vec2& v) { return std::pair{std::llround(v.x() * 1e9), v.y()}; };
+  std::sort(core.begin(), core.end(),
+            [&](const Vec2& a, const Vec2& c) { return key(a) < key(c); });
+  return core;
+}
+
+void expectSameMaterial(const MaterialDef& a, const MaterialDef& b) {
+  EXPECT_EQ(a.model, b.model);
+  EXPECT_DOUBLE_EQ(a.density, b.density);
+  EXPECT_NEAR(a.bulk_modulus, b.bulk_modulus, 1e-9 * b.bulk_modulus);
+  EXPECT_NEAR(a.shear_modulus, b.shear_modulus, 1e-9 * b.shear_modulus);
+  EXPECT_NEAR(a.friction_angle, b.friction_angle, 1e-12);
+  EXPECT_NEAR(a.dilation_angle, b.dilation_angle, 1e-12);
+  EXPECT_DOUBLE_EQ(a.cohesion, b.cohesion);
+  EXPECT_DOUBLE_EQ(a.tensile_strength, b.tensile_strength);
+  EXPECT_DOUBLE_EQ(a.separation_volume_ratio, b.separation_volume_ratio);
+}
+
+// Everything but the blocks' outlines, which the callers compare.
+void expectSameWorld(const WorldDef& scene, const WorldDef& c) {
+  EXPECT_NEAR((scene.domain.min - c.domain.min).norm(), 0, 1e-12);
+  EXPECT_NEAR((scene.domain.max - c.domain.max).norm(), 0, 1e-12);
+  for (const auto& [a, b] : {std::pair{scene.domain.left, c.domain.left},
+                             {scene.domain.right, c.domain.right},
+                             {scene.domain.bottom, c.domain.bottom},
+                             {scene.domain.top, c.domain.top}})
+    EXPECT_EQ(a.type, b.type);
+  EXPECT_DOUBLE_EQ(scene.cell_size, c.cell_size);
+  EXPECT_EQ(scene.solver.kernel, c.solver.kernel);
+  EXPECT_EQ(scene.solver.transfer, c.solver.transfer);
+  EXPECT_EQ(scene.solver.stress_update, c.solver.stress_update);
+  EXPECT_NEAR((scene.solver.gravity - c.solver.gravity).norm(), 0, 1e-12);
+  EXPECT_DOUBLE_EQ(scene.solver.damping, c.solver.damping);
+  EXPECT_DOUBLE_EQ(scene.time_step.cfl, c.time_step.cfl);
+  EXPECT_DOUBLE_EQ(scene.time_step.contact_factor, c.time_step.contact_factor);
+  ASSERT_EQ(scene.materials.size(), c.materials.size());
+  for (std::size_t i = 0; i < c.materials.size(); ++i)
+    expectSameMaterial(scene.materials[i], c.materials[i]);
+  EXPECT_EQ(scene.coupling.scheme, c.coupling.scheme);
+  EXPECT_EQ(scene.coupling.stiffness_per, c.coupling.stiffness_per);
+  EXPECT_DOUBLE_EQ(scene.coupling.normal_stiffness, c.coupling.normal_stiffness);
+  EXPECT_DOUBLE_EQ(scene.coupling.tangential_stiffness, c.coupling.tangential_stiffness);
+  EXPECT_NEAR(scene.coupling.contact_radius, c.coupling.contact_radius, 1e-12);
+  EXPECT_NEAR(scene.coupling.verlet_distance, c.coupling.verlet_distance, 1e-12);
+  // The same points: positions to round-off, masses and volumes.
+  const auto a = points(scene), b = points(c);
+  ASSERT_EQ(a.size(), b.size());
+  Real mass_a = 0, mass_b = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_NEAR(a[i][0], b[i][0], 1e-9);
+    EXPECT_NEAR(a[i][1], b[i][1], 1e-9);
+    EXPECT_NEAR(a[i][2], b[i][2], 1e-9 * b[i][2]);
+    EXPECT_NEAR(a[i][3], b[i][3], 1e-9 * b[i][3]);
+    mass_a += a[i][2];
+    mass_b += b[i][2];
+  }
+  EXPECT_NEAR(mass_a, mass_b, 1e-9 * mass_b);
+  ASSERT_EQ(scene.blocks.size(), c.blocks.size());
+  for (std::size_t i = 0; i < c.blocks.size(); ++i) {
+    const BlockDef &s = scene.blocks[i], &k = c.blocks[i];
+    EXPECT_EQ(s.name, k.name);
+    EXPECT_EQ(s.type, k.type);
+    EXPECT_DOUBLE_EQ(s.friction, k.friction);
+    EXPECT_DOUBLE_EQ(s.restitution, k.restitution);
+    EXPECT_NEAR((s.velocity - k.velocity).norm(), 0, 1e-12) << s.name;
+    EXPECT_DOUBLE_EQ(s.angular_velocity, k.angular_velocity);
+    if (k.type == BodyType::kDynamic) {
+      EXPECT_NEAR(spheropolygonMass(s.core, s.rounding, s.density).mass,
+                  spheropolygonMass(k.core, k.rounding, k.density).mass, 1e-12)
+          << s.name;
+    }
+  }
+}
+
+void expectSameOutline(const BlockDef& s, const BlockDef& k) {
+  EXPECT_DOUBLE_EQ(s.rounding, k.rounding) << s.name;
+  const std::vector<Vec2> a = worldCore(s), b = worldCore(k);
+  ASSERT_EQ(a.size(), b.size()) << s.name;
+  for (std::size_t j = 0; j < a.size(); ++j) EXPECT_NEAR((a[j] - b[j]).norm(), 0, 1e-9) << s.name;
+}
+
+// The bounding box of a block's rounded outline.
+std::pair<Vec2, Vec2> outlineBox(const BlockDef& b) {
+  Vec2 lo(1e9, 1e9), hi(-1e9, -1e9);
+  for (const Vec2& v : worldCore(b)) {
+    lo = lo.cwiseMin(v - Vec2::Constant(b.rounding));
+    hi = hi.cwiseMax(v + Vec2::Constant(b.rounding));
+  }
+  return {lo, hi};
+}
+
+}  // namespace
+
+TEST(RobotScenes, ExcavatorBladeSceneIsTheValidationWorld) {
+  const WorldDef scene = loadScene(test::sourcePath("config/scenes/excavator_blade.yaml")).world;
+  const WorldDef c = cases::excavatorBlade(cases::Blade{});  // d 6 cm, 5 mm cells, friction 0.3
+  expectSameWorld(scene, c);
+  ASSERT_EQ(c.blocks.size(), 1u);
+  expectSameOutline(scene.blocks[0], c.blocks[0]);
+}
+
+TEST(RobotScenes, RockIntoBedSceneIsTheValidationWorld) {
+  const WorldDef scene = loadScene(test::sourcePath("config/scenes/rock_into_bed.yaml")).world;
+  const WorldDef c = cases::rockIntoBed();
+  expectSameWorld(scene, c);
+  ASSERT_EQ(c.blocks.size(), 1u);
+  expectSameOutline(scene.blocks[0], c.blocks[0]);
+}
+
+TEST(RobotScenes, SiloSceneIsTheValidationWorld) {
+  const WorldDef scene = loadScene(test::sourcePath("config/scenes/silo.yaml")).world;
+  const WorldDef c = cases::silo(0.04, 0.007, 2);
+  expectSameWorld(scene, c);
+  ASSERT_EQ(c.blocks.size(), 4u);
+  expectSameOutline(scene.blocks[0], c.blocks[0]);  // the walls
+  expectSameOutline(scene.blocks[1], c.blocks[1]);
+  // The plates: the same top face and neck; the case's reach 5 mm into the walls, the scene's
+  // start at the walls' inner faces (the scene format refuses overlapping blocks).
+  for (int i : {2, 3}) {
+    const auto [s_lo, s_hi] = outlineBox(scene.blocks[i]);
+    const auto [c_lo, c_hi] = outlineBox(c.blocks[i]);
+    EXPECT_NEAR(s_lo.y(), c_lo.y(), 1e-12);
+    EXPECT_NEAR(s_hi.y(), c_hi.y(), 1e-12);
+    if (i == 2) {
+      EXPECT_NEAR(s_hi.x(), c_hi.x(), 1e-12);  // the neck's left edge
+      EXPECT_NEAR(s_lo.x(), outlineBox(scene.blocks[0]).second.x(), 1e-12);
+      EXPECT_LT(c_lo.x(), outlineBox(c.blocks[0]).second.x());
+    } else {
+      EXPECT_NEAR(s_lo.x(), c_lo.x(), 1e-12);  // the neck's right edge
+      EXPECT_NEAR(s_hi.x(), outlineBox(scene.blocks[1]).first.x(), 1e-12);
+      EXPECT_GT(c_hi.x(), outlineBox(c.blocks[1]).first.x());
+    }
+  }
+  EXPECT_NEAR(outlineBox(scene.blocks[3]).first.x() - outlineBox(scene.blocks[2]).second.x(), 0.04,
+              1e-12);
+}
+
+// The smooth vertical blade at the CI resolution (5 mm cells), at d = 4, 6 and 8 cm, against
+// Reece's force gamma d^2 N_gamma with McKyes' N_gamma at delta = 0, where the planar wedge is
+// Rankine's passive state, an exact solution (N_gamma = K_p / 2, K_p = 3.39 for the material's
+// flowing in-plane angle of 33.0 deg): the force at the onset of the cut (cases::bladeForce).
+// The validation report's study (docs/validation/REPORT.md, case blade: 10, 5 and 2.5 mm, nine
+// runs) finds the onset force over Reece's falling with h / d as R0 + A h / d, R0 = 1.034 +-
+// 0.032 (the converged ratio, Reece's within its error), A = 2.86, residuals 0.045 rms: the
+// blade's edge is smeared over a cell or two, so the failing wedge is deeper by a length
+// proportional to h. The band: that line at 5 mm, +- three times the residuals' rms; and above
+// Reece's value (the force converges from above: below it the error would have changed sign,
+// which refinement does not do). Measured in the study at 5 mm: 1.442, 1.243, 1.181.
+// The exponent of the onset force in d: the study's 5 mm value, 1.740 +- 0.095 (standard error
+// of the fit through the three depths' noisy onsets), within three standard errors; below 2
+// at a fixed cell because the shallowest cut has the fewest cells (R0 + A h / d is largest).
+constexpr Real kR0 = 1.034, kA = 2.86, kResidual = 0.045;
+constexpr Real kExponent = 1.740, kExponentError = 0.095;
+TEST(RobotScenes, BladeForceAgainstReeceAtCiResolution) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<Real> depths = {0.04, 0.06, 0.08};
+  std::vector<Real> onset, error;
+  for (std::size_t i = 0; i < depths.size(); ++i) {
+    cases::Blade c;
+    c.depth = depths[i];
+    c.cell_size = 0.005;
+    c.friction = 0;
+    World w(cases::excavatorBlade(c));
+    const cases::BladePush p = cases::pushBlade(w, c, 0.3 * c.depth);
+    const cases::BladeForce f = cases::bladeForce(p, c.depth);
+    const Real reece = cases::reeceHorizontal(c);
+    std::printf("d %.2f m: onset %.1f +- %.1f N/m, Reece %.1f N/m, ratio %.3f; mean %.1f N/m\n",
+                c.depth, f.onset, f.onset_error, reece, f.onset / reece, f.mean);
+    onset.push_back(f.onset);
+    error.push_back(f.onset_error);
+    EXPECT_GT(f.onset, reece) << "d " << c.depth;
+    EXPECT_NEAR(f.onset / reece, kR0 + kA * c.cell_size / c.depth, 3 * kResidual)
+        << "d " << c.depth;
+  }
+  const cases::PowerLaw k = cases::powerLaw(depths, onset, error);
+  std::printf("exponent %.3f +- %.3f, %.1f s\n", k.exponent, k.error,
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  EXPECT_NEAR(k.exponent, kExponent, 3 * kExponentError);
+}
