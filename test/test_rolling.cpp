@@ -100,27 +100,25 @@ TEST(Rolling, PartitionedAndParticleSurfaceSpinTheDiskUp) {
 // Multi-velocity (seed 002 sec. 2.4): the contact acts at grid nodes within half a cell of the
 // contact point, and the material ahead of it is the side that approaches, so the normal impulses
 // sit up to h/2 ahead and cost up to h / (2 mu R) of the friction's torque, a first-order error
-// (0% spin before the distance check).
+// (0% spin before the distance check). CI compares 1 cm with 5 mm (5 and 10 cells per radius);
+// the validation report's rolling case adds 2.5 mm for every scheme (at 2.5 mm the centre
+// decelerates 1.8% faster than mu g, an open item in README).
 TEST(Rolling, MultiVelocitySpinUpConverges) {
   Real error[2];
   for (int k = 0; k < 2; ++k) {
     cases::ThrownDisk c;
     c.scheme = CouplingScheme::kMultiVelocity;
-    c.cell_size = k == 0 ? 0.005 : 0.0025;
+    c.cell_size = k == 0 ? 0.01 : 0.005;
     c.t_end = 0.62;  // the spin-up is fitted over [0.05, 0.6] s
     const cases::Rolling r = roll(c);
-    // (At 2.5 mm the centre decelerates 1.8% faster than mu g, an open item in README.)
-    if (k == 0) {
-      EXPECT_NEAR(r.deceleration / (c.mu * kG), 1.0, 0.02);
-    }
+    EXPECT_NEAR(r.deceleration / (c.mu * kG), 1.0, 0.02);
     error[k] = 1 - r.spin_up / (2 * c.mu * kG / kR);
     // The normal impulses lie at most half a cell ahead of the contact point.
     EXPECT_GT(error[k], -0.03);
     EXPECT_LT(error[k], c.cell_size / (2 * c.mu * kR));
   }
-  // First order halves the error. The disk rattles on its nodal contacts (inelastic at the
-  // nodes, elastic inside), which scatters the 2.5 mm spin-up by about +-0.03: 0.934, 0.901 and
-  // 0.881 in runs that differ only in round-off or the floor's length. 0.5 + 2 x 0.03 / 0.178 =
-  // 0.84 is the bound.
-  EXPECT_LT(error[1], 0.84 * error[0]) << "the error must shrink with the cell";
+  // First order halves the error (measured: 0.466 at 1 cm, 0.162 at 5 mm). The disk rattles on
+  // its nodal contacts, which scatters the spin-up by about +-0.03 (runs that differ only in
+  // round-off or the floor's length): 0.5 + 2 x 0.03 / 0.466 = 0.63 is the bound.
+  EXPECT_LT(error[1], 0.63 * error[0]) << "the error must shrink with the cell";
 }

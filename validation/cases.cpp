@@ -1316,6 +1316,7 @@ WheelRun runWheel(World& w, Real t_end) {
   return out;
 }
 
+namespace {
 constexpr Real kBladeSand = 1500;  // kg/m^3
 }  // namespace
 

@@ -1512,6 +1512,8 @@ void wheel(const Options& o, Results& r) {
           w.stepCount());
   }
   std::fclose(sweep);
+}
+
 // Issue 20: the excavator blade (cases::excavatorBlade) against Reece's fundamental earth-moving
 // equation with McKyes' N_gamma for a wide blade (cases::reece): a vertical blade, smooth
 // (delta = 0, where the planar wedge is Rankine's passive state, an exact solution) and rough

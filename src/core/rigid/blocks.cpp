@@ -212,7 +212,11 @@ Mat2 Blocks::inverseMass(int s, const Vec2& x) const {
   const Body& b = bodies_[owner(s)];
   const Vec2 r = x - b.state.position;
   const Vec2 rp(-r.y(), r.x());
-  return Mat2::Identity() / b.mass.mass + rp * rp.transpose() / b.mass.inertia;
+  // A held component (a drive) does not yield: infinite mass along it.
+  const Vec2 translation(b.drive.hold_vx ? 0 : 1 / b.mass.mass,
+                         b.drive.hold_vy ? 0 : 1 / b.mass.mass);
+  const Real rotation = b.drive.hold_angular ? 0 : 1 / b.mass.inertia;
+  return Mat2(translation.asDiagonal()) + rp * rp.transpose() * rotation;
 }
 
 Real Blocks::lightestMass() const {
@@ -288,7 +292,14 @@ void Blocks::beginCoupling(Real dt) {
     // Gravity and the external loads added so far (the material's come after this call).
     b.trial_v += dt * (gravity_ + b.force / b.mass.mass);
     b.trial_w += dt * b.torque / b.mass.inertia;
+    holdTrial(b);
   }
+}
+
+void Blocks::holdTrial(Body& b) {
+  if (b.drive.hold_vx) b.trial_v.x() = b.drive.velocity.x();
+  if (b.drive.hold_vy) b.trial_v.y() = b.drive.velocity.y();
+  if (b.drive.hold_angular) b.trial_w = b.drive.angular_velocity;
 }
 
 Vec2 Blocks::trialVelocityAt(int s, const Vec2& p) const {
@@ -341,6 +352,7 @@ void Blocks::applyImpulse(int s, const Vec2& impulse, const Vec2& point, Real dt
   if (b.type == BodyType::kDynamic) {
     b.trial_v += impulse / b.mass.mass;
     b.trial_w += cross(point - b.state.position, impulse) / b.mass.inertia;
+    holdTrial(b);
   }
   applyForce(s, impulse / dt, point);
 }

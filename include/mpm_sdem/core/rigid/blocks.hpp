@@ -34,8 +34,9 @@ enum class BlockContactModel { kPenalty, kBox2D };
 
 // Velocity components of a dynamic block held at set values whatever acts on it, the others
 // free: a test rig's carriage and motor (a wheel towed at vx and turned at angular_velocity,
-// free to sink). A held component ignores the forces along it; the contact forces the block
-// feels are still reported (coupling(), blockContact()), so the rig's reaction is their negative.
+// free to sink). A held component ignores the forces along it and, to the contact schemes, has
+// infinite mass (inverseMass, the trial velocity); the contact forces the block feels are still
+// reported (coupling(), blockContact()), so the rig's reaction is their negative.
 // Gravity acts within a substep on a held vy (Box2D adds it), an error of g h^2 per substep.
 struct BlockDrive {
   bool hold_vx = false, hold_vy = false, hold_angular = false;
@@ -234,6 +235,8 @@ class Blocks final : public ContactBodies {
     Real trial_w = 0;
     int first_shape = 0, shape_count = 0;
   };
+  // A driven block's trial velocity keeps its held components (beginCoupling, applyImpulse).
+  static void holdTrial(Body& b);
   // A contact shape: a convex rounded part of one block.
   struct Shape {
     int block = 0;  // place in the list
