@@ -549,18 +549,7 @@ TEST(SceneErrors, RunnerExitsNonZeroBeforeSimulating) {
   EXPECT_FALSE(fs::exists(out / "timeseries.csv"));
 }
 
-TEST(SceneErrors, ShippedScenesParse) {
-  namespace fs = std::filesystem;
-  int n = 0;
-  for (const auto& e : fs::directory_iterator(test::sourcePath("config/scenes"))) {
-    if (e.path().extension() != ".yaml") continue;
-    ++n;
-    EXPECT_NO_THROW(loadScene(e.path().string())) << e.path();
-  }
-  EXPECT_GE(n, 1);
-}
-
-// Every shipped scene builds its world and steps: a few steps, all positions finite.
+// Every shipped scene parses, builds its world and steps: a few steps, all positions finite.
 TEST(SceneErrors, ShippedScenesStep) {
   namespace fs = std::filesystem;
   int n = 0;
