@@ -1,5 +1,7 @@
 #include "compare.hpp"
 
+#include "mpm_sdem/ros/conversions.hpp"
+
 #include <opencv2/flann.hpp>
 
 #include <algorithm>
@@ -20,10 +22,6 @@ void forMatched(const std::vector<A>& a, const std::vector<B>& b, TimeA ta, Time
     while (j < b.size() && tb(b[j]) < ta(a[i]) - kSameTime) ++j;
     if (j < b.size() && std::abs(tb(b[j]) - ta(a[i])) <= kSameTime) f(i, j);
   }
-}
-
-double yaw(const geometry_msgs::Quaternion& q) {
-  return 2 * std::atan2(q.z, q.w);
 }
 
 double rms(const std::vector<double>& v) {
@@ -100,8 +98,9 @@ Comparison compareRuns(const RunSeries& a, const RunSeries& b, double raster) {
         e.time.push_back(t(a.blocks[i]));
         e.position.push_back(std::hypot(pa->pose.position.x - pb->pose.position.x,
                                         pa->pose.position.y - pb->pose.position.y));
-        e.angle.push_back(std::abs(
-            std::remainder(yaw(pa->pose.orientation) - yaw(pb->pose.orientation), 2 * M_PI)));
+        e.angle.push_back(std::abs(std::remainder(
+            conversions::yaw(pa->pose.orientation) - conversions::yaw(pb->pose.orientation),
+            2 * M_PI)));
       });
       e.rms_position = rms(e.position);
       e.rms_angle = rms(e.angle);

@@ -5,16 +5,12 @@
 #include <limits>
 
 #include "mpm_sdem/core/rigid/block_checks.hpp"
+#include "mpm_sdem/ros/conversions.hpp"
 #include "sim_loop.hpp"
 
 namespace mpm_sdem::node {
 
 namespace {
-
-Vec2 rotated(Real angle, const Vec2& v) {
-  const Real c = std::cos(angle), s = std::sin(angle);
-  return Vec2(c * v.x() - s * v.y(), s * v.x() + c * v.y());
-}
 
 Real wrapped(Real angle) {
   return std::remainder(angle, 2 * M_PI);
@@ -177,9 +173,8 @@ void ObstacleDrivers::steer(World& world, Follower& f) {
     world.setBlockVelocity(f.id, Vec2(0, 0), 0);
     return;
   }
-  const geometry_msgs::Quaternion& q = ts.transform.rotation;
   const Vec2 p(ts.transform.translation.x, ts.transform.translation.y);
-  const Real yaw = std::atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z));
+  const Real yaw = conversions::yaw(ts.transform.rotation);
   if (f.samples == 0 || ts.header.stamp != f.stamp[1]) {
     f.stamp[0] = f.stamp[1], f.position[0] = f.position[1], f.angle[0] = f.angle[1];
     f.stamp[1] = ts.header.stamp, f.position[1] = p, f.angle[1] = yaw;

@@ -27,6 +27,10 @@ ros::Time toRosTime(Real t) {
   return ros::Time(t);
 }
 
+Real yaw(const geometry_msgs::Quaternion& q) {
+  return std::atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z));
+}
+
 void toPointCloud(const World& world, int decimation, const std_msgs::Header& header,
                   sensor_msgs::PointCloud2& cloud) {
   const Particles& P = world.particles();
@@ -123,11 +127,10 @@ geometry_msgs::Wrench toWrench(const mpm_sdem::RigidBlockState& b) {
   // About the frame's origin instead of the centre of mass, then in the block's axes.
   const Vec2 f(b.coupling_force.x + b.block_force.x, b.coupling_force.y + b.block_force.y);
   const Vec2 r(b.center_of_mass.x - b.pose.position.x, b.center_of_mass.y - b.pose.position.y);
-  const Real angle = 2 * std::atan2(b.pose.orientation.z, b.pose.orientation.w);
-  const Real c = std::cos(angle), s = std::sin(angle);
+  const Vec2 f_block = rotated(-yaw(b.pose.orientation), f);
   geometry_msgs::Wrench w;
-  w.force.x = c * f.x() + s * f.y();
-  w.force.y = -s * f.x() + c * f.y();
+  w.force.x = f_block.x();
+  w.force.y = f_block.y();
   w.torque.z = b.coupling_torque + b.block_torque + cross(r, f);
   return w;
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 
 namespace mpm_sdem {
 
@@ -14,6 +15,12 @@ using Mat2 = Eigen::Matrix<Real, 2, 2>;
 // The z component of a x b: the moment of a force b at lever a (N m/m), twice a triangle's area.
 inline Real cross(const Vec2& a, const Vec2& b) {
   return a.x() * b.y() - a.y() * b.x();
+}
+
+// v turned counter-clockwise by angle (rad): a block frame's vector in the world frame.
+inline Vec2 rotated(Real angle, const Vec2& v) {
+  const Real c = std::cos(angle), s = std::sin(angle);
+  return Vec2(c * v.x() - s * v.y(), s * v.x() + c * v.y());
 }
 
 }  // namespace mpm_sdem

@@ -22,6 +22,9 @@ namespace mpm_sdem::conversions {
 
 // Simulation time (s) as a ROS stamp.
 ros::Time toRosTime(Real t);
+// The rotation about z of an orientation (rad): a planar pose's angle, or the heading of a 3D
+// frame (a robot's link) seen from above.
+Real yaw(const geometry_msgs::Quaternion& q);
 
 // Every decimation-th material point as an unordered cloud (height 1) in the header's frame:
 // float32 x, y, z (z = 0, m), vx, vy, speed (m/s), pressure (Pa, positive in compression) and

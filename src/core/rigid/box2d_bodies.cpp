@@ -166,15 +166,6 @@ void Box2DBodies::reportContacts(Real h, Blocks& blocks) const {
 
 }  // namespace detail
 
-namespace {
-
-Vec2 rotated(Real angle, const Vec2& v) {
-  const Real c = std::cos(angle), s = std::sin(angle);
-  return Vec2(c * v.x() - s * v.y(), s * v.x() + c * v.y());
-}
-
-}  // namespace
-
 Vec2 Blocks::origin(int i) const {
   return b2_->origin(i);
 }
