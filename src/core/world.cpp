@@ -64,15 +64,6 @@ std::string sizeProblem(const DomainDef& domain, Real cell_size,
   return limits::memoryProblem((cells.x() + pad) * (cells.y() + pad), points);
 }
 
-struct World::SphState {
-  detail::SphSettings settings;
-  std::vector<char> sph_body;  // per body: all its points are SPH particles
-  detail::SphColumns columns;
-  std::vector<std::uint32_t> stamp;  // markBand's node scratch
-  std::uint32_t now = 0;
-  Real mu_max = 0;  // the last force pass's largest approach |mu_ab| (m/s)
-};
-
 World::~World() = default;
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
@@ -191,7 +182,7 @@ void World::initSph() {
       scheme == CouplingScheme::kMultiVelocity || scheme == CouplingScheme::kPartitioned);
   if (!problem.empty()) throw std::invalid_argument("sph." + problem.text());
   const Real R = 2 * (d.smoothing_length > 0 ? d.smoothing_length : def_.cell_size);
-  sph_ = std::make_unique<SphState>();
+  sph_ = std::make_unique<detail::SphState>();
   sph_->settings = {d.kernel, R, d.viscosity_alpha, d.viscosity_beta, d.corrected_gradient};
   sph_->sph_body.assign(def_.bodies.size(), 0);
   for (int b : d.bodies) {

@@ -23,4 +23,11 @@ inline Vec2 rotated(Real angle, const Vec2& v) {
   return Vec2(c * v.x() - s * v.y(), s * v.x() + c * v.y());
 }
 
+namespace detail {
+// Reads and writes the state that outlives a step, for checkpoints (core/checkpoint.cpp). A class
+// holding such state befriends it and lists those members in a stateIo(archive) template, next to
+// the members themselves.
+struct CheckpointAccess;
+}  // namespace detail
+
 }  // namespace mpm_sdem

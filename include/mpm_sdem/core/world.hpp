@@ -24,6 +24,10 @@
 
 namespace mpm_sdem {
 
+namespace detail {
+struct SphState;
+}  // namespace detail
+
 // Grid-to-particle velocity transfer (seed 000 eq. 26-31).
 enum class TransferScheme { kPic, kFlip, kApic };
 // Update stress first (seed 000 sec. 2.2) or last.
@@ -167,6 +171,7 @@ class World {
   void resetProfile() { profile_ = Profile(); }
 
  private:
+  friend struct detail::CheckpointAccess;
   // The automatic step (seed 000 eq. 51) with factors kappa_1 = cfl and kappa_2.
   TimeStepChoice stepBound(Real cfl, Real kappa2) const;
   void binParticles();
@@ -212,8 +217,7 @@ class World {
   std::unique_ptr<FemBodies> fem_;
   std::unique_ptr<ContactSet> set_;  // when there are blocks and FEM bodies
   std::unique_ptr<Coupling> coupling_;
-  struct SphState;  // sph_step.hpp's columns and settings; null without SPH
-  std::unique_ptr<SphState> sph_;
+  std::unique_ptr<detail::SphState> sph_;  // sph_step.hpp's; null without SPH
   // For the contact term of the time step: the smallest mass per spring scale of a point
   // (kg/m; impSpringScale) and the largest scale.
   Real lightest_point_ = 0;
@@ -224,6 +228,10 @@ class World {
     int particle;
     Vec2 force;   // N/m
     Vec2 offset;  // m, from the point
+    template <class Archive>
+    void serialize(Archive& ar) {
+      ar(particle, force, offset);
+    }
   };
   std::vector<PointLoad> point_loads_;  // few and rarely used: a list, not a column
   Real time_ = 0;

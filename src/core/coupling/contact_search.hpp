@@ -23,6 +23,10 @@ struct ContactPair {
   Vec2 history{0, 0};          // accumulated tangential sliding (m), spring schemes
   Vec2 force{0, 0};            // on the particle (N/m) in the last step; zero when not touching
   Vec2 point{0, 0};            // contact point (m) in the last step
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(particle, shape, body, body_key, history, force, point);
+  }
 };
 
 class ContactSearch {
@@ -49,6 +53,12 @@ class ContactSearch {
   long rebuilds() const { return rebuilds_; }
 
  private:
+  friend struct detail::CheckpointAccess;
+  // The pairs and where things stood at the last rebuild (the buckets are rebuilt with them).
+  template <class Archive>
+  void stateIo(Archive& ar) {
+    ar(x_built_, y_built_, bodies_built_, pairs_, rebuilds_, built_);
+  }
   bool needsRebuild(const Particles& P, const ContactBodies& B) const;
   void rebuild(const Particles& P, const ContactBodies& B);
 

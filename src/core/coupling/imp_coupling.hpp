@@ -39,6 +39,7 @@ class ImpCoupling final : public Coupling {
   long rebuilds() const { return search_.rebuilds(); }
 
  private:
+  friend struct detail::CheckpointAccess;
   ContactSearch search_;
 };
 

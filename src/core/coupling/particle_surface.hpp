@@ -31,11 +31,16 @@ class ParticleSurfaceCoupling final : public Coupling {
     Real target = 0;            // relative normal velocity aimed at: -gap/dt, or 0 (m/s)
     Vec2 relative_after{0, 0};  // point minus contact point velocity after the exchange (m/s)
     bool stuck = false;
+    template <class Archive>
+    void serialize(Archive& ar) {
+      ar(particle, block, gap, normal, impulse, target, relative_after, stuck);
+    }
   };
   // The contacts of the last step.
   const std::vector<Record>& contacts() const { return records_; }
 
  private:
+  friend struct detail::CheckpointAccess;
   ContactSearch search_;
   std::vector<Record> records_;
 };

@@ -40,6 +40,13 @@ class PartitionedCoupling final : public Coupling {
   Vec2 loadSum() const { return load_sum_; }
 
  private:
+  friend struct detail::CheckpointAccess;
+  // The boundary particles and their wall (the segment buckets are rebuilt every step).
+  template <class Archive>
+  void stateIo(Archive& ar) {
+    ar(x_, v_, load_, couple_, body_, host_, offset_, segments_, stamp_, longest_, half_size_,
+       wall_mass_, load_sum_);
+  }
   void contact(ContactBodies& B, int b, const Vec2& n, Real overlap, const Vec2& point,
                const Vec2& wall_velocity, int e0, int e1, Real t);
   void bucketSegments(const Grid& G);

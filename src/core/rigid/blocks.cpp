@@ -95,9 +95,7 @@ BlockId Blocks::add(const BlockDef& def) {
   b.type = d.type;
   b.drive = d.drive;
   b.zeta = restitutionDampingRatio(def.restitution);
-  const Real c = std::cos(d.angle), sn = std::sin(d.angle);
-  b.kinematic_centre = d.position + Vec2(c * m.centroid.x() - sn * m.centroid.y(),
-                                         sn * m.centroid.x() + c * m.centroid.y());
+  b.kinematic_centre = d.position + rotated(d.angle, m.centroid);
   b.kinematic_angle = d.angle;
   b.kinematic_velocity = d.velocity;
   b.kinematic_angular_velocity = d.angular_velocity;

@@ -52,18 +52,24 @@ Box2DBodies::Box2DBodies(const Vec2& gravity, Real scale, BlockContactModel mode
 Box2DBodies::~Box2DBodies() = default;
 
 void Box2DBodies::add(const BlockDef& d, const std::vector<Spheropolygon>& parts,
-                      const MassProperties& m) {
+                      const MassProperties& m, const Raw* at) {
   // The Box2D outlines first: they may refuse the block, before anything is created.
+  // The Box2D body's origin is the centre of mass, so its whole state is the centre, angle and
+  // twist that Box2D integrates (no origin derived from them in single precision): a checkpoint
+  // restores it exactly (setState). The parts move into the centroid's frame.
   const bool box2d = model_ == BlockContactModel::kBox2D;
+  std::vector<Spheropolygon> local = parts;
+  for (Spheropolygon& part : local)
+    for (Vec2& v : part.core) v -= m.centroid;
   std::vector<std::vector<b2Vec2>> outlines(parts.size());
   for (std::size_t k = 0; k < parts.size(); ++k)
-    if (box2d && parts[k].core.size() > 1) outlines[k] = box2dPolygon(parts[k], d.name, scale_);
+    if (box2d && local[k].core.size() > 1) outlines[k] = box2dPolygon(local[k], d.name, scale_);
   b2BodyDef bd;
   bd.type = d.type == BodyType::kStatic      ? b2_staticBody
             : d.type == BodyType::kKinematic ? b2_kinematicBody
                                              : b2_dynamicBody;
-  bd.position = toB2(d.position, scale_);
-  bd.angle = static_cast<float>(d.angle);
+  bd.position = at ? b2Vec2(at->x, at->y) : toB2(d.position + rotated(d.angle, m.centroid), scale_);
+  bd.angle = at ? at->angle : static_cast<float>(d.angle);
   bd.allowSleep = false;  // a sleeping body ignores the coupling forces
   bd.bullet = d.type == BodyType::kDynamic && box2d;
   b2Body* body = w_->world.CreateBody(&bd);
@@ -77,10 +83,10 @@ void Box2DBodies::add(const BlockDef& d, const std::vector<Spheropolygon>& parts
     fd.density = 0;  // mass set below, from the rounded outline
     b2CircleShape circle;
     b2PolygonShape polygon;
-    if (parts[k].core.size() == 1) {
+    if (local[k].core.size() == 1) {
       // A circle has no skin: its radius reaches past the outline like a polygon's skin.
-      circle.m_p = toB2(parts[k].core[0], scale_);
-      circle.m_radius = static_cast<float>((parts[k].rounding + box2dReach(scale_)) * scale_);
+      circle.m_p = toB2(local[k].core[0], scale_);
+      circle.m_radius = static_cast<float>((local[k].rounding + box2dReach(scale_)) * scale_);
       fd.shape = &circle;
     } else {
       polygon.Set(outlines[k].data(), static_cast<int32>(outlines[k].size()));
@@ -90,16 +96,16 @@ void Box2DBodies::add(const BlockDef& d, const std::vector<Spheropolygon>& parts
   }
   if (d.type == BodyType::kDynamic) {
     // Box2D's own mass ignores the rounding and counts overlapping discs twice: set the
-    // outline's (inertia about the body origin, in Box2D units).
+    // outline's (inertia about the body origin, the centroid, in Box2D units).
     b2MassData md;
     md.mass = static_cast<float>(m.mass);
-    md.center = toB2(m.centroid, scale_);
-    md.I = static_cast<float>((m.inertia + m.mass * m.centroid.squaredNorm()) * scale_ * scale_);
+    md.center = b2Vec2(0, 0);
+    md.I = static_cast<float>(m.inertia * scale_ * scale_);
     body->SetMassData(&md);
   }
   if (d.type != BodyType::kStatic) {
-    body->SetLinearVelocity(toB2(d.velocity, scale_));
-    body->SetAngularVelocity(static_cast<float>(d.angular_velocity));
+    body->SetLinearVelocity(at ? b2Vec2(at->vx, at->vy) : toB2(d.velocity, scale_));
+    body->SetAngularVelocity(at ? at->angular_velocity : static_cast<float>(d.angular_velocity));
   }
   // The body's place in the list, for reportContacts.
   body->GetUserData().pointer = w_->bodies.size();
@@ -112,7 +118,13 @@ void Box2DBodies::remove(int i) {
   for (std::size_t k = i; k < w_->bodies.size(); ++k) w_->bodies[k]->GetUserData().pointer = k;
 }
 
-Vec2 Box2DBodies::origin(int i) const {
+Box2DBodies::Raw Box2DBodies::raw(int i) const {
+  const b2Body* b = w_->bodies[i];
+  return {b->GetPosition().x,       b->GetPosition().y,       b->GetAngle(),
+          b->GetLinearVelocity().x, b->GetLinearVelocity().y, b->GetAngularVelocity()};
+}
+
+Vec2 Box2DBodies::centre(int i) const {
   return fromB2(w_->bodies[i]->GetPosition(), scale_);
 }
 Real Box2DBodies::angle(int i) const {
@@ -125,8 +137,8 @@ Real Box2DBodies::angularVelocity(int i) const {
   return w_->bodies[i]->GetAngularVelocity();
 }
 
-void Box2DBodies::setTransform(int i, const Vec2& origin, Real angle) {
-  w_->bodies[i]->SetTransform(toB2(origin, scale_), static_cast<float>(angle));
+void Box2DBodies::setTransform(int i, const Vec2& centre, Real angle) {
+  w_->bodies[i]->SetTransform(toB2(centre, scale_), static_cast<float>(angle));
 }
 
 void Box2DBodies::setVelocity(int i, const Vec2& v, Real w) {
@@ -167,16 +179,17 @@ void Box2DBodies::reportContacts(Real h, Blocks& blocks) const {
 }  // namespace detail
 
 Vec2 Blocks::origin(int i) const {
-  return b2_->origin(i);
+  const BlockState& s = bodies_[i].state;
+  return s.position - rotated(s.angle, bodies_[i].mass.centroid);
 }
 
 void Blocks::setPose(BlockId id, const Vec2& origin, Real angle) {
   const int i = checkedIndex(id);
-  b2_->setTransform(i, origin, angle);
-  refresh();
   Body& b = bodies_[i];
   b.kinematic_centre = origin + rotated(angle, b.mass.centroid);
   b.kinematic_angle = angle;
+  b2_->setTransform(i, b.kinematic_centre, angle);
+  refresh();
 }
 
 void Blocks::setVelocity(BlockId id, const Vec2& origin_velocity, Real angular_velocity) {
@@ -211,12 +224,13 @@ void Blocks::refresh() {
     s.angle = b2_->angle(static_cast<int>(i));
     s.velocity = b2_->velocity(static_cast<int>(i));
     s.angular_velocity = b2_->angularVelocity(static_cast<int>(i));
-    const Vec2 origin = b2_->origin(static_cast<int>(i));
+    s.position = b2_->centre(static_cast<int>(i));
     const Real c = std::cos(s.angle), sn = std::sin(s.angle);
+    const Vec2 origin = s.position - Vec2(c * b.mass.centroid.x() - sn * b.mass.centroid.y(),
+                                          sn * b.mass.centroid.x() + c * b.mass.centroid.y());
     auto toWorld = [&](const Vec2& v) {
       return Vec2(origin.x() + c * v.x() - sn * v.y(), origin.y() + sn * v.x() + c * v.y());
     };
-    s.position = toWorld(b.mass.centroid);
     for (int k = 0; k < b.shape_count; ++k) {
       const Shape& shape = shapes_[b.first_shape + k];
       const std::vector<Vec2>& core = parts_[i][k].core;
@@ -267,9 +281,7 @@ int Blocks::step(Real dt, Real max_substep) {
       if (b.type != BodyType::kKinematic) continue;
       b.kinematic_centre += h * b.kinematic_velocity;
       b.kinematic_angle += h * b.kinematic_angular_velocity;
-      b2_->setTransform(static_cast<int>(i),
-                        b.kinematic_centre - rotated(b.kinematic_angle, b.mass.centroid),
-                        b.kinematic_angle);
+      b2_->setTransform(static_cast<int>(i), b.kinematic_centre, b.kinematic_angle);
     }
     refresh();
   }

@@ -19,17 +19,29 @@ class Box2DBodies {
  public:
   Box2DBodies(const Vec2& gravity, Real scale, BlockContactModel model);
   ~Box2DBodies();
-  // Appends the body of a block (with a fixture per part when Box2D does the contacts). Throws
-  // std::invalid_argument, before anything is created, when Box2D cannot take the outline.
-  void add(const BlockDef& def, const std::vector<Spheropolygon>& parts,
-           const MassProperties& mass);
+  // Box2D's own numbers for a body (Box2D units, single precision): what a checkpoint keeps, so
+  // that a rebuilt body is the same to the bit.
+  struct Raw {
+    float x = 0, y = 0, angle = 0, vx = 0, vy = 0, angular_velocity = 0;
+    template <class Archive>
+    void serialize(Archive& ar) {
+      ar(x, y, angle, vx, vy, angular_velocity);
+    }
+  };
+  // Appends the body of a block (with a fixture per part when Box2D does the contacts), where
+  // def puts it or, given at, where at does. Throws std::invalid_argument, before anything is
+  // created, when Box2D cannot take the outline.
+  void add(const BlockDef& def, const std::vector<Spheropolygon>& parts, const MassProperties& mass,
+           const Raw* at = nullptr);
+  Raw raw(int i) const;
   void remove(int i);
-  // Frame origin and angle, velocity of the centre of mass and angular velocity.
-  Vec2 origin(int i) const;
+  // Centre of mass (the Box2D body's origin) and angle, velocity of the centre of mass and
+  // angular velocity.
+  Vec2 centre(int i) const;
   Real angle(int i) const;
   Vec2 velocity(int i) const;
   Real angularVelocity(int i) const;
-  void setTransform(int i, const Vec2& origin, Real angle);
+  void setTransform(int i, const Vec2& centre, Real angle);
   void setVelocity(int i, const Vec2& velocity, Real angular_velocity);
   // A force at the centre of mass (N/m) and a torque (N m/m) for the next step (dynamic bodies).
   void applyForce(int i, const Vec2& force, Real torque);

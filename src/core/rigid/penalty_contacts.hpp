@@ -36,7 +36,16 @@ class PenaltyContacts {
     int vertex, side;
     bool operator<(const Key& o) const;
     bool operator==(const Key& o) const;
+    template <class Archive>
+    void serialize(Archive& ar) {
+      ar(first, second, vertex, side);
+    }
   };
+  friend struct detail::CheckpointAccess;
+  template <class Archive>
+  void stateIo(Archive& ar) {
+    ar(history_);  // the tangential springs' stretch
+  }
   void pair(Blocks& blocks, int p, int q, Real h);
 
   BlockContactDef def_;

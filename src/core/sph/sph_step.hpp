@@ -32,6 +32,21 @@ struct SphSettings {
   Real smoothingLength() const { return Real(0.5) * support; }  // h_s = R / 2
 };
 
+// The World's SPH state: settings, which bodies are SPH, the columns and the last force pass.
+struct SphState {
+  SphSettings settings;
+  std::vector<char> sph_body;  // per body: all its points are SPH particles
+  SphColumns columns;
+  std::vector<std::uint32_t> stamp;  // markBand's node scratch
+  std::uint32_t now = 0;
+  Real mu_max = 0;  // the last force pass's largest approach |mu_ab| (m/s)
+  // What a checkpoint keeps (the stamps are scratch of each step's band).
+  template <class Archive>
+  void stateIo(Archive& ar) {
+    ar(columns.cxx, columns.cxy, columns.cyx, columns.cyy, columns.ax, columns.ay, mu_max);
+  }
+};
+
 // Sets each particle's kind from its body (sph_body[b] != 0) and the regions; a particle that
 // changes kind starts without an APIC affine matrix (only material points carry one).
 void assignKinds(const std::vector<ShapeDef>& regions, const std::vector<char>& sph_body,

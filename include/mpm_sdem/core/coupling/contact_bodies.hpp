@@ -34,6 +34,10 @@ struct BodyPose {
   Vec2 position{0, 0};  // centre of mass, or a segment's first end (m)
   Real angle = 0;       // rad
   Vec2 other{0, 0};     // a segment's second end (m)
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(position, angle, other);
+  }
 };
 
 // The mass a contact between a point of mass m and a body of mass M moves, m M / (m + M); m

@@ -102,6 +102,7 @@ class Coupling {
   Vec2 forceOnMaterial() const { return on_material_; }
 
  protected:
+  friend struct detail::CheckpointAccess;
   explicit Coupling(const CouplingDef& def) : def_(def) {}
   CouplingDef def_;
   long active_ = 0;

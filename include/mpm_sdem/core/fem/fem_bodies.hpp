@@ -80,6 +80,10 @@ class FemBodies final : public ContactBodies {
   // strain), and its von Mises equivalent.
   struct Stress {
     Real xx = 0, yy = 0, xy = 0, zz = 0;
+    template <class Archive>
+    void serialize(Archive& ar) {
+      ar(xx, yy, xy, zz);
+    }
   };
   const Stress& stress(int e) const { return stress_[e]; }
   static Real vonMises(const Stress& s);
@@ -93,6 +97,10 @@ class FemBodies final : public ContactBodies {
   struct Coupling {
     Vec2 force{0, 0};
     int contacts = 0;
+    template <class Archive>
+    void serialize(Archive& ar) {
+      ar(force, contacts);
+    }
   };
   const std::vector<Coupling>& coupling() const { return coupling_; }
 
@@ -153,6 +161,12 @@ class FemBodies final : public ContactBodies {
   int step(Real dt, Real max_substep) override;
 
  private:
+  friend struct detail::CheckpointAccess;
+  // The nodes' motion and what the step carries over (the mesh follows from the definitions).
+  template <class Archive>
+  void stateIo(Archive& ar) {
+    ar(x_, y_, vx_, vy_, tvx_, tvy_, fx_, fy_, cfx_, cfy_, stress_, segment_vertices_, coupling_);
+  }
   struct Element {
     std::array<int, 3> node;
     int body = 0;

@@ -55,6 +55,12 @@ struct Tiles {
   }
 
  private:
+  friend struct detail::CheckpointAccess;
+  // The last binning: the next step's contact search and time step read it before binning anew.
+  template <class Archive>
+  void stateIo(Archive& ar) {
+    ar(start, order, mpm_end, grid_end, colour, active, previous, retired);
+  }
   void sort(const Particles& P, const Grid& g, bool by_kind);
 
   std::vector<int> key_;              // per particle, its tile (times 2, plus its kind)

@@ -43,6 +43,10 @@ struct BlockDrive {
   Vec2 velocity{0, 0};        // of the centre of mass (m/s), the held components
   Real angular_velocity = 0;  // rad/s, when held
   bool any() const { return hold_vx || hold_vy || hold_angular; }
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(hold_vx, hold_vy, hold_angular, velocity, angular_velocity);
+  }
 };
 
 struct BlockDef {
@@ -66,6 +70,12 @@ struct BlockDef {
   // pair takes the larger (seed 003's wood: 30 Pa with wood, 60 Pa with the rigid boundary).
   Real adhesion = 0;
   BlockDrive drive;  // dynamic blocks only; nothing held by default
+  // Every field: a checkpoint carries the blocks added while running.
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(name, core, rounding, discs, position, angle, velocity, angular_velocity, type, density,
+       friction, restitution, adhesion, drive);
+  }
 };
 
 struct BlockContactDef {
@@ -80,6 +90,10 @@ struct BlockState {
   Real angle = 0;
   Vec2 velocity{0, 0};
   Real angular_velocity = 0;
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(position, angle, velocity, angular_velocity);
+  }
 };
 
 // A handle on a block that stays valid while the block exists and names nothing once it is
@@ -89,6 +103,10 @@ struct BlockId {
   int slot = -1;
   std::uint32_t generation = 0;
   bool isNull() const { return slot < 0; }
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(slot, generation);
+  }
   bool operator==(const BlockId& o) const { return slot == o.slot && generation == o.generation; }
   bool operator!=(const BlockId& o) const { return !(*this == o); }
 };
@@ -194,6 +212,10 @@ class Blocks final : public ContactBodies {
     Vec2 force{0, 0};  // N/m
     Real torque = 0;   // N m/m about the centre of mass
     int contacts = 0;
+    template <class Archive>
+    void serialize(Archive& ar) {
+      ar(force, torque, contacts);
+    }
   };
   const std::vector<Coupling>& coupling() const { return coupling_; }
   // The contact forces of the other blocks on block i, averaged over the last step's substeps,
@@ -208,6 +230,7 @@ class Blocks final : public ContactBodies {
   void recordContactForce(int a, int b, const Vec2& force_on_a, const Vec2& point);
 
  private:
+  friend struct detail::CheckpointAccess;
   void checkDef(const BlockDef& def) const;  // throws std::invalid_argument
   int checkedIndex(BlockId id) const;        // throws std::invalid_argument
   void layoutShapes();
@@ -234,6 +257,12 @@ class Blocks final : public ContactBodies {
     Vec2 trial_v{0, 0};  // during the exchange with the material (beginCoupling)
     Real trial_w = 0;
     int first_shape = 0, shape_count = 0;
+    // What changes while running (the rest follows from the block's definition).
+    template <class Archive>
+    void serialize(Archive& ar) {
+      ar(state, drive, kinematic_centre, kinematic_angle, kinematic_velocity,
+         kinematic_angular_velocity, force, torque, held_force, held_torque, trial_v, trial_w);
+    }
   };
   // A driven block's trial velocity keeps its held components (beginCoupling, applyImpulse).
   static void holdTrial(Body& b);
@@ -251,6 +280,10 @@ class Blocks final : public ContactBodies {
     std::vector<Vec2> offset;
     std::vector<int> begin;
     Real angle0 = 0, spacing = 0, mass = 0;
+    template <class Archive>
+    void serialize(Archive& ar) {
+      ar(offset, begin, angle0, spacing, mass);
+    }
   };
 
   std::unique_ptr<detail::Box2DBodies> b2_;

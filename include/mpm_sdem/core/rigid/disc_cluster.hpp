@@ -14,6 +14,10 @@ namespace mpm_sdem {
 struct Disc {
   Vec2 centre{0, 0};  // m, in the cluster's frame
   Real radius = 0;    // m
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(centre, radius);
+  }
 };
 
 // Area, centroid and inertia about the centroid of the union of the discs at a density
