@@ -198,7 +198,7 @@ struct CheckpointAccess {
   }
 
   static void save(Out& ar, World& w) {
-    ar(w.time_, w.steps_, w.velocity_lag_, w.stress_lag_, w.point_loads_);
+    ar(w.time_, w.steps_, w.velocity_lag_, w.stress_lag_, w.point_loads_, w.commands_);
     w.particles_.forEachColumn([&ar](auto& column) { ar(column); });
     w.tiles_.stateIo(ar);
     ar(w.sph_ != nullptr, w.blocks_ != nullptr, w.fem_ != nullptr, w.coupling_ != nullptr);
@@ -209,7 +209,7 @@ struct CheckpointAccess {
   }
 
   static void load(In& ar, World& w) {
-    ar(w.time_, w.steps_, w.velocity_lag_, w.stress_lag_, w.point_loads_);
+    ar(w.time_, w.steps_, w.velocity_lag_, w.stress_lag_, w.point_loads_, w.commands_);
     Particles& P = w.particles_;
     P.forEachColumn([&ar](auto& column) { ar(column); });
     bool equal = true;

@@ -249,14 +249,33 @@ BlockId World::addBlock(const BlockDef& d) {
   linkContactBodies();
   if (!coupling_) initCoupling();
   coupling_->bodiesChanged();
+  if (command_log_) {
+    WorldCommand c = command(WorldCommand::Kind::kAddBlock, id);
+    c.def = blocks_->def(blocks_->indexOf(id));
+    command_log_(c);
+  }
   return id;
 }
 
 void World::removeBlock(BlockId id) {
   if (!blocks_) throw std::invalid_argument("removeBlock: the world has no blocks");
+  const WorldCommand c = command_log_ && blocks_->indexOf(id) >= 0
+                             ? command(WorldCommand::Kind::kRemoveBlock, id)
+                             : WorldCommand();
   blocks_->remove(id);
   linkContactBodies();
   coupling_->bodiesChanged();
+  if (command_log_) command_log_(c);
+}
+
+WorldCommand World::command(WorldCommand::Kind kind, BlockId id) {
+  WorldCommand c;
+  c.kind = kind;
+  c.time = time_;
+  c.step = steps_;
+  c.sequence = commands_++;
+  c.block = blocks_->def(blocks_->indexOf(id)).name;
+  return c;
 }
 
 void World::linkContactBodies() {
@@ -273,15 +292,59 @@ void World::linkContactBodies() {
 
 void World::setBlockPose(BlockId id, const Vec2& origin, Real angle) {
   blocks_->setPose(id, origin, angle);
+  if (!command_log_) return;
+  WorldCommand c = command(WorldCommand::Kind::kSetPose, id);
+  c.point = origin;
+  c.scalar = angle;
+  command_log_(c);
 }
 
 void World::setBlockVelocity(BlockId id, const Vec2& origin_velocity, Real angular_velocity) {
   blocks_->setVelocity(id, origin_velocity, angular_velocity);
+  if (!command_log_) return;
+  WorldCommand c = command(WorldCommand::Kind::kSetVelocity, id);
+  c.vector = origin_velocity;
+  c.scalar = angular_velocity;
+  command_log_(c);
 }
 
 void World::addBlockLoad(BlockId id, const Vec2& force, const Vec2& point, Real torque) {
   if (!blocks_) throw std::invalid_argument("addBlockLoad: this world has no blocks");
   blocks_->addLoad(id, force, point, torque);
+  if (!command_log_) return;
+  WorldCommand c = command(WorldCommand::Kind::kAddLoad, id);
+  c.vector = force;
+  c.point = point;
+  c.scalar = torque;
+  command_log_(c);
+}
+
+std::string applyCommand(World& world, const WorldCommand& c) {
+  if (c.kind == WorldCommand::Kind::kAddBlock) {
+    if (Problem p = world.placementProblem(c.def, true); !p.empty())
+      return "cannot add block '" + c.def.name + "': " + p.text();
+    world.addBlock(c.def);
+    return "";
+  }
+  const BlockId id = world.blocks() ? world.blocks()->find(c.block) : BlockId();
+  if (id.isNull()) return "no block named '" + c.block + "'";
+  switch (c.kind) {
+    case WorldCommand::Kind::kAddBlock:
+      break;
+    case WorldCommand::Kind::kRemoveBlock:
+      world.removeBlock(id);
+      break;
+    case WorldCommand::Kind::kSetPose:
+      world.setBlockPose(id, c.point, c.scalar);
+      break;
+    case WorldCommand::Kind::kSetVelocity:
+      world.setBlockVelocity(id, c.vector, c.scalar);
+      break;
+    case WorldCommand::Kind::kAddLoad:
+      world.addBlockLoad(id, c.vector, c.point, c.scalar);
+      break;
+  }
+  return "";
 }
 
 World::Memory World::memory() const {

@@ -99,6 +99,8 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
       read(pnh, "bag", p.bag, "a file path", error) &&
       readRate(pnh, "bag_cloud_rate", p.record_def.cloud_rate, error) &&
       readRate(pnh, "bag_state_rate", p.record_def.state_rate, error) &&
+      readRate(pnh, "bag_checkpoint_rate", p.record_def.checkpoint_rate, error) &&
+      read(pnh, "resume", p.resume, "a checkpoint file, a folder of them, or BAG[@TIME]", error) &&
       read(pnh, "bag_cloud_decimation", bag_decimation, "a whole number >= 1", error) &&
       read(pnh, "video", p.video, "a .avi, .mp4 or .mkv path", error) &&
       read(pnh, "video_fps", p.video_fps, "a number of frames per simulated second", error);

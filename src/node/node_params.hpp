@@ -52,8 +52,11 @@ struct NodeParams {
   // After ~reset: false closes the bag and the video (one recording per run of the node);
   // true starts new ones (<bag>-reset<n>.bag, ...).
   bool record_after_reset = false;
-  std::string bag;  // path; default <ROS_HOME or ~/.ros>/mpm_sdem_<scene>_<date>.bag
-  RecordDef record_def;
+  std::string bag;       // path; default <ROS_HOME or ~/.ros>/mpm_sdem_<scene>_<date>.bag
+  RecordDef record_def;  // with ~bag_checkpoint_rate (Hz; checkpoints, and one at the end)
+  // Start from a checkpoint instead of the scene's initial state (mpm_sdem_run --resume's
+  // forms: FILE, FOLDER or BAG[@TIME]); /clock, tf and, from a bag, the recording continue.
+  std::string resume;
   std::string video;  // .avi/.mp4/.mkv path; empty: no video
   double video_fps = 30;
 };

@@ -172,7 +172,9 @@ bool Services::setState(mpm_sdem::SetObstacleState::Request& req,
       w.setBlockPose(id, moved.position, moved.angle);
     }
     if (r.set_twist) applyTwist(w, id, r.twist);
-    s.blocksChanged();
+    // A moved block's frames (a static one's on /tf_static) and outline; a twist alone changes
+    // neither (like ~obstacle_cmd and cmd_vel), so a replay can tell the two apart.
+    if (r.set_pose) s.blocksChanged();
     s.noteRequest("~set_obstacle_state '" + r.name + "'" +
                   (r.set_twist ? " with twist " + describe(r.twist) : std::string()));
     return {true, "set the state of '" + r.name + "'"};

@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <thread>
 
+#include "mpm_sdem/core/checkpoint.hpp"
 #include "mpm_sdem/core/limits.hpp"
+#include "mpm_sdem/ros/checkpoint_source.hpp"
 
 namespace mpm_sdem::node {
 
@@ -32,6 +34,8 @@ Simulation::Simulation(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
       drivers_(pnh, commands_, params_),
       publishers_(nh, pnh, params_, scene_text_),
       paused_(params.start_paused) {
+  if (!params_.resume.empty()) resumeFromCheckpoint();
+  logCommands();
   if (params_.threads > 0)
     omp_set_num_threads(params_.threads);
   else
@@ -49,6 +53,28 @@ Simulation::~Simulation() {
   closeRecordings();
 }
 
+void Simulation::resumeFromCheckpoint() {
+  CheckpointSource from;
+  try {
+    from = loadCheckpointSource(params_.resume);
+    const std::string p = resumeProblem(scene_, readCheckpointHeader(from.bytes));
+    if (!p.empty()) throw std::runtime_error("cannot continue from " + from.description + ": " + p);
+    restoreCheckpoint(*world_, from.bytes);
+  } catch (const std::exception& e) {
+    throw std::runtime_error("~resume " + params_.resume + ": " + e.what());
+  }
+  resumed_bag_ = from.bag;
+  ROS_INFO("resumed from %s: t = %.6g s, step %ld", from.description.c_str(), world_->time(),
+           world_->stepCount());
+}
+
+void Simulation::logCommands() {
+  // What requests, held loads and velocity commands do to the world, for re-simulation.
+  world_->setCommandLog([this](const WorldCommand& c) {
+    if (bag_) bag_->command(c);
+  });
+}
+
 conversions::StatsInput Simulation::status() const {
   conversions::StatsInput in;
   in.dt = dt_;
@@ -63,8 +89,12 @@ void Simulation::openRecordings() {
   const conversions::StatsInput in = status();
   if (params_.record) {
     bag_ = std::make_unique<BagRecorder>(withSuffix(params_.bag, resets_), params_.record_def,
-                                         scene_text_);
-    bag_->record(*world_, in);
+                                         scene_text_, scene_.state_text);
+    // A resumed run's first recording starts with the bag's run up to the checkpoint.
+    if (!resumed_bag_.empty() && resets_ == 0)
+      bag_->continueFrom(resumed_bag_, world_->time());
+    else
+      bag_->record(*world_, in);
     ROS_INFO("recording to %s(.active while open)", bag_->path().c_str());
   }
   if (!params_.video.empty()) {
@@ -77,6 +107,7 @@ void Simulation::openRecordings() {
 
 void Simulation::closeRecordings() {
   if (bag_) {
+    if (!unstable_) bag_->checkpoint(*world_);  // the state reached, to continue from
     bag_->close();
     ROS_INFO("bag closed: %s (%ld messages, up to t = %.4f s)", bag_->path().c_str(),
              bag_->messageCount(), world_->time());
@@ -248,6 +279,7 @@ Reply Simulation::reset() {
   const bool was_recording = bag_ || video_;
   closeRecordings();
   world_ = std::make_unique<World>(scene_.world);
+  logCommands();
   ++resets_;
   unstable_ = false;
   end_reached_ = false;

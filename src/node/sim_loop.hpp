@@ -57,6 +57,10 @@ class Simulation {
   void publishWhilePaused();
   void openRecordings();
   void closeRecordings();
+  // ~resume: the checkpoint into the world; throws std::runtime_error saying why it cannot.
+  void resumeFromCheckpoint();
+  // The world's commands to the bag (its first recording, or after a reset).
+  void logCommands();
   void restartPacing();
   void pace();
   void logProgress(bool force);
@@ -65,6 +69,7 @@ class Simulation {
   Scene scene_;
   std::string scene_text_;
   std::unique_ptr<World> world_;
+  std::string resumed_bag_;  // the bag the run resumed from, continued by the first recording
   CommandQueue commands_;
   ObstacleDrivers drivers_;
   Publishers publishers_;

@@ -1,13 +1,16 @@
 #include "mpm_sdem/ros/bag_recorder.hpp"
 
 #include <geometry_msgs/WrenchStamped.h>
+#include <mpm_sdem/Checkpoint.h>
 #include <rosbag/bag.h>
+#include <rosbag/view.h>
 #include <std_msgs/String.h>
 #include <tf2_msgs/TFMessage.h>
 
 #include <cstdio>
 #include <stdexcept>
 
+#include "mpm_sdem/core/checkpoint.hpp"
 #include "mpm_sdem/core/diagnostics.hpp"
 #include "mpm_sdem/core/limits.hpp"
 
@@ -23,12 +26,14 @@ ros::Time bagTime(Real t) {
 }  // namespace
 
 BagRecorder::BagRecorder(const std::string& path, const RecordDef& def,
-                         const std::string& scene_text)
+                         const std::string& scene_text, const std::string& state_text)
     : bag_(std::make_unique<rosbag::Bag>()),
       def_(def),
       path_(path),
+      state_text_(state_text),
       clouds_(def.cloud_rate),
-      states_(def.state_rate) {
+      states_(def.state_rate),
+      checkpoints_(def.checkpoint_rate) {
   if (const std::string problem = bagPathProblem(path); !problem.empty())
     throw std::runtime_error("cannot record the bag: " + problem);
   try {
@@ -81,7 +86,7 @@ void BagRecorder::blocksChanged(const World& world) {
   write("/tf_static", world.time(), tf, true);
 }
 
-void BagRecorder::record(const World& world, const conversions::StatsInput& stats) {
+void BagRecorder::record(World& world, const conversions::StatsInput& stats) {
   if (!bag_->isOpen()) return;
   if (!started_) {
     started_ = true;
@@ -117,6 +122,52 @@ void BagRecorder::record(const World& world, const conversions::StatsInput& stat
     }
     write(def_.ns + "/stats", t, conversions::toStats(world, measure(world), stats, header));
   }
+  if (checkpoints_.due(t)) checkpoint(world);
+}
+
+void BagRecorder::checkpoint(World& world) {
+  if (!bag_->isOpen() || world.time() == last_checkpoint_) return;
+  last_checkpoint_ = world.time();
+  mpm_sdem::Checkpoint msg;
+  const std::string bytes = saveCheckpoint(world, state_text_);
+  msg.header.stamp = conversions::toRosTime(world.time());
+  msg.header.frame_id = def_.fixed_frame;
+  msg.time = world.time();
+  msg.steps = world.stepCount();
+  msg.build = buildId();
+  msg.scene_hash = sceneHash(state_text_);
+  msg.data.assign(bytes.begin(), bytes.end());
+  write(def_.ns + "/checkpoint", world.time(), msg);
+}
+
+void BagRecorder::command(const WorldCommand& c) {
+  if (!bag_->isOpen()) return;
+  write(def_.ns + "/commands", c.time, conversions::toMsg(c, def_.fixed_frame));
+}
+
+void BagRecorder::continueFrom(const std::string& path, Real t) {
+  rosbag::Bag source;
+  try {
+    source.open(path, rosbag::bagmode::Read);
+    const ros::Time end = bagTime(t);
+    rosbag::View view(source, ros::TIME_MIN, end);
+    for (const rosbag::MessageInstance& m : view) {
+      if (m.getTopic() == def_.ns + "/scene") continue;  // this run wrote its own
+      if (m.getDataType() == ros::message_traits::DataType<mpm_sdem::RecordedCommand>::value() &&
+          m.instantiate<mpm_sdem::RecordedCommand>()->time >= t)
+        continue;
+      bag_->write(m.getTopic(), m.getTime(), m, m.getConnectionHeader());
+      ++messages_;
+    }
+  } catch (const rosbag::BagException& e) {
+    throw std::runtime_error("cannot copy the run so far from " + path + ": " + e.what());
+  }
+  // This run's samples continue the schedule of the one it resumes.
+  started_ = true;
+  last_checkpoint_ = t;
+  clouds_.due(t, true);
+  states_.due(t, true);
+  checkpoints_.due(t, true);
 }
 
 void BagRecorder::close() {

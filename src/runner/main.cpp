@@ -12,14 +12,18 @@
 #include <memory>
 #include <sstream>
 
+#include "checkpoint_files.hpp"
+#include "mpm_sdem/core/checkpoint.hpp"
 #include "mpm_sdem/core/diagnostics.hpp"
 #include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/thread_tuner.hpp"
 #include "mpm_sdem/ros/bag_recorder.hpp"
+#include "mpm_sdem/ros/checkpoint_source.hpp"
 #include "mpm_sdem/scene/scene.hpp"
 #include "options.hpp"
 #include "output.hpp"
 #include "progress.hpp"
+#include "replay.hpp"
 
 namespace fs = std::filesystem;
 using namespace mpm_sdem;
@@ -63,6 +67,25 @@ void printSummary(const Scene& s, World& w) {
   std::fprintf(stderr, "time step %.4g s, set by the %s term\n", dt.dt, stepLimitName(dt.limit));
 }
 
+// --resume: the checkpoint into world, after checking it continues this scene with this build.
+// Returns false after saying why not.
+bool resume(const std::string& spec, const Scene& scene, World& world, CheckpointSource& from) {
+  try {
+    from = loadCheckpointSource(spec);
+    if (const std::string p = resumeProblem(scene, readCheckpointHeader(from.bytes)); !p.empty()) {
+      std::cerr << "error: --resume: cannot continue from " << from.description << ": " << p
+                << "\n";
+      return false;
+    }
+    restoreCheckpoint(world, from.bytes);
+  } catch (const std::exception& e) {  // a missing source, or a CheckpointError
+    std::cerr << "error: --resume " << spec << ": " << e.what() << "\n";
+    return false;
+  }
+  std::fprintf(stderr, "resuming from %s\n", from.description.c_str());
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -97,6 +120,24 @@ int main(int argc, char** argv) {
     return 1;
   }
   World& world = *world_ptr;
+  // Energy scale for the growth limit: the initial total, which with potential energy measured
+  // from the domain floor is the sum of non-negative terms (measured before a resume, so that a
+  // resumed run keeps the limit of the run it continues).
+  const Diagnostics initial = measure(world);
+  const Real energy_limit = initial.total() * (1 + scene.limits.energy_growth);
+  CheckpointSource resumed;
+  if (!opt.resume.empty() && !resume(opt.resume, scene, world, resumed)) return 1;
+  const Real resume_after = opt.resume.empty() ? -1 : world.time();
+  std::unique_ptr<runner::CommandReplay> replay;
+  if (!opt.replay.empty()) {
+    try {
+      replay = std::make_unique<runner::CommandReplay>(opt.replay, world.time());
+    } catch (const std::exception& e) {
+      std::cerr << "error: --replay-commands: " << e.what() << "\n";
+      return 1;
+    }
+    std::fprintf(stderr, "replaying %zu commands from %s\n", replay->count(), opt.replay.c_str());
+  }
   const fs::path out =
       opt.out_dir.empty() ? fs::path("out") / fs::path(opt.scene).stem() : fs::path(opt.out_dir);
   std::error_code ec;
@@ -109,49 +150,71 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
 
-  runner::TimeSeriesWriter series((out / "timeseries.csv").string());
+  // A resumed run continues the files of the run it resumes (their rows up to the checkpoint).
+  const bool fresh = resume_after < 0;
+  runner::TimeSeriesWriter series((out / "timeseries.csv").string(), resume_after);
   std::unique_ptr<runner::BlockSeriesWriter> block_series;
   if (world.blocks()) {
-    block_series = std::make_unique<runner::BlockSeriesWriter>((out / "blocks.csv").string());
-    block_series->write(world);
+    block_series =
+        std::make_unique<runner::BlockSeriesWriter>((out / "blocks.csv").string(), resume_after);
+    if (fresh) block_series->write(world);
   }
   std::unique_ptr<runner::FemSeriesWriter> fem_series;
   if (world.femBodies()) {
-    fem_series = std::make_unique<runner::FemSeriesWriter>((out / "fem_nodes.csv").string(),
-                                                           (out / "fem_elements.csv").string());
-    fem_series->write(world);
+    fem_series = std::make_unique<runner::FemSeriesWriter>(
+        (out / "fem_nodes.csv").string(), (out / "fem_elements.csv").string(), resume_after);
+    if (fresh) fem_series->write(world);
   }
-  const Diagnostics initial = measure(world);
-  // Energy scale for the growth limit: the initial total, which with potential energy measured
-  // from the domain floor is the sum of non-negative terms.
-  const Real energy_limit = initial.total() * (1 + scene.limits.energy_growth);
   TimeStepChoice dt = world.chooseTimeStep();
-  series.write(world, initial, dt);
+  if (fresh) series.write(world, initial, dt);
+  std::unique_ptr<runner::CheckpointFiles> checkpoints;
+  if (opt.checkpoint_every > 0) {
+    try {
+      checkpoints = std::make_unique<runner::CheckpointFiles>(
+          (out / "checkpoints").string(), opt.checkpoint_every, scene.state_text);
+    } catch (const std::exception& e) {
+      std::cerr << "error: " << e.what() << "\n";
+      return 1;
+    }
+    if (!fresh) checkpoints->resumeAfter(world.time());
+  }
   std::unique_ptr<BagRecorder> bag;
   conversions::StatsInput bag_stats;
   if (!opt.bag.empty()) {
     RecordDef rec;
     rec.cloud_rate = opt.bag_cloud_rate;
     rec.state_rate = opt.bag_state_rate;
+    rec.checkpoint_rate = opt.bag_checkpoint_rate;
     std::ostringstream text;
     text << std::ifstream(opt.scene).rdbuf();
     try {
-      bag = std::make_unique<BagRecorder>(opt.bag, rec, text.str());
+      bag = std::make_unique<BagRecorder>(opt.bag, rec, text.str(), scene.state_text);
+      if (!resumed.bag.empty()) bag->continueFrom(resumed.bag, world.time());
     } catch (const std::exception& e) {
       std::cerr << "error: " << e.what() << "\n";
       return 1;
     }
+    // The commands this run applies (a replay's), recorded as the node records its own.
+    world.setCommandLog([&bag](const WorldCommand& c) { bag->command(c); });
     bag_stats.dt = dt;
-    bag->record(world, bag_stats);
+    if (fresh || resumed.bag.empty()) bag->record(world, bag_stats);
   }
-  Real next_sample = scene.output.interval;
+  const Real eps = 1e-9 * scene.end_time;
+  // The next multiple of the interval (a sum of intervals would stall below round-off); a
+  // resumed run's continues the schedule of the run it resumes.
+  auto nextSample = [&](Real t) {
+    return (std::floor((t + eps) / scene.output.interval) + 1) * scene.output.interval;
+  };
+  Real next_sample = fresh ? scene.output.interval : nextSample(world.time());
   runner::Progress progress(scene.end_time, !opt.quiet);
   int status = 0;
-  const Real eps = 1e-9 * scene.end_time;
   bool mach_warned = false;
   while (world.time() < scene.end_time - eps && !g_interrupted) {
     const auto start = std::chrono::steady_clock::now();
     if (tuner) tuner->beforeStep();
+    // Where the node applies them: between steps, before the next step is chosen (a block
+    // added changes it).
+    if (replay && replay->applyDue(world) && bag) bag->blocksChanged(world);
     dt = world.chooseTimeStep();
     if (!(dt.dt >= limits::kMinTimeStep)) {
       std::cerr << "\nerror: the stable step collapsed to " << dt.dt << " s ("
@@ -177,6 +240,15 @@ int main(int argc, char** argv) {
       bag_stats.profile = world.profile();
       bag->record(world, bag_stats);
     }
+    if (checkpoints) {
+      try {
+        checkpoints->write(world);
+      } catch (const std::exception& e) {
+        std::cerr << "\nerror: " << e.what() << "\n";
+        status = 1;
+        break;
+      }
+    }
     if (world.time() >= next_sample - eps || world.time() >= scene.end_time - eps) {
       const Diagnostics d = measure(world);
       if (!d.finite) {
@@ -201,9 +273,7 @@ int main(int argc, char** argv) {
       series.write(world, d, dt);
       if (block_series) block_series->write(world);
       if (fem_series) fem_series->write(world);
-      // The next multiple of the interval (a sum of intervals would stall below round-off).
-      next_sample =
-          (std::floor((world.time() + eps) / scene.output.interval) + 1) * scene.output.interval;
+      next_sample = nextSample(world.time());
     }
     progress.update(world.stepCount(), world.time(), h,
                     static_cast<long>(world.particles().size()));
@@ -215,6 +285,19 @@ int main(int argc, char** argv) {
   }
   if (scene.output.particles && status != 3)
     runner::writeParticles(world, (out / "particles.csv").string());
+  // The state reached, to continue from (a longer run, or a killed one); not a failed state.
+  if (status == 0 || status == 130) {
+    try {
+      if (checkpoints) checkpoints->write(world, true);
+    } catch (const std::exception& e) {
+      std::cerr << "error: " << e.what() << "\n";
+      status = 1;
+    }
+    if (bag) bag->checkpoint(world);
+  }
+  if (replay && replay->skipped() > 0)
+    std::fprintf(stderr, "replay: %zu of %zu commands could not be applied\n", replay->skipped(),
+                 replay->count());
   runner::writeProfile(world, (out / "profile.csv").string());
   const Profile& prof = world.profile();
   std::fprintf(stderr, "per-stage time (ms/step):");

@@ -18,9 +18,22 @@ const char* usage() {
          "                   up to OMP_NUM_THREADS or all cores, from measured step times)\n"
          "  --quiet          no progress line\n"
          "  --bag FILE       also record a rosbag as the node does (no ROS master needed)\n"
-         "  --bag-cloud-rate HZ, --bag-state-rate HZ\n"
-         "                   particle clouds / block states per simulated second (30, 100)\n"
-         "exit status: 0 done, 1 bad scene, 2 bad command line, 3 unstable state, 130 "
+         "  --bag-cloud-rate HZ, --bag-state-rate HZ, --bag-checkpoint-rate HZ\n"
+         "                   particle clouds / block states / checkpoints per simulated second\n"
+         "                   (30, 100, 1; a last checkpoint is written at the end)\n"
+         "  --checkpoint-every S\n"
+         "                   also write the whole state to DIR/checkpoints/t<time>.ckpt every S\n"
+         "                   simulated seconds and at the end (the latest two are kept)\n"
+         "  --resume FROM    continue a run, bit for bit, from a checkpoint: a .ckpt file, a\n"
+         "                   folder (its latest), or BAG[@TIME] (the bag's last checkpoint at or\n"
+         "                   before TIME s). Same scene and --set values (time.end, output and\n"
+         "                   view may change), same build; with --bag, the new bag starts with\n"
+         "                   the old one's messages up to the checkpoint\n"
+         "  --replay-commands BAG\n"
+         "                   apply the obstacle commands recorded in BAG (the node's ~commands)\n"
+         "                   at their times: the run again, or with a changed scene (--set)\n"
+         "exit status: 0 done, 1 bad scene or checkpoint, 2 bad command line, 3 unstable state, "
+         "130 "
          "interrupted\n";
 }
 
@@ -62,7 +75,7 @@ bool parseOptions(int argc, char** argv, Options& out, std::string& error, bool&
       const char* v = value("--bag");
       if (!v) return false;
       out.bag = v;
-    } else if (a == "--bag-cloud-rate" || a == "--bag-state-rate") {
+    } else if (a == "--bag-cloud-rate" || a == "--bag-state-rate" || a == "--bag-checkpoint-rate") {
       const char* v = value(a.c_str());
       if (!v) return false;
       char* end = nullptr;
@@ -71,7 +84,27 @@ bool parseOptions(int argc, char** argv, Options& out, std::string& error, bool&
         error = a + " takes a rate >= 0 Hz (0: off), got '" + v + "'";
         return false;
       }
-      (a == "--bag-cloud-rate" ? out.bag_cloud_rate : out.bag_state_rate) = r;
+      (a == "--bag-cloud-rate"   ? out.bag_cloud_rate
+       : a == "--bag-state-rate" ? out.bag_state_rate
+                                 : out.bag_checkpoint_rate) = r;
+    } else if (a == "--checkpoint-every") {
+      const char* v = value(a.c_str());
+      if (!v) return false;
+      char* end = nullptr;
+      const double s = std::strtod(v, &end);
+      if (*end != '\0' || *v == '\0' || !(s > 0) || s > 1e9) {
+        error = "--checkpoint-every takes simulated seconds > 0, got '" + std::string(v) + "'";
+        return false;
+      }
+      out.checkpoint_every = s;
+    } else if (a == "--resume" || a == "--replay-commands") {
+      const char* v = value(a.c_str());
+      if (!v) return false;
+      if (*v == '\0') {
+        error = a + " needs a value";
+        return false;
+      }
+      (a == "--resume" ? out.resume : out.replay) = v;
     } else if (a == "--quiet") {
       out.quiet = true;
     } else if (!a.empty() && a[0] == '-') {

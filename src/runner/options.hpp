@@ -12,9 +12,13 @@ struct Options {
   std::vector<std::string> overrides;
   int threads = 0;  // 0: chosen while running (ThreadTuner), up to the OpenMP default
   bool quiet = false;
-  std::string bag;              // write a rosbag like the node's (empty: none)
-  double bag_cloud_rate = 30;   // Hz of simulation time
-  double bag_state_rate = 100;  // Hz
+  std::string bag;                 // write a rosbag like the node's (empty: none)
+  double bag_cloud_rate = 30;      // Hz of simulation time
+  double bag_state_rate = 100;     // Hz
+  double bag_checkpoint_rate = 1;  // Hz
+  double checkpoint_every = 0;     // s of simulation time between checkpoint files (0: none)
+  std::string resume;              // continue from: FILE, FOLDER or BAG[@TIME] (empty: no)
+  std::string replay;              // a bag whose recorded commands to apply (empty: none)
 };
 
 // Returns false and fills error on a bad command line; help is set for --help.

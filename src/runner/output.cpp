@@ -1,25 +1,44 @@
 #include "output.hpp"
 
+#include <cstdlib>
 #include <stdexcept>
+#include <vector>
 
 #include "mpm_sdem/core/mpm/constitutive.hpp"
 
 namespace mpm_sdem::runner {
 
 namespace {
-std::ofstream openCsv(const std::string& path) {
+
+// A CSV file with its header line; for a resumed run, the rows of an existing file whose time
+// (first column, written to 10 digits) is at most resume_after, and open for more.
+std::ofstream openCsv(const std::string& path, const char* header = nullptr,
+                      Real resume_after = -1) {
+  std::vector<std::string> kept;
+  if (resume_after >= 0) {
+    std::ifstream old(path);
+    std::string line;
+    for (bool first = true; std::getline(old, line); first = false)
+      if (!first && std::strtod(line.c_str(), nullptr) <= resume_after * (1 + 1e-9) + 1e-12)
+        kept.push_back(line);
+  }
   std::ofstream out(path);
   if (!out) throw std::runtime_error("cannot write " + path);
   out.precision(10);
+  if (header) out << header << '\n';
+  for (const std::string& line : kept) out << line << '\n';
+  out.flush();
   return out;
 }
+
 }  // namespace
 
-TimeSeriesWriter::TimeSeriesWriter(const std::string& path) : out_(openCsv(path)) {
-  out_ << "time,step,dt,dt_limit,kinetic_energy,elastic_energy,gravity_energy,total_energy,"
-          "momentum_x,momentum_y,angular_momentum,com_x,com_y,max_speed,max_mach\n";
-  out_.flush();
-}
+TimeSeriesWriter::TimeSeriesWriter(const std::string& path, Real resume_after)
+    : out_(openCsv(path,
+                   "time,step,dt,dt_limit,kinetic_energy,elastic_energy,gravity_energy,"
+                   "total_energy,momentum_x,momentum_y,angular_momentum,com_x,com_y,max_speed,"
+                   "max_mach",
+                   resume_after)) {}
 
 void TimeSeriesWriter::write(const World& w, const Diagnostics& d, const TimeStepChoice& dt) {
   out_ << w.time() << ',' << w.stepCount() << ',' << dt.dt << ',' << stepLimitName(dt.limit) << ','
@@ -30,11 +49,12 @@ void TimeSeriesWriter::write(const World& w, const Diagnostics& d, const TimeSte
   out_.flush();
 }
 
-BlockSeriesWriter::BlockSeriesWriter(const std::string& path) : out_(openCsv(path)) {
-  out_ << "time,block,name,x,y,angle,vx,vy,angular_velocity,coupling_force_x,coupling_force_y,"
-          "coupling_torque,contacts,block_force_x,block_force_y,block_torque,block_contacts\n";
-  out_.flush();
-}
+BlockSeriesWriter::BlockSeriesWriter(const std::string& path, Real resume_after)
+    : out_(openCsv(path,
+                   "time,block,name,x,y,angle,vx,vy,angular_velocity,coupling_force_x,"
+                   "coupling_force_y,coupling_torque,contacts,block_force_x,block_force_y,"
+                   "block_torque,block_contacts",
+                   resume_after)) {}
 
 void BlockSeriesWriter::write(const World& w) {
   const Blocks& B = *w.blocks();
@@ -51,11 +71,11 @@ void BlockSeriesWriter::write(const World& w) {
   out_.flush();
 }
 
-FemSeriesWriter::FemSeriesWriter(const std::string& nodes_path, const std::string& elements_path)
-    : nodes_(openCsv(nodes_path)), elements_(openCsv(elements_path)) {
-  nodes_ << "time,body,name,node,x,y,ux,uy,vx,vy,held\n";
-  elements_ << "time,body,name,element,sxx,syy,sxy,szz,von_mises\n";
-}
+FemSeriesWriter::FemSeriesWriter(const std::string& nodes_path, const std::string& elements_path,
+                                 Real resume_after)
+    : nodes_(openCsv(nodes_path, "time,body,name,node,x,y,ux,uy,vx,vy,held", resume_after)),
+      elements_(openCsv(elements_path, "time,body,name,element,sxx,syy,sxy,szz,von_mises",
+                        resume_after)) {}
 
 void FemSeriesWriter::write(const World& w) {
   const FemBodies& F = *w.femBodies();

@@ -1,5 +1,7 @@
 // CSV outputs of the headless runner. Rows are flushed as they are written, so a run that stops
-// early keeps everything up to its last sample.
+// early keeps everything up to its last sample. A resumed run (resume_after >= 0, the
+// checkpoint's time) keeps an existing file's rows up to that time and continues it, so that its
+// files are those of a run that never stopped.
 #pragma once
 
 #include <fstream>
@@ -12,7 +14,7 @@ namespace mpm_sdem::runner {
 
 class TimeSeriesWriter {
  public:
-  explicit TimeSeriesWriter(const std::string& path);
+  explicit TimeSeriesWriter(const std::string& path, Real resume_after = -1);
   void write(const World& world, const Diagnostics& d, const TimeStepChoice& dt);
 
  private:
@@ -22,7 +24,7 @@ class TimeSeriesWriter {
 // One row per block per sample: pose, velocity and what the material did to it.
 class BlockSeriesWriter {
  public:
-  explicit BlockSeriesWriter(const std::string& path);
+  explicit BlockSeriesWriter(const std::string& path, Real resume_after = -1);
   void write(const World& world);
 
  private:
@@ -33,7 +35,8 @@ class BlockSeriesWriter {
 // (fem_elements.csv: Cauchy stress at the start of the step, von Mises) per sample.
 class FemSeriesWriter {
  public:
-  FemSeriesWriter(const std::string& nodes_path, const std::string& elements_path);
+  FemSeriesWriter(const std::string& nodes_path, const std::string& elements_path,
+                  Real resume_after = -1);
   void write(const World& world);
 
  private:

@@ -7,6 +7,8 @@
 #include <mpm_sdem/SimStats.h>
 #include <mpm_sdem/SpawnObstacle.h>
 #include <ros/ros.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/buffer.h>
@@ -14,8 +16,10 @@
 
 #include <chrono>
 #include <functional>
+#include <map>
 #include <mutex>
 #include <thread>
+#include <vector>
 
 namespace mpm_sdem::test {
 
@@ -68,6 +72,34 @@ inline const mpm_sdem::RigidBlockState* findBlock(const mpm_sdem::BlockStates& s
 }
 
 inline const std::string kNs = "/mpm_sdem/";
+
+// Every message of a bag as its serialized bytes, by topic, in order; but the stats, which carry
+// wall-clock figures (real-time factor, stage times). Two runs that computed the same recorded
+// the same bytes.
+inline std::map<std::string, std::vector<std::vector<std::uint8_t>>> physicsMessages(
+    const std::string& path) {
+  rosbag::Bag bag(path, rosbag::bagmode::Read);
+  std::map<std::string, std::vector<std::vector<std::uint8_t>>> out;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
+    if (m.getDataType() == "mpm_sdem/SimStats") continue;
+    std::vector<std::uint8_t> bytes(m.size());
+    ros::serialization::OStream stream(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+    m.write(stream);
+    out[m.getTopic()].push_back(std::move(bytes));
+  }
+  return out;
+}
+
+// Topics whose messages differ between two bags' physicsMessages (empty: none).
+inline std::vector<std::string> differingTopics(const std::string& a, const std::string& b) {
+  const auto ma = physicsMessages(a), mb = physicsMessages(b);
+  std::vector<std::string> out;
+  for (const auto& [topic, messages] : ma)
+    if (!mb.count(topic) || mb.at(topic) != messages) out.push_back(topic);
+  for (const auto& [topic, messages] : mb)
+    if (!ma.count(topic)) out.push_back(topic);
+  return out;
+}
 
 // A client of the node under test: its topics, tf and services.
 struct NodeClient {

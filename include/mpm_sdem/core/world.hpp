@@ -21,6 +21,7 @@
 #include "mpm_sdem/core/rigid/blocks.hpp"
 #include "mpm_sdem/core/sph/sph.hpp"
 #include "mpm_sdem/core/types.hpp"
+#include "mpm_sdem/core/world_command.hpp"
 
 namespace mpm_sdem {
 
@@ -142,6 +143,9 @@ class World {
   // (m, world frame) and a torque (N m/m). Moves dynamic blocks only; a caller that holds a
   // load adds it before every step it acts in (the node's ~apply_obstacle_wrench).
   void addBlockLoad(BlockId id, const Vec2& force, const Vec2& point, Real torque);
+  // Every change made by the four calls above (and addBlock, removeBlock) goes to log once it is
+  // made, numbered in order (world_command.hpp); an empty log records nothing.
+  void setCommandLog(CommandLog log) { command_log_ = std::move(log); }
 
   const WorldDef& def() const { return def_; }
   const std::vector<MaterialParams>& materialParams() const { return params_; }
@@ -236,6 +240,9 @@ class World {
   std::vector<PointLoad> point_loads_;  // few and rarely used: a list, not a column
   Real time_ = 0;
   long steps_ = 0;
+  CommandLog command_log_;
+  long commands_ = 0;  // applied through the mutators: the next command's sequence number
+  WorldCommand command(WorldCommand::Kind kind, BlockId id);
   // Leapfrog bookkeeping (seed 000 eq. 17): positions live at time_, velocities at
   // time_ - velocity_lag_, stresses at time_ - stress_lag_. Both start at 0, so the first kick
   // is half a step and the first USF stress update is empty.

@@ -18,8 +18,11 @@ class Bag;
 namespace mpm_sdem {
 
 struct RecordDef {
-  Real cloud_rate = 30;          // Hz of simulation time: ~particles
-  Real state_rate = 100;         // Hz: ~blocks, ~block_poses, /tf, ~stats
+  Real cloud_rate = 30;   // Hz of simulation time: ~particles
+  Real state_rate = 100;  // Hz: ~blocks, ~block_poses, /tf, ~stats
+  // Hz: ~checkpoint, the whole state (mpm_sdem/Checkpoint), to resume from; 0: only the one
+  // written at the end (checkpoint()).
+  Real checkpoint_rate = 1;
   int cloud_decimation = 1;      // every n-th material point
   std::string ns = "/mpm_sdem";  // topic namespace (the node's name when the node records)
   std::string fixed_frame = "world";
@@ -32,8 +35,10 @@ std::string bagPathProblem(const std::string& path);
 class BagRecorder {
  public:
   // Throws std::runtime_error with the reason when the file cannot be opened. scene_text is the
-  // scene file's text, written once on <ns>/scene (std_msgs/String, latched).
-  BagRecorder(const std::string& path, const RecordDef& def, const std::string& scene_text);
+  // scene file's text, written once on <ns>/scene (std_msgs/String, latched); state_text the
+  // scene's Scene::state_text, which the checkpoints carry.
+  BagRecorder(const std::string& path, const RecordDef& def, const std::string& scene_text,
+              const std::string& state_text);
   ~BagRecorder();
   BagRecorder(const BagRecorder&) = delete;
   BagRecorder& operator=(const BagRecorder&) = delete;
@@ -43,8 +48,18 @@ class BagRecorder {
   // every 1/state_rate s of simulation time (both at the first call): <ns>/blocks,
   // <ns>/block_poses, the outlines for rviz (<ns>/markers), /tf of the moving blocks, each block's
   // <ns>/obstacles/<name>/wrench and <ns>/stats. stats supplies what the world does not know
-  // (time step, real-time factor, stage times).
-  void record(const World& world, const conversions::StatsInput& stats);
+  // (time step, real-time factor, stage times). And <ns>/checkpoint every 1/checkpoint_rate s
+  // (saveCheckpoint, which may rebuild Box2D's bodies: hence the world is not const).
+  void record(World& world, const conversions::StatsInput& stats);
+  // A checkpoint now, whatever the schedule (the end of a run), unless one of this time is in.
+  void checkpoint(World& world);
+  // A command the world applied (World::setCommandLog), on <ns>/commands.
+  void command(const WorldCommand& command);
+  // A resumed run's bag: first every message of bag up to time t (the checkpoint the run
+  // resumes from and what came before it; commands applied at t came after the checkpoint and
+  // are left out), then this run's from after t, as if the run had never stopped.
+  // Throws std::runtime_error when bag cannot be read.
+  void continueFrom(const std::string& bag, Real t);
   // /tf_static (the domain's frame and the static blocks, latched on playback): written at the
   // first record() and again after blocks are added or removed.
   void blocksChanged(const World& world);
@@ -62,7 +77,9 @@ class BagRecorder {
   std::unique_ptr<rosbag::Bag> bag_;
   RecordDef def_;
   std::string path_;
-  SampleClock clouds_, states_;
+  std::string state_text_;
+  SampleClock clouds_, states_, checkpoints_;
+  Real last_checkpoint_ = -1;  // s
   long messages_ = 0;
   bool started_ = false;
   sensor_msgs::PointCloud2 cloud_, fem_cloud_;  // reused: no allocation per cloud

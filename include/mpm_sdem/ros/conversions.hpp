@@ -5,7 +5,9 @@
 #include <geometry_msgs/PoseArray.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <geometry_msgs/Wrench.h>
+#include <mpm_sdem/BlockDefinition.h>
 #include <mpm_sdem/BlockStates.h>
+#include <mpm_sdem/RecordedCommand.h>
 #include <mpm_sdem/SimStats.h>
 #include <mpm_sdem/SpawnObstacle.h>
 #include <ros/time.h>
@@ -86,5 +88,12 @@ mpm_sdem::SimStats toStats(const World& world, const Diagnostics& d, const Stats
 BlockDef toBlockDef(const mpm_sdem::SpawnObstacle::Request& req);
 BodyType toBodyType(std::uint8_t type, bool& ok);
 std::uint8_t fromBodyType(BodyType type);
+
+// A world command for bags and back, exact (record_conversions.cpp). fromMsg of a definition
+// with an unknown body type gives a static block (the world then checks the definition).
+mpm_sdem::RecordedCommand toMsg(const WorldCommand& command, const std::string& frame);
+WorldCommand fromMsg(const mpm_sdem::RecordedCommand& msg);
+mpm_sdem::BlockDefinition toMsg(const BlockDef& def);
+BlockDef fromMsg(const mpm_sdem::BlockDefinition& msg);
 
 }  // namespace mpm_sdem::conversions

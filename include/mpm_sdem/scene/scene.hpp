@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "mpm_sdem/core/checkpoint.hpp"
 #include "mpm_sdem/core/world.hpp"
 #include "mpm_sdem/render/view.hpp"
 
@@ -33,6 +34,10 @@ struct Scene {
   // The quantity and colour scale of the node's pictures and videos (the section `view`); the
   // node's ~image parameters win over it (render::chooseScale).
   render::ViewRequest view;
+  // The settings that shape the simulated state, as canonical YAML: the tree after the
+  // overrides without name, description, time.end, output, limits and view (a resumed run may
+  // go further, or write other outputs). A checkpoint records it; a resume compares it.
+  std::string state_text;
 };
 
 // One message, already formatted as "file:line:column: key: problem; fix".
@@ -46,5 +51,14 @@ class SceneError : public std::runtime_error {
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides = {});
 Scene parseScene(const std::string& yaml_text, const std::string& source_name,
                  const std::vector<std::string>& overrides = {});
+
+// Where two state texts (Scene::state_text) differ, one line per setting: "key: value in the
+// checkpoint, value here", keys dotted with names for named list items (materials.sand.density).
+// At most max lines, then how many more; empty when they are equal.
+std::vector<std::string> sceneDifferences(const std::string& checkpoint, const std::string& here,
+                                          std::size_t max = 8);
+// Why a checkpoint cannot continue a run of this scene: "" or a message naming what differs,
+// the build (buildDifference) or the scene's settings (sceneDifferences), and what to do.
+std::string resumeProblem(const Scene& scene, const CheckpointHeader& checkpoint);
 
 }  // namespace mpm_sdem

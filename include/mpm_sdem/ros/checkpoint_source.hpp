@@ -1,0 +1,28 @@
+// Where a run continues from (mpm_sdem_run --resume, the node's ~resume): a checkpoint file, a
+// folder of them, or a bag that recorded checkpoints.
+#pragma once
+
+#include <string>
+
+#include "mpm_sdem/core/types.hpp"
+
+namespace mpm_sdem {
+
+struct CheckpointSource {
+  std::string bytes;        // the checkpoint (core/checkpoint.hpp)
+  std::string description;  // for messages: "the checkpoint at t = 0.5 s in run.bag"
+  std::string bag;          // the bag it came from, or "" for a file
+  Real time = 0;            // s, its time
+};
+
+// spec: a checkpoint file; a folder (the latest t*.ckpt in it, or in its checkpoints/); or
+// BAG[@TIME], a .bag: its last checkpoint at or before TIME s, or its last without @TIME. Throws
+// std::runtime_error saying what is missing (the file, any checkpoint, one before TIME: then the
+// times the bag holds).
+CheckpointSource loadCheckpointSource(const std::string& spec);
+
+// The name of a checkpoint file of time t in a folder: t<seconds, 6 decimals>.ckpt, which sorts
+// by time.
+std::string checkpointFileName(Real t);
+
+}  // namespace mpm_sdem

@@ -1,0 +1,230 @@
+// rostest: re-simulation and restart of node runs.
+// - node_replay.test: the node records a run while a client commands its obstacles (a spawned
+//   block, a held load, a velocity command, a teleport); mpm_sdem_run --replay-commands on the
+//   same scene reproduces the node's bag message for message, and on a changed scene runs the
+//   same commands to another result.
+// - node_resume.test: a node started with ~resume from a runner's bag continues /clock, tf and
+//   the bag from the checkpoint: its bag equals the uninterrupted run's.
+#include <geometry_msgs/Twist.h>
+#include <gtest/gtest.h>
+#include <mpm_sdem/ApplyObstacleWrench.h>
+#include <mpm_sdem/GetObstacleState.h>
+#include <mpm_sdem/RecordedCommand.h>
+#include <mpm_sdem/SetObstacleState.h>
+#include <rosgraph_msgs/Clock.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include "ros_helpers.hpp"
+
+namespace fs = std::filesystem;
+using namespace mpm_sdem;
+using test::waitFor;
+
+namespace {
+
+test::NodeClient* g_node = nullptr;
+
+std::string param(const std::string& name) {
+  std::string v;
+  if (!ros::param::get("~" + name, v)) ADD_FAILURE() << "missing ~" << name;
+  return v;
+}
+
+int run(const std::string& cmd) {
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::vector<BlockStates> blockStates(const std::string& path) {
+  rosbag::Bag bag(path, rosbag::bagmode::Read);
+  std::vector<BlockStates> out;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag))
+    if (auto s = m.instantiate<BlockStates>()) out.push_back(*s);
+  return out;
+}
+
+std::set<int> commandKinds(const std::string& path, long& count) {
+  rosbag::Bag bag(path, rosbag::bagmode::Read);
+  std::set<int> kinds;
+  count = 0;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag))
+    if (auto c = m.instantiate<RecordedCommand>()) {
+      kinds.insert(c->kind);
+      ++count;
+    }
+  return kinds;
+}
+
+}  // namespace
+
+TEST(Replay, TheRunnerReplaysTheNodesCommandsExactly) {
+  test::NodeClient& n = *g_node;
+  const std::string node_bag = param("bag");
+  ros::Publisher cmd_vel =
+      n.nh.advertise<geometry_msgs::Twist>(test::kNs + "obstacles/blade/cmd_vel", 1);
+  ASSERT_TRUE(waitFor([&] { return cmd_vel.getNumSubscribers() > 0 && n.stats.has(); }, 20));
+  // Started paused: a block spawned at t = 0, then 0.6 s of simulation at half real time while
+  // the others come.
+  SpawnObstacle rock = test::square("rock", -0.03, 0.1, 0.01, SpawnObstacle::Request::DYNAMIC);
+  ASSERT_TRUE(n.call("spawn_obstacle", rock).response.success) << rock.response.message;
+  ASSERT_TRUE(n.trigger("resume"));
+  ros::WallDuration(0.1).sleep();
+  ApplyObstacleWrench w;
+  w.request.name = "box";
+  w.request.wrench.force.x = 3;
+  w.request.duration = 0.2;
+  ASSERT_TRUE(n.call("apply_obstacle_wrench", w).response.success) << w.response.message;
+  geometry_msgs::Twist t;
+  t.linear.x = 0.05;
+  for (int k = 0; k < 5; ++k) {
+    cmd_vel.publish(t);
+    ros::WallDuration(0.03).sleep();
+  }
+  SetObstacleState s;
+  s.request.name = "rock";
+  s.request.set_pose = true;
+  s.request.pose.x = -0.05;
+  s.request.pose.y = 0.15;
+  EXPECT_TRUE(n.call("set_obstacle_state", s).response.success) << s.response.message;
+  ASSERT_TRUE(waitFor([&] { return fs::exists(node_bag); }, 60))
+      << node_bag << " never appeared: the node did not reach its end and close the bag";
+  long count = 0;
+  const std::set<int> kinds = commandKinds(node_bag, count);
+  EXPECT_EQ(kinds, (std::set<int>{RecordedCommand::ADD_BLOCK, RecordedCommand::SET_POSE,
+                                  RecordedCommand::SET_VELOCITY, RecordedCommand::ADD_LOAD}))
+      << "the commands the node applied are all recorded";
+  std::printf("the node recorded %ld commands\n", count);
+
+  // The same scene through the runner with the node's commands: the same bag, but the stats.
+  const std::string scene = param("scene");
+  const std::string replay = node_bag + ".replay.bag";
+  const std::string base = std::string(MPM_SDEM_RUNNER) + " " + scene +
+                           " --set time.end=0.6 --threads 1 --quiet --replay-commands " + node_bag +
+                           " --out " + node_bag + ".out";
+  ASSERT_EQ(run(base + " --bag " + replay), 0);
+  EXPECT_EQ(test::differingTopics(node_bag, replay), std::vector<std::string>{})
+      << "topics whose messages differ between the node's run and its replay";
+
+  // A heavier box under the same commands: the blade moves as commanded, the box (pushed by
+  // the same load, on the same sand) otherwise.
+  const std::string changed = node_bag + ".heavier.bag";
+  ASSERT_EQ(run(base + " --set blocks.box.density=4000 --bag " + changed), 0);
+  const auto a = blockStates(node_bag), b = blockStates(changed);
+  ASSERT_EQ(a.size(), b.size());
+  const RigidBlockState *blade_a = test::findBlock(a.back(), "blade"),
+                        *blade_b = test::findBlock(b.back(), "blade"),
+                        *box_a = test::findBlock(a.back(), "box"),
+                        *box_b = test::findBlock(b.back(), "box");
+  ASSERT_TRUE(blade_a && blade_b && box_a && box_b && test::findBlock(b.back(), "rock"));
+  EXPECT_EQ(blade_a->pose.position.y, blade_b->pose.position.y) << "commanded: the same";
+  const double apart = std::hypot(box_a->pose.position.x - box_b->pose.position.x,
+                                  box_a->pose.position.y - box_b->pose.position.y);
+  EXPECT_GT(apart, 1e-4) << "a box 8 times heavier ends elsewhere under the same load";
+  std::printf("the heavier box ends %.3g mm from where the node's did\n", 1e3 * apart);
+  // mpm_sdem_compare reports the difference (and writes its plot).
+  EXPECT_EQ(run(std::string(MPM_SDEM_COMPARE) + " " + node_bag + " " + changed + " > " + node_bag +
+                ".compare.txt 2>&1"),
+            0);
+  for (const std::string& f : {replay, changed}) fs::remove(f);
+  fs::remove_all(node_bag + ".out");
+}
+
+TEST(Resume, NodeContinuesClockTfAndBagFromACheckpoint) {
+  test::NodeClient& n = *g_node;
+  // The uninterrupted run, by the runner: checkpoints every 0.1 s.
+  const std::string scene = param("scene"), dir = param("dir");
+  fs::create_directories(dir);
+  const std::string whole = dir + "/whole.bag", resumed = dir + "/resumed.bag";
+  ASSERT_EQ(run(std::string(MPM_SDEM_RUNNER) + " " + scene +
+                " --set time.end=0.4 --threads 1 --quiet --bag-checkpoint-rate 10 --bag " + whole +
+                " --out " + dir + "/out"),
+            0);
+  // A node resumes it from its checkpoint at 0.2 s and runs to the end.
+  test::Latest<rosgraph_msgs::Clock> clock(n.nh, "/clock");
+  std::mutex m;
+  double first_clock = -1;
+  ros::Subscriber first = n.nh.subscribe<rosgraph_msgs::Clock>(
+      "/clock", 100, [&](const rosgraph_msgs::Clock::ConstPtr& c) {
+        std::lock_guard<std::mutex> l(m);
+        if (first_clock < 0) first_clock = c->clock.toSec();
+      });
+  // Its parameters on the server (a list cannot be given on the command line).
+  const std::string ns = "/mpm_sdem/";
+  ros::param::set(ns + "scene", scene);
+  ros::param::set(ns + "set", std::vector<std::string>{"time.end=0.4"});
+  ros::param::set(ns + "resume", whole + "@0.25");
+  ros::param::set(ns + "record", true);
+  ros::param::set(ns + "bag", resumed);
+  ros::param::set(ns + "end_action", std::string("shutdown"));
+  ros::param::set(ns + "threads", 1);
+  ros::param::set(ns + "bag_checkpoint_rate", 10.0);  // the runner's
+  ros::param::set(ns + "start_paused", true);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    // Not this process's sockets (its ROS connections): the node makes its own.
+    for (int fd = 3; fd < 1024; ++fd) close(fd);
+    execl(MPM_SDEM_NODE, MPM_SDEM_NODE, "__name:=mpm_sdem", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // The node is stopped whatever happens below (it waits paused otherwise).
+  struct Stop {
+    pid_t pid;
+    ~Stop() {
+      if (waitpid(pid, nullptr, WNOHANG) == 0) kill(pid, SIGKILL);
+    }
+  } stop{pid};
+  ASSERT_TRUE(waitFor([&] { return clock.has() && n.stats.has(); }, 30));
+  {
+    // Started paused at the checkpoint at 0.2 s (the bag's last at or before 0.25 s).
+    std::lock_guard<std::mutex> l(m);
+    EXPECT_GE(first_clock, 0.2);
+    EXPECT_LT(first_clock, 0.201);
+    EXPECT_NEAR(n.stats.get().sim_time, first_clock, 1e-9);  // a stamp is whole ns
+    // The box where the uninterrupted run had it then.
+    GetObstacleState g;
+    g.request.name = "box";
+    g = n.call("get_obstacle_state", g);
+    ASSERT_TRUE(g.response.success) << g.response.message;
+    EXPECT_EQ(g.response.header.stamp.toSec(), first_clock);
+    bool found = false;
+    for (const BlockStates& s : blockStates(whole)) {
+      if (s.header.stamp != g.response.header.stamp) continue;
+      const RigidBlockState* box = test::findBlock(s, "box");
+      ASSERT_TRUE(box);
+      EXPECT_EQ(g.response.state.pose.position.x, box->pose.position.x);
+      EXPECT_EQ(g.response.state.pose.position.y, box->pose.position.y);
+      found = true;
+    }
+    EXPECT_TRUE(found) << "the whole run's states at the checkpoint's time";
+  }
+  EXPECT_TRUE(n.trigger("resume"));
+  geometry_msgs::TransformStamped box;
+  EXPECT_TRUE(waitFor(
+      [&] {
+        try {
+          box = n.tf.lookupTransform("world", "mpm_sdem/box", ros::Time(0));
+          return true;
+        } catch (const tf2::TransformException&) {
+          return false;
+        }
+      },
+      10));
+  EXPECT_GT(box.header.stamp.toSec(), 0.2) << "the box's frame goes on from the resumed state";
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  ASSERT_TRUE(fs::exists(resumed));
+  EXPECT_EQ(test::differingTopics(whole, resumed), std::vector<std::string>{})
+      << "topics whose messages differ between the uninterrupted run and the resumed one";
+  fs::remove_all(dir);
+}
+
+int main(int argc, char** argv) {
+  return test::runNodeTests(argc, argv, "test_node_replay", g_node);
+}
