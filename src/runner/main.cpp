@@ -14,9 +14,11 @@
 
 #include "mpm_sdem/core/diagnostics.hpp"
 #include "mpm_sdem/core/limits.hpp"
+#include "mpm_sdem/core/sample_clock.hpp"
 #include "mpm_sdem/core/thread_tuner.hpp"
 #include "mpm_sdem/ros/bag_recorder.hpp"
 #include "mpm_sdem/scene/scene.hpp"
+#include "mpm_sdem/vtk/vtk_series.hpp"
 #include "options.hpp"
 #include "output.hpp"
 #include "progress.hpp"
@@ -144,6 +146,30 @@ int main(int argc, char** argv) {
     bag_stats.dt = dt;
     bag->record(world, bag_stats);
   }
+  // ParaView frames at the start, at each multiple of --vtk-every and at the end; a frame that
+  // cannot be written stops the run (exit 1) rather than leave a series with a gap.
+  std::unique_ptr<VtkSeries> vtk_series;
+  SampleClock vtk_clock(opt.vtk_every > 0 ? 1 / opt.vtk_every : 0);
+  auto writeVtk = [&] {
+    try {
+      if (vtk_series) vtk_series->write(world);
+      return true;
+    } catch (const std::exception& e) {
+      std::cerr << "\nerror: " << e.what() << "\n";
+      vtk_series.reset();
+      return false;
+    }
+  };
+  if (opt.vtk_every > 0) {
+    try {
+      vtk_series = std::make_unique<VtkSeries>((out / "vtk").string());
+    } catch (const std::exception& e) {
+      std::cerr << "error: " << e.what() << "\n";
+      return 1;
+    }
+    vtk_clock.due(world.time());  // starts the schedule: the first frame is this one
+    if (!writeVtk()) return 1;
+  }
   Real next_sample = scene.output.interval;
   runner::Progress progress(scene.end_time, !opt.quiet);
   int status = 0;
@@ -176,6 +202,10 @@ int main(int argc, char** argv) {
       bag_stats.dt = dt;
       bag_stats.profile = world.profile();
       bag->record(world, bag_stats);
+    }
+    if (vtk_series && vtk_clock.due(world.time()) && !writeVtk()) {
+      status = 1;
+      break;
     }
     if (world.time() >= next_sample - eps || world.time() >= scene.end_time - eps) {
       const Diagnostics d = measure(world);
@@ -213,6 +243,7 @@ int main(int argc, char** argv) {
     std::cerr << "interrupted at t = " << world.time() << " s; writing the state reached\n";
     status = 130;
   }
+  if (vtk_series && status != 3 && !writeVtk()) status = 1;
   if (scene.output.particles && status != 3)
     runner::writeParticles(world, (out / "particles.csv").string());
   runner::writeProfile(world, (out / "profile.csv").string());
@@ -227,5 +258,8 @@ int main(int argc, char** argv) {
     bag->close();
     std::fprintf(stderr, "bag: %s (%ld messages)\n", bag->path().c_str(), bag->messageCount());
   }
+  if (vtk_series)
+    std::fprintf(stderr, "ParaView: %s/points.pvd (%d frames)\n", vtk_series->dir().c_str(),
+                 vtk_series->frames());
   return status;
 }

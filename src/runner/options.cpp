@@ -1,5 +1,6 @@
 #include "options.hpp"
 
+#include <cmath>
 #include <cstdlib>
 
 #include "mpm_sdem/core/limits.hpp"
@@ -20,6 +21,8 @@ const char* usage() {
          "  --bag FILE       also record a rosbag as the node does (no ROS master needed)\n"
          "  --bag-cloud-rate HZ, --bag-state-rate HZ\n"
          "                   particle clouds / block states per simulated second (30, 100)\n"
+         "  --vtk-every S    ParaView files in DIR/vtk (points.pvd, ...) every S seconds of\n"
+         "                   simulated time, from the start, and at the end\n"
          "exit status: 0 done, 1 bad scene, 2 bad command line, 3 unstable state, 130 "
          "interrupted\n";
 }
@@ -72,6 +75,17 @@ bool parseOptions(int argc, char** argv, Options& out, std::string& error, bool&
         return false;
       }
       (a == "--bag-cloud-rate" ? out.bag_cloud_rate : out.bag_state_rate) = r;
+    } else if (a == "--vtk-every") {
+      const char* v = value("--vtk-every");
+      if (!v) return false;
+      char* end = nullptr;
+      const double s = std::strtod(v, &end);
+      if (*end != '\0' || *v == '\0' || !(s > 0) || !std::isfinite(s)) {
+        error =
+            "--vtk-every takes an interval > 0 s of simulated time, got '" + std::string(v) + "'";
+        return false;
+      }
+      out.vtk_every = s;
     } else if (a == "--quiet") {
       out.quiet = true;
     } else if (!a.empty() && a[0] == '-') {

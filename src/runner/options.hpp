@@ -15,6 +15,7 @@ struct Options {
   std::string bag;              // write a rosbag like the node's (empty: none)
   double bag_cloud_rate = 30;   // Hz of simulation time
   double bag_state_rate = 100;  // Hz
+  double vtk_every = 0;         // s of simulated time between ParaView frames (0: none)
 };
 
 // Returns false and fills error on a bad command line; help is set for --help.
