@@ -80,10 +80,10 @@ void Simulation::openRecordings() {
       throw std::runtime_error(std::string("parameter ~vtk/dir: ") + e.what());
     }
     vtk_clock_ = SampleClock(1 / params_.vtk_interval);
-    vtk_clock_.due(world_->time());  // starts the schedule: the first frame is this one
-    writeVtk();
     ROS_INFO("writing ParaView files to %s (points.pvd, every %g s)", vtk_->dir().c_str(),
              params_.vtk_interval);
+    vtk_clock_.due(world_->time());  // starts the schedule: the first frame is this one
+    writeVtk();
   }
 }
 
