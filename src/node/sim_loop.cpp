@@ -110,7 +110,8 @@ void Simulation::closeRecordings() {
     video_.reset();
   }
   if (vtk_) {
-    writeVtk();  // the state the run ends in, unless it was the last frame
+    // The state the run ends in, unless it was the last frame or is not finite (as the runner).
+    if (!unstable_) writeVtk();
     if (vtk_)
       ROS_INFO("ParaView files: %s/points.pvd (%d frames, up to t = %.4f s)", vtk_->dir().c_str(),
                vtk_->frames(), vtk_->lastTime());
