@@ -52,7 +52,8 @@ void setTime(vtkUnstructuredGrid* grid, double t) {
   addArray<vtkDoubleArray>(grid->GetFieldData(), "TimeValue", 1, 1)->SetValue(0, t);
 }
 
-// Cells of `size` points each, the points taken in order (vertices, triangles).
+// Cells of `size` points each: the point ids in nodes, or without nodes the points in order (one
+// vertex per point).
 void setCells(vtkUnstructuredGrid* grid, int type, int size, vtkIdType cells,
               const vtkIdType* nodes = nullptr) {
   vtkNew<vtkIdTypeArray> connectivity;
