@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "mpm_sdem/core/limits.hpp"
+#include "mpm_sdem/vtk/vtk_series.hpp"
 
 namespace mpm_sdem::node {
 
@@ -103,7 +104,9 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
       read(pnh, "resume", p.resume, "a checkpoint file, a folder of them, or BAG[@TIME]", error) &&
       read(pnh, "bag_cloud_decimation", bag_decimation, "a whole number >= 1", error) &&
       read(pnh, "video", p.video, "a .avi, .mp4 or .mkv path", error) &&
-      read(pnh, "video_fps", p.video_fps, "a number of frames per simulated second", error);
+      read(pnh, "video_fps", p.video_fps, "a number of frames per simulated second", error) &&
+      read(pnh, "vtk/dir", p.vtk_dir, "a directory path (empty: no ParaView files)", error) &&
+      read(pnh, "vtk/interval", p.vtk_interval, "a number (s of simulated time)", error);
   if (!ok) return false;
   auto fail = [&](const std::string& m) {
     error = m;
@@ -175,6 +178,15 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
   if (!p.video.empty()) {
     if (const std::string v = render::videoPathProblem(p.video); !v.empty())
       return fail("parameter ~video: " + v);
+  }
+  if (!(p.vtk_interval > 0) || !std::isfinite(p.vtk_interval))
+    return fail("parameter ~vtk/interval must be a finite number > 0 s of simulated time, got " +
+                std::to_string(p.vtk_interval));
+  // Trailing slashes off, so that a reset's series is <dir>-reset<n>, not <dir>/-reset<n>.
+  while (p.vtk_dir.size() > 1 && p.vtk_dir.back() == '/') p.vtk_dir.pop_back();
+  if (!p.vtk_dir.empty()) {
+    if (const std::string v = vtkDirProblem(p.vtk_dir); !v.empty())
+      return fail("parameter ~vtk/dir: " + v);
   }
   p.record_def.fixed_frame = p.fixed_frame;
   p.record_def.tf_prefix = p.tf_prefix;

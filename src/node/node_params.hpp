@@ -59,6 +59,10 @@ struct NodeParams {
   std::string resume;
   std::string video;  // .avi/.mp4/.mkv path; empty: no video
   double video_fps = 30;
+  // ParaView files (mpm_sdem/vtk/vtk_series.hpp) into vtk_dir every vtk_interval s of simulated
+  // time; empty: none. A recording like the bag: after ~reset only with record_after_reset.
+  std::string vtk_dir;
+  double vtk_interval = 0.1;
 };
 
 // Fills params from the private node handle; false with a message on a bad value.

@@ -103,6 +103,31 @@ void Simulation::openRecordings() {
     video_->record(*world_);
     ROS_INFO("writing video to %s", video_->path().c_str());
   }
+  if (!params_.vtk_dir.empty()) {
+    // A resumed run's first series goes on from the frames of the run it resumes.
+    const bool resumed = !params_.resume.empty() && resets_ == 0;
+    try {
+      vtk_ = std::make_unique<VtkSeries>(withSuffix(params_.vtk_dir, resets_),
+                                         resumed ? world_->time() : -1);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(std::string("parameter ~vtk/dir: ") + e.what());
+    }
+    vtk_clock_ = SampleClock(1 / params_.vtk_interval);
+    ROS_INFO("writing ParaView files to %s (points.pvd, every %g s)", vtk_->dir().c_str(),
+             params_.vtk_interval);
+    // The schedule starts with this frame; a resumed run's continues the run it resumes.
+    vtk_clock_.due(world_->time(), resumed);
+    if (!resumed) writeVtk();
+  }
+}
+
+void Simulation::writeVtk() {
+  try {
+    vtk_->write(*world_);
+  } catch (const std::exception& e) {
+    ROS_ERROR("%s at t = %.6g s; no more ParaView frames in this run", e.what(), world_->time());
+    vtk_.reset();
+  }
 }
 
 void Simulation::closeRecordings() {
@@ -118,6 +143,14 @@ void Simulation::closeRecordings() {
     ROS_INFO("video closed: %s (%d frames at %g fps)", video_->path().c_str(), video_->frames(),
              params_.video_fps);
     video_.reset();
+  }
+  if (vtk_) {
+    // The state the run ends in, unless it was the last frame or is not finite (as the runner).
+    if (!unstable_) writeVtk();
+    if (vtk_)
+      ROS_INFO("ParaView files: %s/points.pvd (%d frames, up to t = %.4f s)", vtk_->dir().c_str(),
+               vtk_->frames(), vtk_->lastTime());
+    vtk_.reset();
   }
 }
 
@@ -195,6 +228,7 @@ bool Simulation::advance() {
   real_time_.sample(world_->time());
   if (bag_) bag_->record(*world_, status());
   if (video_) video_->record(*world_);
+  if (vtk_ && vtk_clock_.due(world_->time())) writeVtk();
   publishers_.publish(*world_, status());
   if (to_end && world_->time() >= scene_.end_time * (1 - 1e-9)) {
     end_reached_ = true;

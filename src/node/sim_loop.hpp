@@ -11,10 +11,12 @@
 
 #include "commands.hpp"
 #include "mpm_sdem/core/real_time_meter.hpp"
+#include "mpm_sdem/core/sample_clock.hpp"
 #include "mpm_sdem/core/thread_tuner.hpp"
 #include "mpm_sdem/render/render.hpp"
 #include "mpm_sdem/ros/bag_recorder.hpp"
 #include "mpm_sdem/scene/scene.hpp"
+#include "mpm_sdem/vtk/vtk_series.hpp"
 #include "node_params.hpp"
 #include "obstacle_drivers.hpp"
 #include "publishers.hpp"
@@ -61,6 +63,8 @@ class Simulation {
   void resumeFromCheckpoint();
   // The world's commands to the bag (its first recording, or after a reset).
   void logCommands();
+  // A frame of the ParaView series; a frame that cannot be written ends the series, not the run.
+  void writeVtk();
   void restartPacing();
   void pace();
   void logProgress(bool force);
@@ -75,6 +79,8 @@ class Simulation {
   Publishers publishers_;
   std::unique_ptr<BagRecorder> bag_;
   std::unique_ptr<render::VideoRecorder> video_;
+  std::unique_ptr<VtkSeries> vtk_;
+  SampleClock vtk_clock_;
   TimeStepChoice dt_;
   bool paused_ = false;
   bool end_reached_ = false;

@@ -44,7 +44,7 @@ void renderWorld(const World& world, const RenderDef& def, cv::Mat& image) {
   auto value = [&](std::size_t p) -> Real {
     if (scale.color_by == ColorBy::kSpeed) return std::hypot(P.vx[p], P.vy[p]);
     if (scale.color_by == ColorBy::kKind) return P.kind[p];
-    return -meanStress(Stress{P.sxx[p], P.syy[p], P.sxy[p], P.szz[p]});
+    return pressure(Stress{P.sxx[p], P.syy[p], P.sxy[p], P.szz[p]});
   };
   // A point covers its share of a cell: h / sqrt(points per cell), at least one pixel.
   int ppc = 1;

@@ -56,8 +56,8 @@ void toPointCloud(const World& world, int decimation, const std_msgs::Header& he
     vx[1] = static_cast<float>(P.vy[i]);
     vx[2] = static_cast<float>(std::hypot(P.vx[i], P.vy[i]));  // rviz colours by one field
     const Stress s{P.sxx[i], P.syy[i], P.sxy[i], P.szz[i]};
-    p[0] = static_cast<float>(-meanStress(s));
-    p[1] = static_cast<float>(std::sqrt(3.0) * equivalentShear(s));  // sqrt(3 J2)
+    p[0] = static_cast<float>(pressure(s));
+    p[1] = static_cast<float>(vonMises(s));
     *mat = P.material[i];
     *kind = P.kind[i];
   }

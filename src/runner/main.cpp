@@ -16,10 +16,12 @@
 #include "mpm_sdem/core/checkpoint.hpp"
 #include "mpm_sdem/core/diagnostics.hpp"
 #include "mpm_sdem/core/limits.hpp"
+#include "mpm_sdem/core/sample_clock.hpp"
 #include "mpm_sdem/core/thread_tuner.hpp"
 #include "mpm_sdem/ros/bag_recorder.hpp"
 #include "mpm_sdem/ros/checkpoint_source.hpp"
 #include "mpm_sdem/scene/scene.hpp"
+#include "mpm_sdem/vtk/vtk_series.hpp"
 #include "options.hpp"
 #include "output.hpp"
 #include "progress.hpp"
@@ -206,6 +208,31 @@ int main(int argc, char** argv) {
     return (std::floor((t + eps) / scene.output.interval) + 1) * scene.output.interval;
   };
   Real next_sample = fresh ? scene.output.interval : nextSample(world.time());
+  // ParaView frames at the start, at each multiple of --vtk-every and at the end; a frame that
+  // cannot be written stops the run (exit 1) rather than leave a series with a gap.
+  std::unique_ptr<VtkSeries> vtk_series;
+  SampleClock vtk_clock(opt.vtk_every > 0 ? 1 / opt.vtk_every : 0);
+  auto writeVtk = [&] {
+    try {
+      if (vtk_series) vtk_series->write(world);
+      return true;
+    } catch (const std::exception& e) {
+      std::cerr << "\nerror: " << e.what() << "\n";
+      vtk_series.reset();
+      return false;
+    }
+  };
+  if (opt.vtk_every > 0) {
+    try {
+      vtk_series = std::make_unique<VtkSeries>((out / "vtk").string(), resume_after);
+    } catch (const std::exception& e) {
+      std::cerr << "error: " << e.what() << "\n";
+      return 1;
+    }
+    // The schedule starts with this frame; a resumed run's continues the run it resumes.
+    vtk_clock.due(world.time(), !fresh);
+    if (fresh && !writeVtk()) return 1;
+  }
   runner::Progress progress(scene.end_time, !opt.quiet);
   int status = 0;
   bool mach_warned = false;
@@ -249,6 +276,10 @@ int main(int argc, char** argv) {
         break;
       }
     }
+    if (vtk_series && vtk_clock.due(world.time()) && !writeVtk()) {
+      status = 1;
+      break;
+    }
     if (world.time() >= next_sample - eps || world.time() >= scene.end_time - eps) {
       const Diagnostics d = measure(world);
       if (!d.finite) {
@@ -283,6 +314,7 @@ int main(int argc, char** argv) {
     std::cerr << "interrupted at t = " << world.time() << " s; writing the state reached\n";
     status = 130;
   }
+  if (vtk_series && status != 3 && !writeVtk()) status = 1;
   if (scene.output.particles && status != 3)
     runner::writeParticles(world, (out / "particles.csv").string());
   // The state reached, to continue from (a longer run, or a killed one); not a failed state.
@@ -310,5 +342,8 @@ int main(int argc, char** argv) {
     bag->close();
     std::fprintf(stderr, "bag: %s (%ld messages)\n", bag->path().c_str(), bag->messageCount());
   }
+  if (vtk_series)
+    std::fprintf(stderr, "ParaView: %s/points.pvd (%d frames)\n", vtk_series->dir().c_str(),
+                 vtk_series->frames());
   return status;
 }

@@ -1,5 +1,6 @@
 #include "options.hpp"
 
+#include <cmath>
 #include <cstdlib>
 
 #include "mpm_sdem/core/limits.hpp"
@@ -32,6 +33,8 @@ const char* usage() {
          "  --replay-commands BAG\n"
          "                   apply the obstacle commands recorded in BAG (the node's ~commands)\n"
          "                   at their times: the run again, or with a changed scene (--set)\n"
+         "  --vtk-every S    ParaView files in DIR/vtk (points.pvd, ...) every S seconds of\n"
+         "                   simulated time, from the start, and at the end\n"
          "exit status: 0 done, 1 bad scene or checkpoint, 2 bad command line, 3 unstable state, "
          "130 "
          "interrupted\n";
@@ -105,6 +108,17 @@ bool parseOptions(int argc, char** argv, Options& out, std::string& error, bool&
         return false;
       }
       (a == "--resume" ? out.resume : out.replay) = v;
+    } else if (a == "--vtk-every") {
+      const char* v = value("--vtk-every");
+      if (!v) return false;
+      char* end = nullptr;
+      const double s = std::strtod(v, &end);
+      if (*end != '\0' || *v == '\0' || !(s > 0) || !std::isfinite(s)) {
+        error =
+            "--vtk-every takes an interval > 0 s of simulated time, got '" + std::string(v) + "'";
+        return false;
+      }
+      out.vtk_every = s;
     } else if (a == "--quiet") {
       out.quiet = true;
     } else if (!a.empty() && a[0] == '-') {

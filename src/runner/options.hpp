@@ -19,6 +19,7 @@ struct Options {
   double checkpoint_every = 0;     // s of simulation time between checkpoint files (0: none)
   std::string resume;              // continue from: FILE, FOLDER or BAG[@TIME] (empty: no)
   std::string replay;              // a bag whose recorded commands to apply (empty: none)
+  double vtk_every = 0;            // s of simulated time between ParaView frames (0: none)
 };
 
 // Returns false and fills error on a bad command line; help is set for --help.

@@ -45,6 +45,15 @@ inline Real equivalentShear(const Stress& s) {
   return std::sqrt(Real(0.5) * (ax * ax + ay * ay + az * az) + s.xy * s.xy);
 }
 
+// What the outputs show (the node's clouds, pictures, ParaView files), one definition for all:
+// the pressure -sigma_m (compression positive, Pa) and the von Mises stress sqrt(3 J2) (Pa).
+inline Real pressure(const Stress& s) {
+  return -meanStress(s);
+}
+inline Real vonMises(const Stress& s) {
+  return std::sqrt(Real(3)) * equivalentShear(s);
+}
+
 enum class PlasticMode { kElastic, kShear, kTension };
 
 struct PlasticReturn {
