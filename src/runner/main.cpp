@@ -267,15 +267,6 @@ int main(int argc, char** argv) {
       bag_stats.profile = world.profile();
       bag->record(world, bag_stats);
     }
-    if (checkpoints) {
-      try {
-        checkpoints->write(world);
-      } catch (const std::exception& e) {
-        std::cerr << "\nerror: " << e.what() << "\n";
-        status = 1;
-        break;
-      }
-    }
     if (vtk_series && vtk_clock.due(world.time()) && !writeVtk()) {
       status = 1;
       break;
@@ -305,6 +296,17 @@ int main(int argc, char** argv) {
       if (block_series) block_series->write(world);
       if (fem_series) fem_series->write(world);
       next_sample = nextSample(world.time());
+    }
+    // Last, after every output of this step: a run killed after a checkpoint has written
+    // everything up to it, and its resumed run writes everything after.
+    if (checkpoints) {
+      try {
+        checkpoints->write(world);
+      } catch (const std::exception& e) {
+        std::cerr << "\nerror: " << e.what() << "\n";
+        status = 1;
+        break;
+      }
     }
     progress.update(world.stepCount(), world.time(), h,
                     static_cast<long>(world.particles().size()));
