@@ -325,6 +325,9 @@ TEST(Requests, BadParametersStopTheNodeBeforeItSimulates) {
       {"_terrain/resolution:=1e-9", "more than 100000 columns"},
       {"_follow_tf_time_constant:=0", "~follow_tf_time_constant"},
       {"_vtk/interval:=0", "~vtk/interval"},
+      {"_bag_checkpoint_rate:=-1", "~bag_checkpoint_rate"},
+      {"_resume:=" + (dir / "none.bag").string(), "~resume " + (dir / "none.bag").string()},
+      {"_resume:=" + dir.string(), "holds no checkpoint"},
       {"_vtk/dir:=/dev/null", "~vtk/dir: '/dev/null' exists and is not a directory"},
       // A dictionary cannot be given as _name:=value: set on the server first (as a launch
       // file's rosparam does), "follow_tf=" marking it here.
