@@ -10,31 +10,15 @@
 
 #include "mpm_sdem/core/checkpoint.hpp"
 #include "mpm_sdem/core/world.hpp"
+#include "small_world.hpp"
 
 using namespace mpm_sdem;
 
 namespace {
 
-WorldDef smallWorld() {
-  WorldDef w;
-  w.domain.min = Vec2(0, 0);
-  w.domain.max = Vec2(0.2, 0.2);
-  w.cell_size = 0.02;
-  MaterialDef sand;
-  sand.name = "sand";
-  sand.model = MaterialModel::kDruckerPrager;
-  sand.density = 1300;
-  sand.bulk_modulus = 4e4;
-  sand.shear_modulus = 2e4;
-  sand.friction_angle = 0.5;
-  w.materials = {sand};
-  BodyDef bed;
-  bed.name = "bed";
-  bed.material = 0;
-  bed.shape.type = ShapeType::kRectangle;
-  bed.shape.min = Vec2(0, 0);
-  bed.shape.max = Vec2(0.2, 0.04);
-  w.bodies = {bed};
+// The fuzz targets' bed with a box resting above it: blocks, IMP pairs and penalty history.
+WorldDef worldWithABox() {
+  WorldDef w = smallWorld(BlockContactModel::kPenalty);
   BlockDef box;
   box.name = "box";
   box.core = {Vec2(-0.01, -0.01), Vec2(0.01, -0.01), Vec2(0.01, 0.01), Vec2(-0.01, 0.01)};
@@ -46,9 +30,8 @@ WorldDef smallWorld() {
 
 }  // namespace
 
-
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const WorldDef def = smallWorld();
+  static const WorldDef def = worldWithABox();
   static const std::string valid = [] {
     World w(def);
     for (int k = 0; k < 20; ++k) w.step(w.chooseTimeStep().dt);
