@@ -1,10 +1,11 @@
 // Google Benchmark kernels: the P2G and G2P transfers and the constitutive update, per particle,
 // on the column scene (APIC, quadratic B-spline), and the whole step with material points or SPH
-// particles. Counters report particles per second.
+// particles; writing and restoring a checkpoint. Counters report particles per second.
 #include <benchmark/benchmark.h>
 
 #include "bench_scenes.hpp"
 #include "mpm/transfer.hpp"
+#include "mpm_sdem/core/checkpoint.hpp"
 #include "mpm_sdem/core/mpm/constitutive.hpp"
 #include "mpm_sdem/mesh/mesher.hpp"
 
@@ -106,8 +107,32 @@ void BM_Step(benchmark::State& state) {
       static_cast<double>(w.particles().size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 
+// A checkpoint of the settled column: written (arg 1 = 0) or restored into a fresh world of the
+// same scene (arg 1 = 1). Counters: particles per second and bytes per particle.
+void BM_Checkpoint(benchmark::State& state) {
+  World w = settledWorld(state.range(0), MaterialModel::kDruckerPrager);
+  const std::string bytes = saveCheckpoint(w, "column");
+  World fresh(w.def());
+  for (auto _ : state) {
+    if (state.range(1))
+      restoreCheckpoint(fresh, bytes);
+    else
+      benchmark::DoNotOptimize(saveCheckpoint(w, "column"));
+  }
+  const double n = static_cast<double>(w.particles().size());
+  state.counters["particles/s"] =
+      benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["bytes/particle"] = static_cast<double>(bytes.size()) / n;
+}
+
 }  // namespace
 
+BENCHMARK(BM_Checkpoint)
+    ->Args({10000, 0})
+    ->Args({10000, 1})
+    ->Args({100000, 0})
+    ->Args({100000, 1})
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Step)
     ->Args({10000, 0})
     ->Args({10000, 1})
