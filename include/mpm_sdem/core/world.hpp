@@ -143,8 +143,9 @@ class World {
   // (m, world frame) and a torque (N m/m). Moves dynamic blocks only; a caller that holds a
   // load adds it before every step it acts in (the node's ~apply_obstacle_wrench).
   void addBlockLoad(BlockId id, const Vec2& force, const Vec2& point, Real torque);
-  // Every change made by the four calls above (and addBlock, removeBlock) goes to log once it is
-  // made, numbered in order (world_command.hpp); an empty log records nothing.
+  // Every change made by the five calls above (addBlock to addBlockLoad) goes to log once it is
+  // made, numbered in order (world_command.hpp): what a run is re-simulated under. An empty log
+  // records nothing.
   void setCommandLog(CommandLog log) { command_log_ = std::move(log); }
 
   const WorldDef& def() const { return def_; }
