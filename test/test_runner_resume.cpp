@@ -58,7 +58,9 @@ class RunnerResume : public testing::Test {
                      " --out " + (kDir / "whole").string()),
               0);
   }
-  static void TearDownTestSuite() { if (!std::getenv("KEEP")) fs::remove_all(kDir); }
+  static void TearDownTestSuite() {
+    if (!std::getenv("KEEP")) fs::remove_all(kDir);
+  }
 };
 
 }  // namespace
@@ -69,8 +71,8 @@ TEST_F(RunnerResume, AKilledRunResumedFromItsFolderEndsAsTheWholeRun) {
   if (pid == 0) {
     const std::string o = out.string();
     execl(MPM_SDEM_RUNNER, MPM_SDEM_RUNNER, scene().c_str(), "--set", "time.end=0.4",
-          "--checkpoint-every", "0.05", "--vtk-every", "0.05", "--quiet", "--threads", "1",
-          "--out", o.c_str(), static_cast<char*>(nullptr));
+          "--checkpoint-every", "0.05", "--vtk-every", "0.05", "--quiet", "--threads", "1", "--out",
+          o.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
   // Killed a little after its checkpoint at 0.1 s (a quarter of the way): it has written
@@ -102,10 +104,10 @@ TEST_F(RunnerResume, FromABagAtATime) {
   const fs::path out = kDir / "from_bag";
   fs::copy(kDir / "whole", out, fs::copy_options::recursive);
   std::string log;
-  ASSERT_EQ(runner(kRun + " --resume " + (kDir / "whole.bag").string() + "@0.25 --out " +
-                       out.string(),
-                   &log),
-            0)
+  ASSERT_EQ(
+      runner(kRun + " --resume " + (kDir / "whole.bag").string() + "@0.25 --out " + out.string(),
+             &log),
+      0)
       << log;
   EXPECT_NE(log.find("resuming from the checkpoint at t = 0.2"), std::string::npos) << log;
   for (const char* f : {"timeseries.csv", "blocks.csv", "particles.csv", "vtk/points.pvd"})
@@ -141,9 +143,9 @@ TEST_F(RunnerResume, OtherSettingsDamageAndMissingTimesAreRefused) {
   std::string bytes = text(kDir / "whole/checkpoints/t000000.400000.ckpt");
   bytes[bytes.size() / 2] ^= 1;
   std::ofstream(bad, std::ios::binary) << bytes;
-  EXPECT_EQ(runner(kRun + " --resume " + bad.string() + " --out " + (kDir / "refused").string(),
-                   &log),
-            1);
+  EXPECT_EQ(
+      runner(kRun + " --resume " + bad.string() + " --out " + (kDir / "refused").string(), &log),
+      1);
   EXPECT_NE(log.find("damaged: the checksum"), std::string::npos) << log;
 
   EXPECT_EQ(runner(kRun + " --resume " + bag + "@-1 --out " + (kDir / "refused").string(), &log),

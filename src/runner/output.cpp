@@ -107,7 +107,7 @@ void writeParticles(const World& world, const std::string& path) {
     out << p << ',' << P.body[p] << ',' << P.material[p] << ',' << int{P.kind[p]} << ',' << P.x[p]
         << ',' << P.y[p] << ',' << P.vx[p] << ',' << P.vy[p] << ',' << P.mass[p] << ','
         << P.volume0[p] * P.J[p] << ',' << s.xx << ',' << s.yy << ',' << s.xy << ',' << s.zz << ','
-        << -meanStress(s) << '\n';
+        << pressure(s) << '\n';
   }
 }
 
