@@ -57,9 +57,7 @@ void Simulation::resumeFromCheckpoint() {
   CheckpointSource from;
   try {
     from = loadCheckpointSource(params_.resume);
-    const std::string p = resumeProblem(scene_, readCheckpointHeader(from.bytes));
-    if (!p.empty()) throw std::runtime_error("cannot continue from " + from.description + ": " + p);
-    restoreCheckpoint(*world_, from.bytes);
+    resumeWorld(*world_, scene_, from.bytes, from.description);
   } catch (const std::exception& e) {
     throw std::runtime_error("~resume " + params_.resume + ": " + e.what());
   }
@@ -87,11 +85,13 @@ conversions::StatsInput Simulation::status() const {
 void Simulation::openRecordings() {
   if (!recording_) return;
   const conversions::StatsInput in = status();
+  // A resumed run's first recordings continue those of the run it resumes.
+  const bool resumed = !params_.resume.empty() && resets_ == 0;
   if (params_.record) {
     bag_ = std::make_unique<BagRecorder>(withSuffix(params_.bag, resets_), params_.record_def,
                                          scene_text_, scene_.state_text);
-    // A resumed run's first recording starts with the bag's run up to the checkpoint.
-    if (!resumed_bag_.empty() && resets_ == 0)
+    // The bag starts with the resumed bag's run up to the checkpoint.
+    if (resumed && !resumed_bag_.empty())
       bag_->continueFrom(resumed_bag_, world_->time());
     else
       bag_->record(*world_, in);
@@ -104,8 +104,6 @@ void Simulation::openRecordings() {
     ROS_INFO("writing video to %s", video_->path().c_str());
   }
   if (!params_.vtk_dir.empty()) {
-    // A resumed run's first series goes on from the frames of the run it resumes.
-    const bool resumed = !params_.resume.empty() && resets_ == 0;
     try {
       vtk_ = std::make_unique<VtkSeries>(withSuffix(params_.vtk_dir, resets_),
                                          resumed ? world_->time() : -1);
@@ -115,7 +113,7 @@ void Simulation::openRecordings() {
     vtk_clock_ = SampleClock(1 / params_.vtk_interval);
     ROS_INFO("writing ParaView files to %s (points.pvd, every %g s)", vtk_->dir().c_str(),
              params_.vtk_interval);
-    // The schedule starts with this frame; a resumed run's continues the run it resumes.
+    // The schedule starts with this frame, or goes on from the frames the run resumed left.
     vtk_clock_.due(world_->time(), resumed);
     if (!resumed) writeVtk();
   }

@@ -74,12 +74,7 @@ void printSummary(const Scene& s, World& w) {
 bool resume(const std::string& spec, const Scene& scene, World& world, CheckpointSource& from) {
   try {
     from = loadCheckpointSource(spec);
-    if (const std::string p = resumeProblem(scene, readCheckpointHeader(from.bytes)); !p.empty()) {
-      std::cerr << "error: --resume: cannot continue from " << from.description << ": " << p
-                << "\n";
-      return false;
-    }
-    restoreCheckpoint(world, from.bytes);
+    resumeWorld(world, scene, from.bytes, from.description);
   } catch (const std::exception& e) {  // a missing source, or a CheckpointError
     std::cerr << "error: --resume " << spec << ": " << e.what() << "\n";
     return false;

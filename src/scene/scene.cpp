@@ -921,19 +921,6 @@ void differences(const YAML::Node& a, const YAML::Node& b, const std::string& ke
 
 }  // namespace
 
-std::string resumeProblem(const Scene& scene, const CheckpointHeader& h) {
-  if (h.build != buildId())
-    return "it was written by another build of mpm_sdem: " + buildDifference(h.build, buildId()) +
-           ". Continue it with the build that wrote it, or start the run again";
-  if (h.scene_hash == sceneHash(scene.state_text) && h.scene == scene.state_text) return "";
-  std::string why = "it was written for other scene settings (hash " + h.scene_hash + ", here " +
-                    sceneHash(scene.state_text) + "):";
-  for (const std::string& d : sceneDifferences(h.scene, scene.state_text)) why += "\n  " + d;
-  return why +
-         "\nResume with the scene file and --set values it was written with (time.end, output, "
-         "limits and view may change)";
-}
-
 std::vector<std::string> sceneDifferences(const std::string& checkpoint, const std::string& here,
                                           std::size_t max) {
   if (checkpoint == here) return {};
@@ -950,6 +937,31 @@ std::vector<std::string> sceneDifferences(const std::string& checkpoint, const s
     out.push_back("and " + std::to_string(more) + " more");
   }
   return out;
+}
+
+namespace {
+
+// Why a checkpoint cannot continue a run of this scene: "" or the message.
+std::string resumeProblem(const Scene& scene, const CheckpointHeader& h) {
+  if (h.build != buildId())
+    return "it was written by another build of mpm_sdem: " + buildDifference(h.build, buildId()) +
+           ". Continue it with the build that wrote it, or start the run again";
+  if (h.scene_hash == sceneHash(scene.state_text) && h.scene == scene.state_text) return "";
+  std::string why = "it was written for other scene settings (hash " + h.scene_hash + ", here " +
+                    sceneHash(scene.state_text) + "):";
+  for (const std::string& d : sceneDifferences(h.scene, scene.state_text)) why += "\n  " + d;
+  return why +
+         "\nResume with the scene file and --set values it was written with (time.end, output, "
+         "limits and view may change)";
+}
+
+}  // namespace
+
+void resumeWorld(World& world, const Scene& scene, const std::string& bytes,
+                 const std::string& from) {
+  if (const std::string p = resumeProblem(scene, readCheckpointHeader(bytes)); !p.empty())
+    throw CheckpointError("cannot continue from " + from + ": " + p);
+  restoreCheckpoint(world, bytes);
 }
 
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {

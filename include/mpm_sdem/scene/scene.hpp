@@ -57,8 +57,12 @@ Scene parseScene(const std::string& yaml_text, const std::string& source_name,
 // At most max lines, then how many more; empty when they are equal.
 std::vector<std::string> sceneDifferences(const std::string& checkpoint, const std::string& here,
                                           std::size_t max = 8);
-// Why a checkpoint cannot continue a run of this scene: "" or a message naming what differs,
-// the build (buildDifference) or the scene's settings (sceneDifferences), and what to do.
-std::string resumeProblem(const Scene& scene, const CheckpointHeader& checkpoint);
+// A run of this scene continued from a checkpoint (its bytes; from: where they came from, for
+// messages): restored into world, built from the scene, when the checkpoint was written by
+// this build for these settings. Throws CheckpointError otherwise, "cannot continue from
+// <from>: " and what differs, the build (buildDifference) or the scene's settings
+// (sceneDifferences), and what to do; or restoreCheckpoint's error.
+void resumeWorld(World& world, const Scene& scene, const std::string& bytes,
+                 const std::string& from);
 
 }  // namespace mpm_sdem
