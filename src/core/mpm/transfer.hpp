@@ -12,6 +12,7 @@
 #include "mpm_sdem/core/mpm/particles.hpp"
 #include "mpm_sdem/core/mpm/tiles.hpp"
 #include "mpm_sdem/core/world.hpp"
+#include "node_rows.hpp"
 
 namespace mpm_sdem::detail {
 
@@ -64,11 +65,14 @@ void particleToGrid(const Particles& P, Grid& G, const Tiles& T) {
   Real* gpy = G.mom_y.data();
   Real* gfx = G.force_x.data();
   Real* gfy = G.force_y.data();
-  auto deposit = [&](int p, auto source) {
+  // Inlined into the tile loop (always_inline): the compiler then keeps the columns' addresses
+  // in registers across points instead of reloading them through the closure for each one.
+  auto deposit = [&](int p, auto source) __attribute__((always_inline)) {
     constexpr AffineSource kAffine = decltype(source)::value;
-    Real xg, yg;
-    Stencil1D sx, sy;
-    stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+    const Real xg = (P.x[p] - G.origin.x()) * inv_h, yg = (P.y[p] - G.origin.y()) * inv_h;
+    const Window sx = window<K>(xg, P.half_size[p]);  // x: one vector per row
+    Stencil1D sy;
+    K::stencil(yg, P.half_size[p], sy);
     const Real m = P.mass[p];
     const Real mvx = m * P.vx[p], mvy = m * P.vy[p];
     // m C (x_I - x_p) with offsets in grid units r h: APIC's C = B D^-1 with D = diag(second
@@ -94,38 +98,36 @@ void particleToGrid(const Particles& P, Grid& G, const Tiles& T) {
       syy = vol * P.syy[p];
       sxy = vol * P.sxy[p];
     }
+    const Row4 px = mvx + cxx * sx.r, py = mvy + cyx * sx.r;  // the row-independent part
     for (int j = 0; j < S; ++j) {
       const Real wy = sy.w[j], dwy = sy.dw[j];
       const Real ry = (sy.base + j) - yg;
-      const int row = (sy.base + j) * nx + sx.base;
-      for (int i = 0; i < S; ++i) {
-        const int node = row + i;
-        const Real wx = sx.w[i];
-        const Real w = wx * wy;
-        if (kMomentum) {
-          const Real rx = (sx.base + i) - xg;
-          gm[node] += w * m;
-          gpx[node] += w * (mvx + cxx * rx + cxy * ry);
-          gpy[node] += w * (mvy + cyx * rx + cyy * ry);
-        }
-        if (kForce) {
-          const Real gx = sx.dw[i] * wy, gy = wx * dwy;
-          gfx[node] -= sxx * gx + sxy * gy;
-          gfy[node] -= sxy * gx + syy * gy;
-        }
+      const int row = (sy.base + j) * nx + sx.first;
+      const Row4 w = sx.w * wy;
+      if (kMomentum) {
+        storeRow(gm + row, loadRow(gm + row) + w * m);
+        storeRow(gpx + row, loadRow(gpx + row) + w * (px + cxy * ry));
+        storeRow(gpy + row, loadRow(gpy + row) + w * (py + cyy * ry));
+      }
+      if (kForce) {
+        const Row4 gx = sx.dw * wy, gy = sx.w * dwy;
+        storeRow(gfx + row, loadRow(gfx + row) - (sxx * gx + sxy * gy));
+        storeRow(gfy + row, loadRow(gfy + row) - (sxy * gx + syy * gy));
       }
     }
   };
   using Points = std::integral_constant<AffineSource, kApic ? kAffineFromB : kNoAffine>;
   using Band = std::integral_constant<AffineSource, kAffineFromL>;
   forEachParticleByColour(
-      T, [&](int p) { deposit(p, Points{}); }, [&](int p) { deposit(p, Band{}); });
+      T, [&](int p) __attribute__((always_inline)) { deposit(p, Points{}); },
+      [&](int p) { deposit(p, Band{}); });
 }
 
 // The stress and volume of one point over dt with its velocity gradient L_p: Jaumann-rate
 // elasticity (eq. 21-25), the Drucker-Prager return for granular points only (eq. 31-35), and
 // V^{n+1} = det(I + dt L) V^n; a fluid's stress from its new J and L (fluidStress).
-inline void updatePointStress(const MaterialParams& m, Particles& P, long p, Real dt) {
+[[gnu::always_inline]] inline void updatePointStress(const MaterialParams& m, Particles& P, long p,
+                                                     Real dt) {
   const VelocityGradient L{P.lxx[p], P.lxy[p], P.lyx[p], P.lyy[p]};
   if (m.model == MaterialModel::kFluid) {
     P.J[p] *= (1 + dt * L.xx) * (1 + dt * L.yy) - dt * dt * L.xy * L.yx;
@@ -163,46 +165,47 @@ void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
   const Real* vy0 = G.vel0_y.data();
   Real* gfx = G.force_x.data();
   Real* gfy = G.force_y.data();
-  auto spreadStress = [&](int p, const Stencil1D& sx, const Stencil1D& sy) {
+  auto spreadStress = [&](int p, const Window& sx, const Stencil1D& sy) {
     const Real vol = P.volume0[p] * P.J[p] * inv_h;
     const Real sxx = vol * P.sxx[p], syy = vol * P.syy[p], sxy = vol * P.sxy[p];
     for (int j = 0; j < S; ++j) {
-      const int row = (sy.base + j) * nx + sx.base;
-      for (int i = 0; i < S; ++i) {
-        const Real gx = sx.dw[i] * sy.w[j], gy = sx.w[i] * sy.dw[j];
-        gfx[row + i] -= sxx * gx + sxy * gy;
-        gfy[row + i] -= sxy * gx + syy * gy;
-      }
+      const int row = (sy.base + j) * nx + sx.first;
+      const Row4 gx = sx.dw * sy.w[j], gy = sx.w * sy.dw[j];
+      storeRow(gfx + row, loadRow(gfx + row) - (sxx * gx + sxy * gy));
+      storeRow(gfy + row, loadRow(gfy + row) - (sxy * gx + syy * gy));
     }
   };
+  auto stencilsOf = [&](int p, Window& sx, Stencil1D& sy) {
+    sx = window<K>((P.x[p] - G.origin.x()) * inv_h, P.half_size[p]);
+    K::stencil((P.y[p] - G.origin.y()) * inv_h, P.half_size[p], sy);
+  };
   auto band = [&](int p) {
-    Real xg, yg;
-    Stencil1D sx, sy;
-    stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+    Window sx;
+    Stencil1D sy;
+    stencilsOf(p, sx, sy);
     spreadStress(p, sx, sy);
   };
   forEachParticleByColour(
       T,
-      [&](int p) {
-        Real xg, yg;
-        Stencil1D sx, sy;
-        stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
-        Real lxx = 0, lxy = 0, lyx = 0, lyy = 0;
+      [&](int p) __attribute__((always_inline)) {  // inlined as deposit in particleToGrid
+        Window sx;
+        Stencil1D sy;
+        stencilsOf(p, sx, sy);
+        Row4 lxx = {}, lxy = {}, lyx = {}, lyy = {};
         for (int j = 0; j < S; ++j) {
-          const int row = (sy.base + j) * nx + sx.base;
-          for (int i = 0; i < S; ++i) {
-            const Real gx = sx.dw[i] * sy.w[j], gy = sx.w[i] * sy.dw[j];
-            const Real vx = vx0[row + i], vy = vy0[row + i];
-            lxx += vx * gx;
-            lxy += vx * gy;
-            lyx += vy * gx;
-            lyy += vy * gy;
-          }
+          const int row = (sy.base + j) * nx + sx.first;
+          const Row4 gx = sx.dw * sy.w[j], gy = sx.w * sy.dw[j];
+          const Row4 vx = loadRow(vx0 + row), vy = loadRow(vy0 + row);
+          lxx += vx * gx;
+          lxy += vx * gy;
+          lyx += vy * gx;
+          lyy += vy * gy;
         }
-        P.lxx[p] = lxx * inv_h;
-        P.lxy[p] = lxy * inv_h;
-        P.lyx[p] = lyx * inv_h;
-        P.lyy[p] = lyy * inv_h;
+        const Row4 l = sums(lxx, lxy, lyx, lyy) * inv_h;
+        P.lxx[p] = l[0];
+        P.lxy[p] = l[1];
+        P.lyx[p] = l[2];
+        P.lyy[p] = l[3];
         if (dt != 0) updatePointStress(materials[P.material[p]], P, p, dt);
         spreadStress(p, sx, sy);
       },
@@ -225,8 +228,8 @@ inline Real localDamping(Real f, Real v, Real damping) {
 // x_p += dt v, kept inside the domain box (counted in clamped); a non-finite position is not
 // taken (bad = 1), so that no stencil ever leaves the grid. Every particle moves through here,
 // material point or SPH particle.
-inline void moveInside(Particles& P, long p, const G2PSettings& s, Real vx, Real vy, long& clamped,
-                       int& bad) {
+[[gnu::always_inline]] inline void moveInside(Particles& P, long p, const G2PSettings& s, Real vx,
+                                              Real vy, long& clamped, int& bad) {
   Real x = P.x[p] + s.dt * vx, y = P.y[p] + s.dt * vy;
   if (!std::isfinite(x) || !std::isfinite(y)) {
     bad = 1;
@@ -234,8 +237,8 @@ inline void moveInside(Particles& P, long p, const G2PSettings& s, Real vx, Real
   }
   if (x < s.lo.x() || x > s.hi.x() || y < s.lo.y() || y > s.hi.y()) {
     ++clamped;
-    x = std::fmin(std::fmax(x, s.lo.x()), s.hi.x());
-    y = std::fmin(std::fmax(y, s.lo.y()), s.hi.y());
+    x = x < s.lo.x() ? s.lo.x() : x > s.hi.x() ? s.hi.x() : x;  // finite here: no fmin call
+    y = y < s.lo.y() ? s.lo.y() : y > s.hi.y() ? s.hi.y() : y;
   }
   P.x[p] = x;
   P.y[p] = y;
@@ -256,41 +259,44 @@ void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& cla
   int bad = 0;
   // The reduction's private copies are passed in: a lambda made outside the parallel region
   // would capture the shared ones.
-  auto point = [&](long p, long& clamped_here, int& bad_here) {
-    Real xg, yg;
-    Stencil1D sx, sy;
-    stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
-    Real vx = 0, vy = 0, dvx = 0, dvy = 0;
-    Real bxx = 0, bxy = 0, byx = 0, byy = 0;
-    Real lxx = 0, lxy = 0, lyx = 0, lyy = 0;
+  auto point = [&](long p, long& clamped_here, int& bad_here) __attribute__((always_inline)) {
+    const Real xg = (P.x[p] - G.origin.x()) * inv_h, yg = (P.y[p] - G.origin.y()) * inv_h;
+    const Window sx = window<K>(xg, P.half_size[p]);
+    Stencil1D sy;
+    K::stencil(yg, P.half_size[p], sy);
+    const Row4 rx = sx.r * h;
+    Row4 v_x = {}, v_y = {}, dv_x = {}, dv_y = {};
+    Row4 b_xx = {}, b_xy = {}, b_yx = {}, b_yy = {};
+    Row4 l_xx = {}, l_xy = {}, l_yx = {}, l_yy = {};
     for (int j = 0; j < S; ++j) {
       const Real ry = ((sy.base + j) - yg) * h;
-      const int row = (sy.base + j) * G.nx + sx.base;
-      for (int i = 0; i < S; ++i) {
-        const int node = row + i;
-        const Real w = sx.w[i] * sy.w[j];
-        const Real gvx = G.vel_x[node], gvy = G.vel_y[node];
-        vx += w * gvx;
-        vy += w * gvy;
-        if (kScheme == TransferScheme::kFlip) {
-          dvx += w * (gvx - G.vel0_x[node]);
-          dvy += w * (gvy - G.vel0_y[node]);
-        } else if (kScheme == TransferScheme::kApic) {
-          const Real rx = ((sx.base + i) - xg) * h;
-          bxx += w * gvx * rx;
-          bxy += w * gvx * ry;
-          byx += w * gvy * rx;
-          byy += w * gvy * ry;
-        }
-        if (kGradient) {
-          const Real gx = sx.dw[i] * sy.w[j] * inv_h, gy = sx.w[i] * sy.dw[j] * inv_h;
-          lxx += gvx * gx;
-          lxy += gvx * gy;
-          lyx += gvy * gx;
-          lyy += gvy * gy;
-        }
+      const int row = (sy.base + j) * G.nx + sx.first;
+      const Row4 w = sx.w * sy.w[j];
+      const Row4 gvx = loadRow(G.vel_x.data() + row), gvy = loadRow(G.vel_y.data() + row);
+      v_x += w * gvx;
+      v_y += w * gvy;
+      if (kScheme == TransferScheme::kFlip) {
+        dv_x += w * (gvx - loadRow(G.vel0_x.data() + row));
+        dv_y += w * (gvy - loadRow(G.vel0_y.data() + row));
+      } else if (kScheme == TransferScheme::kApic) {
+        b_xx += w * gvx * rx;
+        b_xy += w * gvx * ry;
+        b_yx += w * gvy * rx;
+        b_yy += w * gvy * ry;
+      }
+      if (kGradient) {
+        const Row4 gx = sx.dw * sy.w[j] * inv_h, gy = sx.w * sy.dw[j] * inv_h;
+        l_xx += gvx * gx;
+        l_xy += gvx * gy;
+        l_yx += gvy * gx;
+        l_yy += gvy * gy;
       }
     }
+    const Row4 v = sums(v_x, v_y, dv_x, dv_y), b = sums(b_xx, b_xy, b_yx, b_yy);
+    const Row4 l = sums(l_xx, l_xy, l_yx, l_yy);
+    const Real vx = v[0], vy = v[1], dvx = v[2], dvy = v[3];
+    const Real bxx = b[0], bxy = b[1], byx = b[2], byy = b[3];
+    const Real lxx = l[0], lxy = l[1], lyx = l[2], lyy = l[3];
     if (kScheme == TransferScheme::kFlip) {
       const Real a = s.pic_fraction;
       P.vx[p] = a * vx + (1 - a) * (P.vx[p] + dvx);

@@ -91,9 +91,9 @@ inline PlasticReturn druckerPragerReturn(const MaterialParams& m, Stress& s) {
   } else {
     out.mode = PlasticMode::kTension;
     sm_new = m.tension;
-    tau_new = std::fmin(tau, tau_corner);
+    tau_new = tau < tau_corner ? tau : tau_corner;  // fmin's result, NaN included, without a call
   }
-  const Real scale = tau > 0 ? std::fmax(tau_new, Real(0)) / tau : Real(0);
+  const Real scale = tau > 0 ? (tau_new > 0 ? tau_new : Real(0)) / tau : Real(0);
   s.xx = (s.xx - sm) * scale + sm_new;
   s.yy = (s.yy - sm) * scale + sm_new;
   s.zz = (s.zz - sm) * scale + sm_new;

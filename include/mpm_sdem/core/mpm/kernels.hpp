@@ -26,7 +26,7 @@ struct Stencil1D {
 // Quadratic B-spline, support 3 nodes. D_p = h^2/4 I exactly (seed 000 eq. 29, quadratic case).
 struct QuadraticBSpline {
   static constexpr int kSupport = 3;
-  static inline void stencil(Real xg, Real /*half_size*/, Stencil1D& s) {
+  [[gnu::always_inline]] static inline void stencil(Real xg, Real /*half_size*/, Stencil1D& s) {
     s.base = static_cast<int>(std::floor(xg - Real(0.5)));
     const Real f = xg - s.base;  // in [0.5, 1.5)
     const Real a = Real(1.5) - f, b = f - Real(1), c = f - Real(0.5);
@@ -44,7 +44,7 @@ struct QuadraticBSpline {
 // seed labels "quadratic"; the formula is the cubic B-spline). D_p = h^2/3 I.
 struct CubicBSpline {
   static constexpr int kSupport = 4;
-  static inline void stencil(Real xg, Real /*half_size*/, Stencil1D& s) {
+  [[gnu::always_inline]] static inline void stencil(Real xg, Real /*half_size*/, Stencil1D& s) {
     s.base = static_cast<int>(std::floor(xg)) - 1;
     for (int k = 0; k < 4; ++k) {
       const Real r = xg - (s.base + k);  // particle minus node, in (-2, 2)
@@ -88,7 +88,7 @@ struct Gimp {
     dweight = -xi / lp;
     return Real(1) - (xi * xi + lp * lp) / (Real(2) * lp);
   }
-  static inline void stencil(Real xg, Real lp, Stencil1D& s) {
+  [[gnu::always_inline]] static inline void stencil(Real xg, Real lp, Stencil1D& s) {
     // First node strictly inside the support (x_p - 1 - lp, x_p + 1 + lp).
     s.base = static_cast<int>(std::floor(xg - Real(1) - lp)) + 1;
     s.second_moment = 0;
