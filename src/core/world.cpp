@@ -579,13 +579,10 @@ void World::sphMove(Real dt, Real kick, StepInfo& info) {
 
 template <class F>
 void World::forActiveNodes(const std::vector<int>& tiles, F&& f) {
-  const long count = static_cast<long>(tiles.size());
+  tiles_.nodeRuns(grid_, tiles, node_runs_);
+  const long count = static_cast<long>(node_runs_.size());
 #pragma omp parallel for schedule(static)
-  for (long k = 0; k < count; ++k) {
-    tiles_.forRows(grid_, tiles[k], [&](int first, int n) {
-      for (int i = first; i < first + n; ++i) f(i);
-    });
-  }
+  for (long k = 0; k < count; ++k) f(node_runs_[k].first, node_runs_[k].end);
 }
 
 void World::clearGrid() {
@@ -593,11 +590,14 @@ void World::clearGrid() {
   StageTimer timer(profile_, Stage::kClearGrid);
   Grid& G = grid_;
   // Velocities are overwritten on every active node; a tile leaving the set is zeroed whole.
-  forActiveNodes(tiles_.previous, [&G](int i) {
-    G.mass[i] = G.mom_x[i] = G.mom_y[i] = G.force_x[i] = G.force_y[i] = 0;
+  forActiveNodes(tiles_.previous, [&G](int first, int end) {
+    for (auto* a : {&G.mass, &G.mom_x, &G.mom_y, &G.force_x, &G.force_y})
+      std::fill(a->data() + first, a->data() + end, Real(0));
   });
-  forActiveNodes(tiles_.retired,
-                 [&G](int i) { G.vel_x[i] = G.vel_y[i] = G.vel0_x[i] = G.vel0_y[i] = 0; });
+  forActiveNodes(tiles_.retired, [&G](int first, int end) {
+    for (auto* a : {&G.vel_x, &G.vel_y, &G.vel0_x, &G.vel0_y})
+      std::fill(a->data() + first, a->data() + end, Real(0));
+  });
 }
 
 void World::particleToGrid(bool momentum, bool force) {
@@ -623,27 +623,31 @@ void World::gridVelocity(Real kick, bool after_force) {
   Grid& G = grid_;
   if (!after_force) {
     // Eq. 20: v_I = p_I / m_I; nodes without mass carry no velocity.
-    forActiveNodes(tiles_.active, [&G](int i) {
-      const Real m = G.mass[i];
-      G.vel0_x[i] = m > 0 ? G.mom_x[i] / m : Real(0);
-      G.vel0_y[i] = m > 0 ? G.mom_y[i] / m : Real(0);
+    forActiveNodes(tiles_.active, [&G](int first, int end) {
+      const Real *m = G.mass.data(), *px = G.mom_x.data(), *py = G.mom_y.data();
+      Real *vx = G.vel0_x.data(), *vy = G.vel0_y.data();
+#pragma omp simd
+      for (int i = first; i < end; ++i) {
+        vx[i] = m[i] > 0 ? px[i] / m[i] : Real(0);
+        vy[i] = m[i] > 0 ? py[i] / m[i] : Real(0);
+      }
     });
     applyWalls(G.vel0_x, G.vel0_y);
     return;
   }
   const Real gx = def_.solver.gravity.x(), gy = def_.solver.gravity.y();
   const Real damping = def_.solver.damping;
-  forActiveNodes(tiles_.active, [&](int i) {
-    const Real m = G.mass[i];
-    if (m > 0) {
+  forActiveNodes(tiles_.active, [&](int first, int end) {
+    const Real *m = G.mass.data(), *fx = G.force_x.data(), *fy = G.force_y.data();
+    const Real *vx0 = G.vel0_x.data(), *vy0 = G.vel0_y.data();
+    Real *vx = G.vel_x.data(), *vy = G.vel_y.data();
+#pragma omp simd
+    for (int i = first; i < end; ++i) {
       // Eq. 11 and 17: total nodal force, internal plus gravity (eq. 13-14).
-      const Real fx = detail::localDamping(G.force_x[i] + m * gx, G.vel0_x[i], damping);
-      const Real fy = detail::localDamping(G.force_y[i] + m * gy, G.vel0_y[i], damping);
-      G.vel_x[i] = G.vel0_x[i] + kick * fx / m;
-      G.vel_y[i] = G.vel0_y[i] + kick * fy / m;
-    } else {
-      G.vel_x[i] = 0;
-      G.vel_y[i] = 0;
+      const Real ax = detail::localDamping(fx[i] + m[i] * gx, vx0[i], damping);
+      const Real ay = detail::localDamping(fy[i] + m[i] * gy, vy0[i], damping);
+      vx[i] = m[i] > 0 ? vx0[i] + kick * ax / m[i] : Real(0);
+      vy[i] = m[i] > 0 ? vy0[i] + kick * ay / m[i] : Real(0);
     }
   });
   applyWalls(G.vel_x, G.vel_y);

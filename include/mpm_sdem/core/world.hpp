@@ -180,6 +180,7 @@ class World {
   // The automatic step (seed 000 eq. 51) with factors kappa_1 = cfl and kappa_2.
   TimeStepChoice stepBound(Real cfl, Real kappa2) const;
   void binParticles();
+  // f(first, end) for each run of consecutive nodes of the tiles (Tiles::nodeRuns), in parallel.
   template <class F>
   void forActiveNodes(const std::vector<int>& tiles, F&& f);
   void clearGrid();
@@ -217,6 +218,7 @@ class World {
   Particles particles_;
   Grid grid_;
   Tiles tiles_;
+  std::vector<Tiles::NodeRun> node_runs_;  // scratch of forActiveNodes
   Profile profile_;
   std::unique_ptr<Blocks> blocks_;
   std::unique_ptr<FemBodies> fem_;

@@ -104,4 +104,20 @@ void Tiles::activate() {
     if (!reach_[t]) retired.push_back(t);
 }
 
+void Tiles::nodeRuns(const Grid& g, const std::vector<int>& tiles,
+                     std::vector<NodeRun>& runs) const {
+  runs.clear();
+  for (std::size_t k = 0; k < tiles.size();) {
+    const int t0 = tiles[k], b = t0 / nx;
+    std::size_t last = k;  // the run of tiles t0, t0 + 1, ... in tile row b
+    while (last + 1 < tiles.size() && tiles[last + 1] == tiles[last] + 1 &&
+           tiles[last + 1] / nx == b)
+      ++last;
+    const int i0 = (t0 % nx) * kSize, i1 = std::min((tiles[last] % nx + 1) * kSize, g.nx);
+    for (int j = b * kSize; j < std::min((b + 1) * kSize, g.ny); ++j)
+      runs.push_back({j * g.nx + i0, j * g.nx + i1});
+    k = last + 1;
+  }
+}
+
 }  // namespace mpm_sdem

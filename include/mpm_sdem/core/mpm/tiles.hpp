@@ -45,14 +45,13 @@ struct Tiles {
   void binByKind(const Particles& P, const Grid& g);
   // The colour lists and active node tiles from the tiles' grid entries [start, grid_end).
   void activate();
-  // Call f(first_node, count) for each row segment of nodes in tile t.
-  template <class F>
-  void forRows(const Grid& g, int t, F&& f) const {
-    const int a = t % nx, b = t / nx;
-    const int i0 = a * kSize, i1 = i0 + kSize < g.nx ? i0 + kSize : g.nx;
-    const int j0 = b * kSize, j1 = j0 + kSize < g.ny ? j0 + kSize : g.ny;
-    for (int j = j0; j < j1; ++j) f(j * g.nx + i0, i1 - i0);
-  }
+  // The nodes of a list of tiles (ascending, as active, previous and retired are) as runs of
+  // consecutive nodes [first, end): tiles next to each other in a row of tiles share one run per
+  // row of nodes, so the node sweeps run long vectorisable loops instead of three nodes at a time.
+  struct NodeRun {
+    int first, end;
+  };
+  void nodeRuns(const Grid& g, const std::vector<int>& tiles, std::vector<NodeRun>& runs) const;
 
  private:
   friend struct detail::CheckpointAccess;
