@@ -90,7 +90,7 @@ Real stackDrift(BlockContactModel model) {
   for (int k = 1; k <= 3; ++k) {
     worst = std::max(worst, blocks.state(k).velocity.norm());
     worst = std::max(worst, std::abs(blocks.state(k).position.x()));
-    worst = std::max(worst, std::abs(blocks.state(k).angle) * 0.02);
+    worst = std::max(worst, std::abs(blocks.state(k).angle) * Real(0.02));
   }
   return worst;
 }

@@ -251,7 +251,7 @@ TEST(DiscCluster, WheelRollsOrSlidesDownAnInclineAsEq55Says) {
   const Real k = m.inertia / (m.mass * R * R);  // 0.5 for a uniform disk
   const Real mu_roll = std::tan(th) * k / (1 + k);
   const Vec2 t(std::cos(th), -std::sin(th)), n(std::sin(th), std::cos(th));
-  for (const Real mu : {0.5 * mu_roll, 2 * mu_roll}) {
+  for (const Real mu : {Real(0.5) * mu_roll, 2 * mu_roll}) {
     BlockContactDef contact;
     contact.normal_stiffness = 1e5;
     contact.tangential_stiffness = 5e4;

@@ -33,7 +33,7 @@ TEST(ColumnCollapse, DepositAtRestBelowFrictionAngle) {
   const Particles& P = w.particles();
   for (std::size_t p = 0; p < P.size(); ++p) {
     const int bin = static_cast<int>(P.x[p] / def.cell_size);
-    top[bin] = std::max(top.count(bin) ? top[bin] : 0.0, P.y[p]);
+    top[bin] = std::max(top.count(bin) ? top[bin] : Real(0), P.y[p]);
   }
   Real peak = 0;
   for (const auto& [bin, y] : top) peak = std::max(peak, y);

@@ -158,7 +158,8 @@ TEST_P(Schemes, ClusterRockGoesAsDeepAsTheSpheropolygon) {
       w.step(w.chooseTimeStep().dt);
       checkStep(w);
       for (int s = 0; s < B.shapesOf(0); ++s)
-        deepest[k] = std::max(deepest[k], 0.08 - B.bounds(s).min.y());  // bed surface y = 8 cm
+        deepest[k] =
+            std::max(deepest[k], Real(0.08) - B.bounds(s).min.y());  // bed surface y = 8 cm
     }
   }
   std::printf("%s: deepest %.2f mm (spheropolygon), %.2f mm (cluster)\n",

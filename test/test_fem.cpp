@@ -371,7 +371,7 @@ TEST(FemImpact, NoMaterialPointEverEntersTheBodyAt20MetresPerSecond) {
         Real depth = 1;
         for (int s = 0; s < F.shapeCount(); ++s) {
           const Vec2 a = F.coreVertices(s)[0], b = F.coreVertices(s)[1];
-          const Real t = std::clamp((x - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+          const Real t = std::clamp((x - a).dot(b - a) / (b - a).squaredNorm(), Real(0), Real(1));
           depth = std::min(depth, (a + t * (b - a) - x).norm());
         }
         deepest = std::max(deepest, depth);

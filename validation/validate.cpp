@@ -1220,7 +1220,7 @@ void clusters(const Options& o, Results& r) {
     while (w.time() < end) {
       w.step(stepTowards(w.chooseTimeStep().dt, end, w.time()));
       for (int s = 0; s < B.shapesOf(0); ++s)
-        out.depth = std::max(out.depth, 0.08 - B.bounds(s).min.y());
+        out.depth = std::max(out.depth, Real(0.08) - B.bounds(s).min.y());
     }
     out.wall = seconds(t0);
     const Profile& p = w.profile();
@@ -1335,7 +1335,8 @@ void flexibleBarrier(const Options& o, Results& r) {
   FILE* stages = std::fopen((o.out + "/flexible_barrier_stages.csv").c_str(), "w");
   std::fprintf(stages, "cell_m,element_m,stage,ms_per_step,share\n");
   for (const Real h : o.fast ? std::vector<Real>{0.01} : std::vector<Real>{0.01, 0.005, 0.0025}) {
-    const Real element = std::min(h, 0.004);  // the shipped 4 mm at most: 3 across the barrier
+    const Real element =
+        std::min(h, Real(0.004));  // the shipped 4 mm at most: 3 across the barrier
     const Scene scene =
         loadScene(path, {"grid.cell_size=" + std::to_string(h),
                          "fem_bodies.barrier.element_size=" + std::to_string(element)});

@@ -358,9 +358,10 @@ World::Memory World::memory() const {
   return m;
 }
 
-Real stepTowards(Real dt, Real end_time, Real time) {
-  const Real remaining = end_time - time;
-  return remaining < 1.5 * dt && remaining > dt ? 0.5 * remaining : std::min(dt, remaining);
+Real stepTowards(Real dt, Time end_time, Time time) {
+  const Time remaining = end_time - time;
+  return static_cast<Real>(remaining < 1.5 * dt && remaining > dt ? 0.5 * remaining
+                                                                  : std::min<Time>(dt, remaining));
 }
 
 TimeStepChoice World::chooseTimeStep() {

@@ -107,7 +107,7 @@ int colourIndex(Real value, Real max_value) {
   // Truncated, not rounded: only values at the top reach 255, and 1 mm/s on a 2 m/s scale is
   // the bottom colour, as at rest. NaN (a state about to be refused) at the bottom too.
   if (!(value > 0)) return 0;
-  return static_cast<int>(std::min(255 * value / max_value, 255.0));
+  return static_cast<int>(std::min(255 * value / max_value, Real(255)));
 }
 
 Layout layoutFor(const cv::Size& image, const PixelFrame& frame) {

@@ -233,7 +233,8 @@ visualization_msgs::Marker toFemMarker(const World& world, const std_msgs::Heade
   for (int b = 0; b < F->count(); ++b) {
     const Real full = 0.01 * F->def(b).youngs_modulus;
     for (int e = F->firstElement(b); e < F->firstElement(b) + F->elementCount(b); ++e) {
-      const float s = static_cast<float>(std::min(FemBodies::vonMises(F->stress(e)) / full, 1.0));
+      const float s =
+          static_cast<float>(std::min(FemBodies::vonMises(F->stress(e)) / full, Real(1)));
       std_msgs::ColorRGBA c;
       c.r = s;
       c.g = 0.2f;
@@ -385,7 +386,7 @@ BlockDef toBlockDef(const mpm_sdem::SpawnObstacle::Request& req) {
   if (coreProblem(d.core).empty()) {
     std::vector<Vec2> core = d.core;
     makeCounterClockwise(core);
-    centroid = spheropolygonMass(core, std::max(d.rounding, 0.0), 1).centroid;
+    centroid = spheropolygonMass(core, std::max(d.rounding, Real(0)), 1).centroid;
   }
   const Real c = std::cos(d.angle), s = std::sin(d.angle);
   const Vec2 r(c * centroid.x() - s * centroid.y(), s * centroid.x() + c * centroid.y());

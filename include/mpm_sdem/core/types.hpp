@@ -6,9 +6,18 @@
 
 namespace mpm_sdem {
 
-// Double precision: the momentum-conservation tests resolve drifts of 1e-10 per step, and the
-// precision trade-off is measured before it is changed (issue 5).
+// Double precision by default: the momentum-conservation tests resolve drifts of 1e-10 per step.
+// A build may choose single precision (CMake option MPM_SDEM_SINGLE_PRECISION): half the memory
+// traffic per point, at the accuracy cost measured in bench/README.md (issue 22). Box2D is
+// single precision either way.
+#ifdef MPM_SDEM_SINGLE_PRECISION
+using Real = float;
+#else
 using Real = double;
+#endif
+// The simulation clock: double in every build. A float clock stops resolving the step (its ulp is
+// 1e-6 s at 10 s, a 3% error on a 30 us step) and can stall a run short of its end.
+using Time = double;
 using Vec2 = Eigen::Matrix<Real, 2, 1>;
 using Mat2 = Eigen::Matrix<Real, 2, 2>;
 

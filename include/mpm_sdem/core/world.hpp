@@ -83,7 +83,7 @@ std::string sizeProblem(const DomainDef& domain, Real cell_size,
 
 // The step to take towards end_time given the stable step dt: lands exactly on end_time and
 // merges a sliver of a last step into the one before it (half of the remainder each).
-Real stepTowards(Real dt, Real end_time, Real time);
+Real stepTowards(Real dt, Time end_time, Time time);
 
 // Which term set the time step.
 // kElement: the FEM bodies' elements (FemBodies::elementStep times kappa_1).
@@ -170,7 +170,7 @@ class World {
     std::size_t grid_nodes = 0, active_nodes = 0;
   };
   Memory memory() const;
-  Real time() const { return time_; }
+  Time time() const { return time_; }
   long stepCount() const { return steps_; }
   const Profile& profile() const { return profile_; }
   void resetProfile() { profile_ = Profile(); }
@@ -241,7 +241,7 @@ class World {
     }
   };
   std::vector<PointLoad> point_loads_;  // few and rarely used: a list, not a column
-  Real time_ = 0;
+  Time time_ = 0;
   long steps_ = 0;
   CommandLog command_log_;
   long commands_ = 0;  // applied through the mutators: the next command's sequence number

@@ -18,11 +18,11 @@ class Bag;
 namespace mpm_sdem {
 
 struct RecordDef {
-  Real cloud_rate = 30;   // Hz of simulation time: ~particles
-  Real state_rate = 100;  // Hz: ~blocks, ~block_poses, /tf, ~stats
+  double cloud_rate = 30;   // Hz of simulation time: ~particles
+  double state_rate = 100;  // Hz: ~blocks, ~block_poses, /tf, ~stats
   // Hz: ~checkpoint, the whole state (mpm_sdem/Checkpoint), to resume from; 0: only the one
   // written at the end (checkpoint()).
-  Real checkpoint_rate = 1;
+  double checkpoint_rate = 1;
   int cloud_decimation = 1;      // every n-th material point
   std::string ns = "/mpm_sdem";  // topic namespace (the node's name when the node records)
   std::string fixed_frame = "world";
