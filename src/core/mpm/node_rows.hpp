@@ -21,10 +21,13 @@
 namespace mpm_sdem::detail {
 
 using Row4 = Real __attribute__((vector_size(4 * sizeof(Real))));
-// The same vector at a node's alignment, for loads and stores at any node. A vector of Real may
-// alias Real (both compilers give it its element's alias set); memcpy would tell the compiler
-// that any pointer may have changed and reload every array's address after each store.
-using UnalignedRow4 = Real __attribute__((vector_size(4 * sizeof(Real)), aligned(alignof(Real))));
+// The same vector at a node's alignment, for loads and stores at any node (declared as a typedef
+// of Row4: Clang keeps a vector's own alignment when vector_size and aligned share one
+// attribute). A vector of Real may alias Real (both compilers give it its element's alias set);
+// memcpy would tell the compiler that any pointer may have changed and reload every array's
+// address after each store.
+typedef Row4 UnalignedRow4 __attribute__((aligned(alignof(Real))));
+static_assert(alignof(UnalignedRow4) == alignof(Real), "loads and stores at any node");
 
 inline Row4 loadRow(const Real* p) {
   return *reinterpret_cast<const UnalignedRow4*>(p);
