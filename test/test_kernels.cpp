@@ -4,8 +4,11 @@
 // a central difference with eps = 1e-6 (1e-6).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
+#include <vector>
 
+#include "mpm/node_rows.hpp"
 #include "mpm_sdem/core/mpm/kernels.hpp"
 
 using namespace mpm_sdem;
@@ -73,6 +76,55 @@ TEST(Kernels, GimpOnePointPerCell) {
 }
 TEST(Kernels, GimpFourPointsPerCell) {
   checkKernel<Gimp>(0.125);
+}
+
+// The sweeps' four-node windows (node_rows.hpp) against the kernels' own stencils: the window
+// starts at the node before the point's cell, so that it stays within the reach the tiles'
+// colouring allows (a lane past it would race with another thread's tile); every stencil node
+// has its weight and derivative in its lane (1e-15: the quadratic's lanes evaluate the same
+// polynomials in x_I - x_p, a rounding apart) and the other lanes are exactly zero. Positions at
+// and next to the nodes and half-cells, where the quadratic's pieces and base change, are
+// included.
+template <class K>
+void checkWindow(Real lp) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<Real> pos(3.0, 40.0);
+  std::vector<Real> xs;
+  for (int trial = 0; trial < 2000; ++trial) xs.push_back(pos(rng));
+  for (Real c : {5.0, 17.0}) {
+    for (Real f : {0.0, 0.25, 0.5, 0.75}) {
+      const Real x = c + f;
+      xs.insert(xs.end(), {x, std::nextafter(x, 0.0), std::nextafter(x, 100.0)});
+    }
+  }
+  for (const Real x : xs) {
+    Stencil1D s;
+    K::stencil(x, lp, s);
+    const detail::Window win = detail::window<K>(x, lp);
+    ASSERT_EQ(win.first, static_cast<int>(std::floor(x)) - 1) << "x=" << x;
+    ASSERT_GE(s.base, win.first) << "x=" << x;
+    ASSERT_LE(s.base + K::kSupport, win.first + 4) << "x=" << x;
+    EXPECT_EQ(win.second_moment, s.second_moment);
+    for (int lane = 0; lane < 4; ++lane) {
+      const int node = win.first + lane, k = node - s.base;
+      EXPECT_EQ(win.r[lane], node - x);
+      if (k >= 0 && k < K::kSupport) {
+        EXPECT_NEAR(win.w[lane], s.w[k], 1e-15) << "x=" << x << " node " << node;
+        EXPECT_NEAR(win.dw[lane], s.dw[k], 1e-15) << "x=" << x << " node " << node;
+      } else {
+        EXPECT_EQ(win.w[lane], 0.0) << "x=" << x << " node " << node;
+        EXPECT_EQ(win.dw[lane], 0.0) << "x=" << x << " node " << node;
+      }
+    }
+  }
+}
+
+TEST(Kernels, WindowsHoldTheStencils) {
+  checkWindow<QuadraticBSpline>(0);
+  checkWindow<CubicBSpline>(0);
+  checkWindow<Gimp>(0.25);
+  checkWindow<Gimp>(0.5);
+  checkWindow<Gimp>(0.125);
 }
 
 // Gao et al. (cited in seed 000 sec. 2.1): GIMP with l_p = L/2 equals the quadratic B-spline.
