@@ -25,6 +25,16 @@ inline void stencils(const Grid& g, Real x, Real y, Real lp, Real& xg, Real& yg,
   K::stencil(yg, lp, sy);
 }
 
+// Point p's stencils as the particle sweeps take them: along x a four-node window
+// (node_rows.hpp), along y the kernel's own stencil; yg is the point's y in grid units.
+template <class K>
+[[gnu::always_inline]] inline void sweepStencils(const Grid& g, const Particles& P, long p,
+                                                 Real& yg, Window& sx, Stencil1D& sy) {
+  yg = (P.y[p] - g.origin.y()) * g.inv_h;
+  sx = window<K>((P.x[p] - g.origin.x()) * g.inv_h, P.half_size[p]);
+  K::stencil(yg, P.half_size[p], sy);
+}
+
 // Run body(p) for every particle of the grid sums, tile colour by tile colour; the tiles of one
 // colour are shared among the threads (see Tiles: no two of them write the same node). With
 // band(p), the SPH particles of the transition band go to band instead (they are updated by the
@@ -69,10 +79,10 @@ void particleToGrid(const Particles& P, Grid& G, const Tiles& T) {
   // in registers across points instead of reloading them through the closure for each one.
   auto deposit = [&](int p, auto source) __attribute__((always_inline)) {
     constexpr AffineSource kAffine = decltype(source)::value;
-    const Real xg = (P.x[p] - G.origin.x()) * inv_h, yg = (P.y[p] - G.origin.y()) * inv_h;
-    const Window sx = window<K>(xg, P.half_size[p]);  // x: one vector per row
+    Real yg;
+    Window sx;  // x: one vector per row
     Stencil1D sy;
-    K::stencil(yg, P.half_size[p], sy);
+    sweepStencils<K>(G, P, p, yg, sx, sy);
     const Real m = P.mass[p];
     const Real mvx = m * P.vx[p], mvy = m * P.vy[p];
     // m C (x_I - x_p) with offsets in grid units r h: APIC's C = B D^-1 with D = diag(second
@@ -175,22 +185,20 @@ void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
       storeRow(gfy + row, loadRow(gfy + row) - (sxy * gx + syy * gy));
     }
   };
-  auto stencilsOf = [&](int p, Window& sx, Stencil1D& sy) {
-    sx = window<K>((P.x[p] - G.origin.x()) * inv_h, P.half_size[p]);
-    K::stencil((P.y[p] - G.origin.y()) * inv_h, P.half_size[p], sy);
-  };
   auto band = [&](int p) {
+    Real yg;
     Window sx;
     Stencil1D sy;
-    stencilsOf(p, sx, sy);
+    sweepStencils<K>(G, P, p, yg, sx, sy);
     spreadStress(p, sx, sy);
   };
   forEachParticleByColour(
       T,
       [&](int p) __attribute__((always_inline)) {  // inlined as deposit in particleToGrid
+        Real yg;
         Window sx;
         Stencil1D sy;
-        stencilsOf(p, sx, sy);
+        sweepStencils<K>(G, P, p, yg, sx, sy);
         Row4 lxx = {}, lxy = {}, lyx = {}, lyy = {};
         for (int j = 0; j < S; ++j) {
           const int row = (sy.base + j) * nx + sx.first;
@@ -260,10 +268,10 @@ void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& cla
   // The reduction's private copies are passed in: a lambda made outside the parallel region
   // would capture the shared ones.
   auto point = [&](long p, long& clamped_here, int& bad_here) __attribute__((always_inline)) {
-    const Real xg = (P.x[p] - G.origin.x()) * inv_h, yg = (P.y[p] - G.origin.y()) * inv_h;
-    const Window sx = window<K>(xg, P.half_size[p]);
+    Real yg;
+    Window sx;
     Stencil1D sy;
-    K::stencil(yg, P.half_size[p], sy);
+    sweepStencils<K>(G, P, p, yg, sx, sy);
     const Row4 rx = sx.r * h;
     Row4 v_x = {}, v_y = {}, dv_x = {}, dv_y = {};
     Row4 b_xx = {}, b_xy = {}, b_yx = {}, b_yy = {};
