@@ -27,8 +27,11 @@ struct Forces {
 };
 
 // The resting square of validation/cases.hpp, settled (asserted) and measured.
-Forces restingSquare(Real h, Real slide_speed, Real mu) {
-  World w(cases::restingSquare(h, mu));
+Forces restingSquare(Real h, Real slide_speed, Real mu,
+                     ContactIntegration integration = ContactIntegration::kExplicit) {
+  WorldDef def = cases::restingSquare(h, mu);
+  def.coupling.normal_integration = integration;
+  World w(def);
   const cases::RestingForces f = cases::restingSquareForces(w, slide_speed);
   EXPECT_TRUE(f.settled) << "the square did not come to rest in 3 s";
   std::printf("h = %g m, slide %g m/s: force on the block (%.5f, %.5f) W\n", h, slide_speed,
@@ -56,6 +59,20 @@ TEST(ImpForces, NormalForceEqualsWeightCoarseGrid) {
 TEST(ImpForces, NormalForceEqualsWeightFineGrid) {
   const Forces f = restingSquare(0.005, 0, 0.1);
   EXPECT_NEAR(-f.mean_force.y() / f.weight, 1.0, 0.01) << "weight " << f.weight << " N/m";
+}
+
+// The same with the normal springs integrated exactly over the step: at rest the step's mean
+// impulse carries the weight as the force did.
+TEST(ImpForces, NormalForceEqualsWeightExactIntegration) {
+  const Forces f = restingSquare(0.01, 0, 0.1, ContactIntegration::kExact);
+  EXPECT_NEAR(-f.mean_force.y() / f.weight, 1.0, 0.01) << "weight " << f.weight << " N/m";
+}
+
+TEST(ImpForces, SlidingFrictionIsMuTimesWeightExactIntegration) {
+  const Real mu = 0.3;
+  const Forces f = restingSquare(0.01, 2.0, mu, ContactIntegration::kExact);
+  EXPECT_NEAR(f.mean_force.x() / (mu * f.weight), 1.0, 0.02)
+      << "tangential " << f.mean_force.x() << " N/m, normal " << -f.mean_force.y() << " N/m";
 }
 
 TEST(ImpForces, SlidingFrictionIsMuTimesWeight) {

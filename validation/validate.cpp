@@ -910,7 +910,9 @@ void debrisSweep(const Options& o, Results& r) {
 // any difference, so one run per resolution shows nothing. At each cell size (2 x 2 points per
 // cell), `members` runs whose points start moved by up to 1e-4 of a cell (uniform, seeds 1..n),
 // with the IMP springs per point (the scene's 2e5 N/m) and per length of contact (4e7 Pa, the
-// same spring at 1 cm). The column stands on the floor (its outline at y = 0 to 0.2 m).
+// same spring at 1 cm), and per point integrated exactly (issue 22: the step is then the
+// material's and the blocks', not the points' springs'). The column stands on the floor (its
+// outline at y = 0 to 0.2 m).
 void debrisEnsemble(const Options& o, Results& r) {
   const Scene scene = loadScene(debrisScenePath(true));
   const std::vector<Real> sizes =
@@ -920,11 +922,21 @@ void debrisEnsemble(const Options& o, Results& r) {
   std::fprintf(table,
                "stiffness_per,cell_size_m,member,points,steps,wall_s,block2_left_cm,block1_left_"
                "cm\n");
-  for (const SpringBasis basis : {SpringBasis::kPerPoint, SpringBasis::kPerLength}) {
-    const char* basis_name = basis == SpringBasis::kPerPoint ? "point" : "length";
+  struct Springs {
+    SpringBasis basis;
+    ContactIntegration integration;
+    const char* name;
+  };
+  for (const Springs& springs :
+       {Springs{SpringBasis::kPerPoint, ContactIntegration::kExplicit, "point"},
+        Springs{SpringBasis::kPerLength, ContactIntegration::kExplicit, "length"},
+        Springs{SpringBasis::kPerPoint, ContactIntegration::kExact, "point, exact"}}) {
+    const SpringBasis basis = springs.basis;
+    const char* basis_name = springs.name;
     for (Real h : sizes) {
       WorldDef def = debrisAt(scene, h, scene.world.time_step.contact_factor);
       def.coupling.stiffness_per = basis;
+      def.coupling.normal_integration = springs.integration;
       if (basis == SpringBasis::kPerLength) {
         def.coupling.normal_stiffness = 4e7;
         def.coupling.tangential_stiffness = 2e7;

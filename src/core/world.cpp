@@ -413,10 +413,18 @@ TimeStepChoice World::stepBound(Real cfl, Real kappa2) const {
     // Eq. 51, second term, for the coupling springs (lightest point or body). The springs
     // between bodies do not bound this step: the bodies take substeps within their own bound.
     const ContactBodies& bodies = *contactBodies();
+    const CouplingDef& c = coupling_->def();
     const Real zeta = bodies.maxDampingRatio();  // the most damped contact bounds the step
-    const Real block = bodies.lightestMass();
-    const Real dt = contactTimeStep(std::fmin(lightest_point_, block / largest_spring_scale_),
-                                    coupling_->def().normal_stiffness, zeta, 1, kappa2);
+    const Real block = bodies.lightestMass() / largest_spring_scale_;
+    Real dt =
+        contactTimeStep(std::fmin(lightest_point_, block), c.normal_stiffness, zeta, 1, kappa2);
+    if (c.normal_integration == ContactIntegration::kExact) {
+      // Integrated exactly, a normal spring allows any step on its point; the block still
+      // takes the summed forces explicitly (its own term), and the points the tangential
+      // springs (undamped, explicit).
+      dt = std::fmin(contactTimeStep(block, c.normal_stiffness, zeta, 1, kappa2),
+                     contactTimeStep(lightest_point_, c.tangential_stiffness, 0, 1, kappa2));
+    }
     if (dt < choice.dt) choice = {dt, StepLimit::kContact};
   }
   return choice;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "mpm/transfer.hpp"
+#include "mpm_sdem/core/coupling/restitution.hpp"
 
 namespace mpm_sdem {
 
@@ -18,6 +19,7 @@ void ImpCoupling::beforeStep(CouplingStep& s) {
   active_ = 0;
   on_material_.setZero();
   const Real rp = def_.contact_radius;
+  const bool exact = def_.normal_integration == ContactIntegration::kExact;
   search_.forEachContact(P, B, [&](ContactPair& c, int b, const CoreDistance& d) {
     const int p = c.particle;
     const Real a = B.rounding(b);
@@ -28,13 +30,14 @@ void ImpCoupling::beforeStep(CouplingStep& s) {
     // that friction cannot tip (a disk of 10 cells per radius slid without spinning at
     // mu < 0.2), and it floats r_p - h/(2 ppc) above the block.
     const Real xi = a + materialReach(P, p, rp) - d.distance;
-    if (xi <= 0) {
+    auto release = [&c] {
       c.history.setZero();
       c.force.setZero();
-      return;
-    }
-    // Contact point: the middle of the overlap along the normal (eq. 41 for a disk).
-    c.point = d.point + (a - xi / 2) * d.normal;
+    };
+    if (xi <= 0 && !exact) return release();
+    // Contact point: the middle of the overlap along the normal (eq. 41 for a disk), the
+    // block's surface for a pair that only meets within the step.
+    c.point = d.point + (a - std::fmax(xi, Real(0)) / 2) * d.normal;
     // The material's velocity at the contact point, not at the point's centre: v_p + L_p d
     // with the velocity gradient of the last transfer. A spinning body's centre moves slower
     // than its surface by omega times the depth, and a contact that read v_p saw a rolling
@@ -49,7 +52,10 @@ void ImpCoupling::beforeStep(CouplingStep& s) {
     const Real kn = scale * def_.normal_stiffness, kt = scale * def_.tangential_stiffness;
     const Real m = reducedMass(P.mass[p], B.mass(b));
     const Real gamma = 2 * B.dampingRatio(b) * std::sqrt(kn * m);
-    const Real fn = std::fmax(kn * xi - gamma * vn, Real(0));
+    // Eq. 43's normal force; exact: the step's mean force of the same spring-dashpot.
+    const Real fn = exact ? clippedSpringImpulse(m, kn, gamma, xi, -vn, s.dt) / s.dt
+                          : std::fmax(kn * xi - gamma * vn, Real(0));
+    if (xi <= 0 && fn == 0) return release();
     c.history += (v - vn * d.normal) * s.dt;
     c.history -= c.history.dot(d.normal) * d.normal;
     Vec2 ft = -kt * c.history;

@@ -57,4 +57,55 @@ Real contactTimeStep(Real m, Real k, Real zeta, int n, Real kappa2) {
   return M_PI * kappa2 * 2 / w * (std::sqrt(1 + zeta * zeta) - zeta);
 }
 
+// With w = sqrt(k / m), zeta = c / (2 sqrt(k m)) and s2 = w^2 (1 - zeta^2) (either sign), every
+// solution of the oscillator is exp(-zeta w t) (a C(t) + b S(t)) with C = cos, S = sin / sqrt(s2)
+// when s2 > 0, cosh and sinh / sqrt(-s2) when s2 < 0, and C = 1, S = t at critical damping: the
+// overlap with a = x0, b = x0' + zeta w x0, its rate with a = x0', b = -(zeta w x0' + w^2 x0),
+// and the force k x + c x', which obeys the same equation, with a = f0,
+// b = f0' + zeta w f0 = k x0' - c f0 / m + zeta w f0. Its first zero solves tan or tanh of
+// sqrt(|s2|) t = -a sqrt(|s2|) / b, or t = -a / b; the tangent's root exists for any b (the
+// force of an under-damped contact always ends), the others only for b < -a sqrt(|s2|).
+Real clippedSpringImpulse(Real m, Real k, Real c, Real x, Real u, Real dt) {
+  Real span = dt;
+  if (x <= 0) {  // apart: contact starts when x = 0, if within the step
+    if (!(u > 0) || x + u * span <= 0) return 0;
+    span += x / u;
+    x = 0;
+  }
+  const Real f0 = k * x + c * u;
+  // Separating faster than the spring pushes (or touching at rest): it never acts.
+  if (!(f0 > 0 || (f0 == 0 && u > 0))) return 0;
+  const Real w = std::sqrt(k / m), zw = c / (2 * m), s2 = w * w - zw * zw;
+  const Real b = k * u - c * f0 / m + zw * f0;
+  // The force's first zero, if before the end of the step.
+  Real t = span;
+  if (s2 > 0) {
+    const Real s = std::sqrt(s2);
+    t = std::fmin(t, std::atan2(f0 * s, -b) / s);
+  } else if (s2 < 0) {
+    const Real s = std::sqrt(-s2);
+    if (-b > f0 * s) t = std::fmin(t, std::atanh(f0 * s / -b) / s);
+  } else if (b < 0) {
+    t = std::fmin(t, -f0 / b);
+  }
+  // eC = exp(-zeta w t) C, eS = exp(-zeta w t) S; the hyperbolic ones as sums of decaying
+  // exponentials (s < zeta w), which cannot overflow however stiff or damped the contact.
+  Real eC, eS;
+  if (s2 > 0) {
+    const Real s = std::sqrt(s2), decay = std::exp(-zw * t);
+    eC = decay * std::cos(s * t);
+    eS = decay * std::sin(s * t) / s;
+  } else if (s2 < 0) {
+    const Real s = std::sqrt(-s2);
+    const Real slow = std::exp((s - zw) * t), fast = std::exp(-(s + zw) * t);
+    eC = (slow + fast) / 2;
+    eS = (slow - fast) / (2 * s);  // relative round-off eps / (s t) near critical damping
+  } else {
+    eC = std::exp(-zw * t);
+    eS = eC * t;
+  }
+  const Real u_end = u * eC - (zw * u + w * w * x) * eS;
+  return m * (u - u_end);
+}
+
 }  // namespace mpm_sdem

@@ -42,12 +42,22 @@ enum class SpringBasis {
                // spacing, so a face is as stiff at every resolution
 };
 
+// How an IMP's normal spring-dashpot acts over a step.
+enum class ContactIntegration {
+  kExplicit,  // seed 000 sec. 4.2: the force at the start of the step, held over it; the
+              // springs bound the step (eq. 51, second term)
+  kExact,     // the impulse of the spring-dashpot over the step in closed form for the point
+              // and block as a free pair (clippedSpringImpulse), starting within the step if
+              // they meet; the normal springs no longer bound the step, the tangential do
+};
+
 struct CouplingDef {
   CouplingScheme scheme = CouplingScheme::kImp;
   // Spring schemes (kImp, kImpGrid, kPartitioned).
   Real normal_stiffness = 1e6;      // k_n of one contact (N/m per metre of thickness)
   Real tangential_stiffness = 5e5;  // k_t (N/m per metre)
-  SpringBasis stiffness_per = SpringBasis::kPerPoint;  // kImp and kImpGrid
+  SpringBasis stiffness_per = SpringBasis::kPerPoint;                     // kImp and kImpGrid
+  ContactIntegration normal_integration = ContactIntegration::kExplicit;  // kImp and kImpGrid
   Real contact_radius = 0;   // r_p (m); 0: h / sqrt(points per cell), inside eq. 45
   Real verlet_distance = 0;  // V_d (m); 0: half a cell
   // kMultiVelocity: the block's points per cell side (its nodal mass and normal, eq. 23).

@@ -1,5 +1,6 @@
 // Damping of the linear spring contacts (block-block penalty springs, IMP springs) from the
-// restitution a scene asks for, and the explicit time step such a contact allows.
+// restitution a scene asks for, the explicit time step such a contact allows, and its impulse
+// over a step integrated in closed form (which allows any step).
 #pragma once
 
 #include "mpm_sdem/core/types.hpp"
@@ -24,5 +25,13 @@ Real restitutionDampingRatio(Real e);
 // damping force taken explicitly. With n = 1 and no damping it is seed 000 eq. 51's
 // 2 pi kappa_2 sqrt(m / k).
 Real contactTimeStep(Real m, Real k, Real zeta, int n, Real kappa2);
+
+// The impulse (N s per metre of thickness, >= 0) that such a contact gives a free pair of reduced
+// mass m over a step dt, integrated exactly: m x'' = -max(k x + c x', 0) from the overlap x
+// (m; <= 0 when apart) and its rate x' (m/s; > 0 approaching) at the start of the step. A pair
+// still apart starts touching when x reaches 0 within the step; the force ends when it would
+// pull. The impulse is m (x'(start of contact) - x'(end of the step or of contact)), so at any
+// dt it stops at most what approaches and gives back at most what the spring stored.
+Real clippedSpringImpulse(Real m, Real k, Real c, Real overlap, Real rate, Real dt);
 
 }  // namespace mpm_sdem
