@@ -1,7 +1,7 @@
 // Instructions per particle-step without timing noise: the column scene's steps under valgrind's
 // callgrind, which counts only inside measuredSteps (bench/instructions.sh passes
 // --toggle-collect for it). Usage: mpm_sdem_bench_instructions elastic|drucker_prager PARTICLES
-// STEPS; prints the particle count, for the script's division.
+// STEPS [usf|usl]; prints the particle count, for the script's division.
 #include <omp.h>
 
 #include <cstdio>
@@ -18,8 +18,13 @@ __attribute__((noinline)) void measuredSteps(World& world, int steps) {
 }
 
 int main(int argc, char** argv) {
-  if (argc != 4) {
-    std::fprintf(stderr, "usage: %s elastic|drucker_prager PARTICLES STEPS\n", argv[0]);
+  if (argc != 4 && argc != 5) {
+    std::fprintf(stderr, "usage: %s elastic|drucker_prager PARTICLES STEPS [usf|usl]\n", argv[0]);
+    return 2;
+  }
+  const std::string update = argc == 5 ? argv[4] : "usf";
+  if (update != "usf" && update != "usl") {
+    std::fprintf(stderr, "stress update must be usf or usl, got '%s'\n", argv[4]);
     return 2;
   }
   const std::string model = argv[1];
@@ -28,9 +33,11 @@ int main(int argc, char** argv) {
     return 2;
   }
   omp_set_num_threads(1);
-  World world(bench::columnWorld(std::atol(argv[2]), model == "elastic"
-                                                         ? MaterialModel::kLinearElastic
-                                                         : MaterialModel::kDruckerPrager));
+  WorldDef def =
+      bench::columnWorld(std::atol(argv[2]), model == "elastic" ? MaterialModel::kLinearElastic
+                                                                : MaterialModel::kDruckerPrager);
+  def.solver.stress_update = update == "usf" ? StressUpdate::kUsf : StressUpdate::kUsl;
+  World world(def);
   for (int s = 0; s < 10; ++s) world.step(world.chooseTimeStep().dt);  // warm-up, as throughput
   measuredSteps(world, std::atoi(argv[3]));
   std::printf("particles %zu\n", world.particles().size());

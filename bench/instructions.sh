@@ -3,11 +3,11 @@
 # callgrind: a figure free of timing noise, to see a 10% change. valgrind 3.19 cannot run AVX-512
 # code, so this builds its own tree for AVX2 + FMA (-march=haswell; ISA=x86-64 for the SSE2
 # baseline) in build-instructions/ and counts only the measured steps (not the set-up).
-# Usage: bench/instructions.sh [elastic|drucker_prager] [PARTICLES] [STEPS]
-# (defaults: elastic 9800 20). Prints instructions per particle-step and the stages' shares.
+# Usage: bench/instructions.sh [elastic|drucker_prager] [PARTICLES] [STEPS] [usf|usl]
+# (defaults: elastic 9800 20 usf). Prints instructions per particle-step and the stages' shares.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-model="${1:-elastic}" particles="${2:-9800}" steps="${3:-20}"
+model="${1:-elastic}" particles="${2:-9800}" steps="${3:-20}" update="${4:-usf}"
 isa="${ISA:-haswell}"
 dir="${INSTRUCTIONS_BUILD_DIR:-$root/build-instructions-$isa}"
 export PATH="/usr/bin:$PATH"  # Debian's python3 for catkin (shared/ros-on-debian.md)
@@ -17,13 +17,13 @@ cmake -S "$root" -B "$dir" -DCMAKE_BUILD_TYPE=Release -DMPM_SDEM_NATIVE=OFF \
   { cat "$dir/cmake.log"; exit 1; }
 cmake --build "$dir" -j"${JOBS:-2}" --target mpm_sdem_bench_instructions >"$dir/build.log" 2>&1 ||
   { tail -30 "$dir/build.log"; exit 1; }
-out="$dir/callgrind.$model.$particles.out"
+out="$dir/callgrind.$model.$particles.$update.out"
 log="$(OMP_NUM_THREADS=1 valgrind --tool=callgrind --callgrind-out-file="$out" \
   --toggle-collect='measuredSteps*' "$dir/devel/lib/mpm_sdem/mpm_sdem_bench_instructions" \
-  "$model" "$particles" "$steps" 2>&1)"
+  "$model" "$particles" "$steps" "$update" 2>&1)"
 n="$(echo "$log" | sed -n 's/^particles \([0-9]*\)$/\1/p')"
 total="$(callgrind_annotate "$out" 2>/dev/null | sed -n 's/^ *\([0-9,]*\) .*PROGRAM TOTALS.*/\1/p' | tr -d ,)"
-echo "column $model, $n points, $steps steps, -march=$isa, one thread"
+echo "column $model ($update), $n points, $steps steps, -march=$isa, one thread"
 awk -v t="$total" -v n="$n" -v s="$steps" \
   'BEGIN { printf "instructions per particle-step: %.0f (%s in the measured steps)\n", t / (n * s), t }'
 # The stages (inclusive): where the instructions go.
