@@ -15,7 +15,6 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -713,15 +712,7 @@ const Real kSnapshotTimes[] = {0.0, 0.25, 0.30, 0.35, 0.40, 0.45, 1.0};
 DebrisRun runDebris(const WorldDef& def, Real end, FILE* series, FILE* snapshots, Real jitter = 0,
                     unsigned seed = 0) {
   World w(def);
-  if (jitter > 0) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<Real> u(-jitter, jitter);
-    Particles& P = w.particles();
-    for (std::size_t p = 0; p < P.size(); ++p) {
-      P.x[p] += u(rng);
-      P.y[p] += u(rng);
-    }
-  }
+  if (jitter > 0) perturbPositions(w.particles(), jitter, seed);
   const Blocks& B = *w.blocks();
   const int b1 = B.indexOf(B.find("block1")), b2 = B.indexOf(B.find("block2")),
             b3 = B.indexOf(B.find("block3"));

@@ -86,6 +86,7 @@ bool resume(const std::string& spec, const Scene& scene, World& world, Checkpoin
 }  // namespace
 
 int main(int argc, char** argv) {
+  const auto started = std::chrono::steady_clock::now();
   runner::Options opt;
   std::string error;
   bool help = false;
@@ -117,6 +118,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   World& world = *world_ptr;
+  if (opt.perturb > 0) perturbPositions(world.particles(), opt.perturb, opt.seed);
   // Energy scale for the growth limit: the initial total, which with potential energy measured
   // from the domain floor is the sum of non-negative terms (measured before a resume, so that a
   // resumed run keeps the limit of the run it continues).
@@ -328,6 +330,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "replay: %zu of %zu commands could not be applied\n", replay->skipped(),
                  replay->count());
   runner::writeProfile(world, (out / "profile.csv").string());
+  runner::writeSummary(
+      world, status,
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),
+      (out / "summary.csv").string());
   const Profile& prof = world.profile();
   std::fprintf(stderr, "per-stage time (ms/step):");
   for (int s = 0; s < static_cast<int>(Stage::kCount); ++s) {

@@ -35,6 +35,9 @@ const char* usage() {
          "                   at their times: the run again, or with a changed scene (--set)\n"
          "  --vtk-every S    ParaView files in DIR/vtk (points.pvd, ...) every S seconds of\n"
          "                   simulated time, from the start, and at the end\n"
+         "  --perturb M      move every material point at the start by a uniform draw in\n"
+         "                   [-M, M] m along x and y (an ensemble member; not with --resume)\n"
+         "  --seed N         the perturbation's seed (default 1): the same N, the same run\n"
          "exit status: 0 done, 1 bad scene or checkpoint, 2 bad command line, 3 unstable state, "
          "130 "
          "interrupted\n";
@@ -119,6 +122,26 @@ bool parseOptions(int argc, char** argv, Options& out, std::string& error, bool&
         return false;
       }
       out.vtk_every = s;
+    } else if (a == "--perturb") {
+      const char* v = value("--perturb");
+      if (!v) return false;
+      char* end = nullptr;
+      const double m = std::strtod(v, &end);
+      if (*end != '\0' || *v == '\0' || !(m >= 0) || m > 1) {
+        error = "--perturb takes a distance in [0, 1] m, got '" + std::string(v) + "'";
+        return false;
+      }
+      out.perturb = m;
+    } else if (a == "--seed") {
+      const char* v = value("--seed");
+      if (!v) return false;
+      char* end = nullptr;
+      const long long n = std::strtoll(v, &end, 10);
+      if (*end != '\0' || *v == '\0' || n < 0 || n > 4294967295LL) {
+        error = "--seed takes a whole number from 0 to 4294967295, got '" + std::string(v) + "'";
+        return false;
+      }
+      out.seed = static_cast<unsigned>(n);
     } else if (a == "--quiet") {
       out.quiet = true;
     } else if (!a.empty() && a[0] == '-') {
@@ -133,6 +156,11 @@ bool parseOptions(int argc, char** argv, Options& out, std::string& error, bool&
   }
   if (out.scene.empty()) {
     error = "no scene file given";
+    return false;
+  }
+  if (out.perturb > 0 && !out.resume.empty()) {
+    error =
+        "--perturb applies to a fresh start, not to --resume (the checkpoint has the positions)";
     return false;
   }
   if (!out.bag.empty()) {

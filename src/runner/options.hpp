@@ -20,6 +20,8 @@ struct Options {
   std::string resume;              // continue from: FILE, FOLDER or BAG[@TIME] (empty: no)
   std::string replay;              // a bag whose recorded commands to apply (empty: none)
   double vtk_every = 0;            // s of simulated time between ParaView frames (0: none)
+  double perturb = 0;              // m: every point moved by up to this along x and y (0: none)
+  unsigned seed = 1;               // of the perturbation
 };
 
 // Returns false and fills error on a bad command line; help is set for --help.

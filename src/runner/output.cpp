@@ -53,7 +53,7 @@ BlockSeriesWriter::BlockSeriesWriter(const std::string& path, Real resume_after)
     : out_(openCsv(path,
                    "time,block,name,x,y,angle,vx,vy,angular_velocity,coupling_force_x,"
                    "coupling_force_y,coupling_torque,contacts,block_force_x,block_force_y,"
-                   "block_torque,block_contacts",
+                   "block_torque,block_contacts,min_x,max_x,min_y,max_y",
                    resume_after)) {}
 
 void BlockSeriesWriter::write(const World& w) {
@@ -62,11 +62,17 @@ void BlockSeriesWriter::write(const World& w) {
     const BlockState& s = B.state(b);
     const Blocks::Coupling& c = B.coupling()[b];    // from the material
     const Blocks::Coupling& k = B.blockContact(b);  // from the other blocks
+    Box box = B.bounds(B.firstShape(b));
+    for (int sh = B.firstShape(b) + 1; sh < B.firstShape(b) + B.shapesOf(b); ++sh) {
+      box.min = box.min.cwiseMin(B.bounds(sh).min);
+      box.max = box.max.cwiseMax(B.bounds(sh).max);
+    }
     out_ << w.time() << ',' << b << ',' << B.def(b).name << ',' << s.position.x() << ','
          << s.position.y() << ',' << s.angle << ',' << s.velocity.x() << ',' << s.velocity.y()
          << ',' << s.angular_velocity << ',' << c.force.x() << ',' << c.force.y() << ',' << c.torque
          << ',' << c.contacts << ',' << k.force.x() << ',' << k.force.y() << ',' << k.torque << ','
-         << k.contacts << '\n';
+         << k.contacts << ',' << box.min.x() << ',' << box.max.x() << ',' << box.min.y() << ','
+         << box.max.y() << '\n';
   }
   out_.flush();
 }
@@ -121,6 +127,13 @@ void writeProfile(const World& world, const std::string& path) {
         << (prof.steps ? prof.seconds[s] / prof.steps : 0) << ','
         << (total > 0 ? prof.seconds[s] / total : 0) << '\n';
   }
+}
+
+void writeSummary(const World& world, int status, double wall_seconds, const std::string& path) {
+  std::ofstream out = openCsv(path);
+  out << "status,time,steps,points,wall_s\n"
+      << status << ',' << world.time() << ',' << world.stepCount() << ','
+      << world.particles().size() << ',' << wall_seconds << '\n';
 }
 
 }  // namespace mpm_sdem::runner

@@ -21,7 +21,8 @@ class TimeSeriesWriter {
   std::ofstream out_;
 };
 
-// One row per block per sample: pose, velocity and what the material did to it.
+// One row per block per sample: pose, velocity, what the material did to it, and the box around
+// its rounded outline (min_x is a block's left face in the wooden-block scene).
 class BlockSeriesWriter {
  public:
   explicit BlockSeriesWriter(const std::string& path, Real resume_after = -1);
@@ -45,5 +46,8 @@ class FemSeriesWriter {
 
 void writeParticles(const World& world, const std::string& path);
 void writeProfile(const World& world, const std::string& path);
+// The run's footprint, written last: its exit status (0 done), the time reached, steps, points
+// and wall-clock seconds of the whole run. A sweep counts a run done when this says status 0.
+void writeSummary(const World& world, int status, double wall_seconds, const std::string& path);
 
 }  // namespace mpm_sdem::runner

@@ -1,3 +1,5 @@
+#include <random>
+
 #include "mpm_sdem/core/mpm/grid.hpp"
 #include "mpm_sdem/core/mpm/particles.hpp"
 
@@ -22,6 +24,15 @@ void gather(std::vector<T>& column, const std::vector<int>& order) {
 
 void Particles::permute(const std::vector<int>& order) {
   forEachColumn([&](auto& column) { gather(column, order); });
+}
+
+void perturbPositions(Particles& P, Real amplitude, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<Real> u(-amplitude, amplitude);
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    P.x[p] += u(rng);
+    P.y[p] += u(rng);
+  }
 }
 
 void Grid::init(const Vec2& domain_min, int domain_cells_x, int domain_cells_y, Real cell_size) {

@@ -51,6 +51,11 @@ struct Particles {
   }
 };
 
+// Moves every point by an independent uniform draw in [-amplitude, amplitude] (m) along x, then
+// along y, from std::mt19937(seed): the members of an ensemble (chaotic scenes: a converged
+// result is a converged distribution). The same seed gives the same positions on every machine.
+void perturbPositions(Particles& P, Real amplitude, unsigned seed);
+
 // How far point p's material reaches beyond its centre towards a contact: its depth below its
 // body's outline, at most cap (r_p: IMP's eq. 44 and the particle-to-surface gap). The outermost
 // points then reach the body's true surface and no further, and points that reach the surface later

@@ -1,0 +1,216 @@
+#include "results.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+namespace mpm_sdem::sweep {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
+// The runner's CSVs: a header, then plain numbers and names (no quoting).
+struct Csv {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  int column(const std::string& name, const std::string& path) const {
+    const auto it = std::find(header.begin(), header.end(), name);
+    if (it == header.end()) {
+      std::string valid;
+      for (const std::string& h : header) valid += (valid.empty() ? "" : ", ") + h;
+      throw SweepError(path + ": no column '" + name + "'; its columns: " + valid);
+    }
+    return static_cast<int>(it - header.begin());
+  }
+};
+
+Csv readCsv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw SweepError(path + ": missing (did the run write it? see log.txt beside it)");
+  Csv c;
+  std::string line;
+  if (!std::getline(in, line)) throw SweepError(path + ": empty");
+  c.header = splitCsv(line);
+  while (std::getline(in, line)) {
+    if (!line.empty()) c.rows.push_back(splitCsv(line));
+  }
+  return c;
+}
+
+double number(const std::string& text, const std::string& path, const std::string& column) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0')
+    throw SweepError(path + ": column '" + column + "' holds '" + text + "', not a number");
+  return v;
+}
+
+double mean(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return s / static_cast<double>(v.size());
+}
+
+// Sample standard deviation (n - 1); 0 for one member.
+double deviation(const std::vector<double>& v) {
+  if (v.size() < 2) return 0;
+  const double m = mean(v);
+  double s = 0;
+  for (double x : v) s += (x - m) * (x - m);
+  return std::sqrt(s / static_cast<double>(v.size() - 1));
+}
+
+std::string cell(double v) {
+  if (std::isnan(v)) return "";
+  std::ostringstream o;
+  o << std::setprecision(10) << v;
+  return o.str();
+}
+
+// A value for a CSV cell: --set text with commas (a vector) quoted.
+std::string quoted(const std::string& v) {
+  return v.find_first_of(",\"") == std::string::npos ? v : "\"" + v + "\"";
+}
+
+}  // namespace
+
+std::string runDir(const std::string& out_dir, const Run& r) {
+  return (fs::path(out_dir) / "runs" / r.id).string();
+}
+
+bool runDone(const std::string& run_dir) {
+  std::ifstream in(fs::path(run_dir) / "summary.csv");
+  std::string header, row;
+  return std::getline(in, header) && std::getline(in, row) && row.rfind("0,", 0) == 0;
+}
+
+double measureOutput(const std::string& run_dir, const Output& o) {
+  const std::string path = (fs::path(run_dir) / o.file).string();
+  const Csv csv = readCsv(path);
+  const int col = csv.column(o.column, path);
+  if (o.file == "particles.csv") {
+    std::vector<double> v;
+    for (const auto& row : csv.rows) v.push_back(number(row.at(col), path, o.column));
+    if (v.empty()) throw SweepError(path + ": no points");
+    if (o.reduce == "max") return *std::max_element(v.begin(), v.end());
+    if (o.reduce == "min") return *std::min_element(v.begin(), v.end());
+    if (o.reduce == "mean") return mean(v);
+    return mean(v) * static_cast<double>(v.size());
+  }
+  const int time_col = o.file == "summary.csv" ? -1 : csv.column("time", path);
+  const int name_col = o.block.empty() ? -1 : csv.column("name", path);
+  const std::string* found = nullptr;
+  for (const auto& row : csv.rows) {
+    if (name_col >= 0 && row.at(name_col) != o.block) continue;
+    if (o.at >= 0 && time_col >= 0 &&
+        number(row.at(time_col), path, "time") < o.at * (1 - 1e-9) - 1e-12)
+      continue;
+    found = &row.at(col);
+    if (o.at >= 0) break;  // the first row at or after the time; else the last
+  }
+  if (!found)
+    throw SweepError(path + ": no row" + (o.block.empty() ? "" : " of block '" + o.block + "'") +
+                     (o.at >= 0 ? " at or after " + cell(o.at) + " s" : ""));
+  return number(*found, path, o.column);
+}
+
+Gathered gather(const SweepDef& sweep, const std::string& out_dir) {
+  const std::vector<Run> runs = expandRuns(sweep);
+  const std::size_t n_out = sweep.outputs.size();
+  Gathered g;
+  g.runs = static_cast<int>(runs.size());
+  // values[setting][output] over the members that finished; cost per setting.
+  const int settings = runs.empty() ? 0 : runs.back().setting + 1;
+  std::vector<std::vector<std::vector<double>>> values(settings,
+                                                       std::vector<std::vector<double>>(n_out));
+  std::vector<std::vector<double>> steps(settings), wall(settings);
+
+  std::ofstream res(fs::path(out_dir) / "results.csv");
+  res << "run,setting,member,seed";
+  for (const std::string& key : parameterKeys(sweep)) res << ',' << key;
+  res << ",steps,wall_s";
+  for (const Output& o : sweep.outputs) res << ',' << o.name;
+  for (const Output& o : sweep.outputs)
+    if (o.reference) res << ',' << o.name << "_error";
+  res << '\n';
+  for (const Run& r : runs) {
+    const std::string dir = runDir(out_dir, r);
+    if (!runDone(dir)) {
+      g.problems.push_back(r.id + ": not done (" + dir + "/log.txt)");
+      continue;
+    }
+    std::vector<double> v(n_out);
+    double run_steps = 0, run_wall = 0;
+    try {
+      Output cost;
+      cost.file = "summary.csv";
+      cost.column = "steps";
+      run_steps = measureOutput(dir, cost);
+      cost.column = "wall_s";
+      run_wall = measureOutput(dir, cost);
+      for (std::size_t k = 0; k < n_out; ++k) v[k] = measureOutput(dir, sweep.outputs[k]);
+    } catch (const SweepError& e) {
+      g.problems.push_back(r.id + ": " + e.what());
+      continue;
+    }
+    ++g.done;
+    res << r.id << ',' << r.setting << ',' << r.member << ',' << r.seed;
+    for (const std::string& value : r.values) res << ',' << quoted(value);
+    res << ',' << cell(run_steps) << ',' << cell(run_wall);
+    for (double x : v) res << ',' << cell(x);
+    for (std::size_t k = 0; k < n_out; ++k) {
+      const auto& ref = sweep.outputs[k].reference;
+      if (ref) res << ',' << cell(std::abs(v[k] - *ref) / std::abs(*ref));
+    }
+    res << '\n';
+    for (std::size_t k = 0; k < n_out; ++k) values[r.setting][k].push_back(v[k]);
+    steps[r.setting].push_back(run_steps);
+    wall[r.setting].push_back(run_wall);
+  }
+
+  std::ofstream sum(fs::path(out_dir) / "summary.csv");
+  sum << "setting";
+  for (const std::string& key : parameterKeys(sweep)) sum << ',' << key;
+  sum << ",runs,steps_mean,wall_s_mean";
+  for (const Output& o : sweep.outputs) {
+    sum << ',' << o.name << "_mean," << o.name << "_std," << o.name << "_min," << o.name << "_max";
+    if (o.reference) sum << ',' << o.name << "_reference," << o.name << "_error";
+  }
+  sum << '\n';
+  for (const Run& r : runs) {
+    if (r.member != 0) continue;  // one row per setting
+    const int k = r.setting;
+    sum << k;
+    for (const std::string& value : r.values) sum << ',' << quoted(value);
+    const bool any = !steps[k].empty();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    sum << ',' << steps[k].size() << ',' << cell(any ? mean(steps[k]) : nan) << ','
+        << cell(any ? mean(wall[k]) : nan);
+    for (std::size_t o = 0; o < n_out; ++o) {
+      const std::vector<double>& v = values[k][o];
+      sum << ',' << cell(any ? mean(v) : nan) << ',' << cell(any ? deviation(v) : nan) << ','
+          << cell(any ? *std::min_element(v.begin(), v.end()) : nan) << ','
+          << cell(any ? *std::max_element(v.begin(), v.end()) : nan);
+      if (const auto& ref = sweep.outputs[o].reference)
+        sum << ',' << cell(*ref) << ','
+            << cell(any ? std::abs(mean(v) - *ref) / std::abs(*ref) : nan);
+    }
+    sum << '\n';
+  }
+  return g;
+}
+
+}  // namespace mpm_sdem::sweep

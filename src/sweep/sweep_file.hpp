@@ -1,0 +1,74 @@
+// A sweep: one base scene run at many settings (the --set values swept as a grid or zipped) and,
+// for chaotic scenes, as an ensemble of perturbed members at each setting; what to measure in
+// each run and what to compare it with. Read strictly from YAML, as scenes are
+// (docs/sweep_reference.md): an unknown key, a missing one or a bad value names its line.
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace mpm_sdem::sweep {
+
+// One message, formatted as "file:line:column: key: problem".
+class SweepError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// One dimension of the sweep: a scene key and its values, or a group of keys whose k-th values
+// go together (one value of the dimension sets them all).
+struct Parameter {
+  std::vector<std::string> keys;                 // scene keys as --set takes them
+  std::vector<std::vector<std::string>> values;  // values[k][j]: key j's k-th (YAML flow text)
+};
+
+struct Ensemble {
+  int members = 1;
+  double perturbation = 0;  // m: each point moved by up to this along x and y
+  bool in_cells = false;    // perturbation given in cells of each setting's grid
+  unsigned seed = 1;        // member m (from 0) is drawn from seed + m
+};
+
+// A number read from one run's output files (the runner's CSVs, README "Outputs").
+struct Output {
+  std::string name;                 // its column in results.csv
+  std::string file;                 // timeseries.csv | blocks.csv | particles.csv | summary.csv
+  std::string column;               // a column of that file
+  std::string block;                // blocks.csv: whose row
+  double at = -1;                   // s: the first row at or after this time; < 0: the last row
+  std::string reduce;               // particles.csv: max | min | mean | sum over the points
+  std::optional<double> reference;  // error = |value - reference| / |reference|
+};
+
+struct SweepDef {
+  std::string name;
+  std::string source;              // the sweep file
+  std::string scene;               // the base scene, absolute
+  std::vector<std::string> fixed;  // key=value for every run
+  std::vector<Parameter> parameters;
+  bool zip = false;  // false: every combination; true: the k-th values together
+  Ensemble ensemble;
+  std::vector<Output> outputs;
+  std::vector<double> cell_sizes;  // m, per setting, when the perturbation is in cells
+};
+
+// One run: a setting (one value of each parameter) and an ensemble member.
+struct Run {
+  std::string id;  // s<setting>_m<member>, zero-padded: its folder under runs/
+  int setting = 0, member = 0;
+  unsigned seed = 0;
+  std::vector<std::string> values;     // one per parameter key
+  std::vector<std::string> overrides;  // the fixed ones, then the parameters'
+  double perturbation = 0;             // m
+};
+
+// Throws SweepError. Also loads the base scene at every setting, so that a value the scene
+// refuses is reported now, with its setting, and not by a job hours later.
+SweepDef loadSweep(const std::string& path);
+std::vector<Run> expandRuns(const SweepDef& sweep);
+// Every parameter key, groups' included, in the order of Run::values.
+std::vector<std::string> parameterKeys(const SweepDef& sweep);
+
+}  // namespace mpm_sdem::sweep

@@ -1,0 +1,293 @@
+// Sweeps (issue 23): the sweep file read strictly (every bad input named with its line), its runs
+// expanded as a grid, zipped and with groups, each output read from a run's CSVs as specified,
+// the ensemble statistics of summary.csv against hand-computed values, and the local backend for
+// real through GNU parallel: four runs, resumed without running a finished one again.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "backends.hpp"
+#include "results.hpp"
+#include "sweep_file.hpp"
+
+namespace fs = std::filesystem;
+using namespace mpm_sdem::sweep;
+using SweepRun = mpm_sdem::sweep::Run;  // not gtest's Test::Run
+
+namespace {
+
+const std::string kScene = std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/debris_impact.yaml";
+
+fs::path tempDir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("mpm_sdem_test_sweep_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::string write(const fs::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+std::string sweepText(const std::string& body) {
+  return "name: t\nscene: " + kScene + "\n" + body;
+}
+
+const char* kOutputs =
+    "outputs:\n"
+    "  left:\n"
+    "    measure: block_left_face\n"
+    "    block: block2\n"
+    "    reference: 0.346\n";
+
+// The message of the SweepError that loading text throws ("" if it loads).
+std::string refusal(const std::string& text) {
+  const fs::path d = tempDir("refusal");
+  try {
+    loadSweep(write(d / "s.yaml", text));
+  } catch (const SweepError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+TEST(SweepFile, GridZipAndGroupsExpandInOrder) {
+  const fs::path d = tempDir("expand");
+  const SweepDef s = loadSweep(
+      write(d / "s.yaml", sweepText("set:\n  time.end: 0.01\n"
+                                    "parameters:\n"
+                                    "  grid.cell_size: [0.01, 0.005]\n"
+                                    "  sand:\n"
+                                    "    materials.sand.density: [1300, 1400, 1500]\n"
+                                    "    materials.sand.youngs_modulus: [5.0e4, 6.0e4, 7.0e4]\n"
+                                    "ensemble: {members: 2, perturbation: 1.0e-6, seed: 7}\n") +
+                              kOutputs));
+  const std::vector<SweepRun> runs = expandRuns(s);
+  ASSERT_EQ(runs.size(), 2u * 3u * 2u);
+  EXPECT_EQ(parameterKeys(s), (std::vector<std::string>{"grid.cell_size", "materials.sand.density",
+                                                        "materials.sand.youngs_modulus"}));
+  // The last parameter varies fastest, then the member; a group's values go together.
+  EXPECT_EQ(runs[0].id, "s000_m00");
+  EXPECT_EQ(runs[1].id, "s000_m01");
+  EXPECT_EQ(runs[1].seed, 8u);
+  EXPECT_EQ(runs[2].values, (std::vector<std::string>{"0.01", "1400", "6.0e4"}));
+  EXPECT_EQ(runs[11].id, "s005_m01");
+  EXPECT_EQ(runs[11].overrides, (std::vector<std::string>{"time.end=0.01", "grid.cell_size=0.005",
+                                                          "materials.sand.density=1500",
+                                                          "materials.sand.youngs_modulus=7.0e4"}));
+  EXPECT_EQ(runs[11].perturbation, 1e-6);
+
+  const SweepDef z = loadSweep(write(d / "z.yaml", sweepText("parameters:\n"
+                                                             "  grid.cell_size: [0.01, 0.005]\n"
+                                                             "  time.end: [0.02, 0.03]\n"
+                                                             "combine: zip\n"
+                                                             "ensemble:\n"
+                                                             "  members: 3\n"
+                                                             "  perturbation_cells: 1.0e-4\n") +
+                                                       kOutputs));
+  const std::vector<SweepRun> zr = expandRuns(z);
+  ASSERT_EQ(zr.size(), 2u * 3u);
+  EXPECT_EQ(zr[3].values, (std::vector<std::string>{"0.005", "0.03"}));
+  // In cells of each setting's grid.
+  EXPECT_DOUBLE_EQ(zr[0].perturbation, 1e-4 * 0.01);
+  EXPECT_DOUBLE_EQ(zr[3].perturbation, 1e-4 * 0.005);
+  EXPECT_EQ(zr[2].seed, 3u);  // seed 1 by default, member 2
+}
+
+TEST(SweepFile, BadInputIsNamedWithItsLine) {
+  struct Case {
+    std::string body, expected;
+  };
+  const Case cases[] = {
+      {"paramters:\n  time.end: [0.1]\n",
+       "s.yaml:3:1: paramters: unknown key; did you mean "
+       "'parameters'?"},
+      {"parameters:\n  time.end: 0.1\n", "s.yaml:4:13: parameters.time.end: expected a list"},
+      {"parameters:\n  time.end: [0.1, 0.2]\n  grid.cell_size: [0.01]\ncombine: zip\n",
+       "zip takes the k-th value of each parameter: 'grid.cell_size' has 1 values"},
+      {"parameters:\n  g:\n    time.end: [0.1, 0.2]\n    grid.cell_size: [0.01]\n",
+       "s.yaml:6:21: parameters.g.grid.cell_size: a group's keys take their k-th values together"},
+      {"parameters:\n  grid.cell_size: [0.01, -1]\n", "setting 1 (run s001_m00): "},
+      {"ensemble: {members: 2}\n", "ensemble.perturbation: members of an ensemble differ only"},
+      {"ensemble: {members: 0, perturbation: 1.0e-6}\n", "ensemble.members: 1 to 10000"},
+      {"combine: cross\n", "combine: 'cross' is not valid; use one of: grid | zip"},
+  };
+  for (const Case& c : cases) {
+    const std::string got = refusal(sweepText(c.body) + kOutputs);
+    EXPECT_NE(got.find(c.expected), std::string::npos) << c.body << "\ngot: " << got;
+  }
+  struct OutputCase {
+    std::string output, expected;
+  };
+  const OutputCase outputs[] = {
+      {"    file: blocks.csv\n    column: x\n", "blocks.csv has a row per block: give block"},
+      {"    file: particles.csv\n    column: x\n",
+       "particles.csv has a row per point: give reduce"},
+      {"    file: timeseries.csv\n    column: kinetic_energy\n    reduce: max\n",
+       "reduce applies to particles.csv only"},
+      {"    measure: block_left_face\n", "'block_left_face' needs block"},
+      {"    measure: speed\n", "'speed' is not a measurement; use one of: block_left_face"},
+      {"    file: summary.csv\n    column: steps\n    at: 0.5\n",
+       "only timeseries.csv and blocks.csv have rows in time"},
+      {"    file: summary.csv\n    column: steps\n    reference: 0\n", "must not be 0"},
+  };
+  for (const OutputCase& c : outputs) {
+    const std::string got = refusal(sweepText("outputs:\n  o:\n" + c.output));
+    EXPECT_NE(got.find(c.expected), std::string::npos) << c.output << "\ngot: " << got;
+  }
+  EXPECT_NE(refusal("name: t\nscene: nowhere.yaml\noutputs: {}\n").find("no such scene file"),
+            std::string::npos);
+  EXPECT_NE(refusal(sweepText("outputs: {}\n")).find("outputs: expected a map of named outputs"),
+            std::string::npos);
+}
+
+// Outputs read from hand-written files of the runner's formats.
+TEST(SweepResults, OutputsReadTheirRowAndColumn) {
+  const fs::path d = tempDir("outputs");
+  write(d / "timeseries.csv", "time,step,kinetic_energy\n0,0,1\n0.1,10,2\n0.2,20,4\n0.3,30,8\n");
+  write(d / "blocks.csv",
+        "time,block,name,x,min_x\n0,0,a,1,0.5\n0,1,b,2,1.5\n0.3,0,a,3,2.5\n0.3,1,b,4,3.5\n");
+  write(d / "particles.csv", "id,x\n0,1\n1,4\n2,-2\n");
+  write(d / "summary.csv", "status,time,steps,points,wall_s\n0,0.3,30,3,1.5\n");
+  auto out = [](const char* file, const char* column) {
+    Output o;
+    o.file = file;
+    o.column = column;
+    return o;
+  };
+  Output o = out("timeseries.csv", "kinetic_energy");
+  EXPECT_EQ(measureOutput(d.string(), o), 8);  // the last row
+  o.at = 0.15;
+  EXPECT_EQ(measureOutput(d.string(), o), 4);  // the first row at or after 0.15 s
+  o.at = 0.1;
+  EXPECT_EQ(measureOutput(d.string(), o), 2);  // a row exactly at the time
+  o = out("blocks.csv", "min_x");
+  o.block = "b";
+  EXPECT_EQ(measureOutput(d.string(), o), 3.5);
+  o.at = 0;
+  EXPECT_EQ(measureOutput(d.string(), o), 1.5);
+  o = out("particles.csv", "x");
+  for (auto [reduce, value] : {std::pair{"max", 4.0}, {"min", -2.0}, {"mean", 1.0}, {"sum", 3.0}}) {
+    o.reduce = reduce;
+    EXPECT_EQ(measureOutput(d.string(), o), value) << reduce;
+  }
+  EXPECT_EQ(measureOutput(d.string(), out("summary.csv", "wall_s")), 1.5);
+  EXPECT_TRUE(runDone(d.string()));
+  try {
+    measureOutput(d.string(), out("summary.csv", "speed"));
+    ADD_FAILURE() << "a missing column was read";
+  } catch (const SweepError& e) {
+    EXPECT_NE(std::string(e.what()).find("no column 'speed'; its columns: status, time, steps"),
+              std::string::npos)
+        << e.what();
+  }
+  o = out("blocks.csv", "min_x");
+  o.block = "c";
+  EXPECT_THROW(measureOutput(d.string(), o), SweepError);
+}
+
+// summary.csv's statistics over members written by hand: two settings of three members, one
+// member of the second missing.
+TEST(SweepResults, SummaryHoldsEachSettingsStatistics) {
+  const fs::path d = tempDir("gather");
+  const SweepDef s = loadSweep(
+      write(d / "s.yaml", sweepText("parameters:\n  time.end: [0.1, 0.2]\n"
+                                    "ensemble: {members: 3, perturbation: 1.0e-6}\n"
+                                    "outputs:\n"
+                                    "  ke:\n    file: timeseries.csv\n    column: kinetic_energy\n"
+                                    "    reference: 2\n")));
+  const double ke[2][3] = {{1, 2, 6}, {4, 4, 0}};
+  for (const SweepRun& r : expandRuns(s)) {
+    if (r.setting == 1 && r.member == 2) continue;  // never ran
+    const fs::path run = runDir(d.string(), r);
+    fs::create_directories(run);
+    write(run / "timeseries.csv",
+          "time,kinetic_energy\n0.1," + std::to_string(ke[r.setting][r.member]) + "\n");
+    write(run / "summary.csv",
+          "status,time,steps,points,wall_s\n0,0.1,100,10," + std::to_string(r.member + 1) + "\n");
+  }
+  const Gathered g = gather(s, d.string());
+  EXPECT_EQ(g.runs, 6);
+  EXPECT_EQ(g.done, 5);
+  ASSERT_EQ(g.problems.size(), 1u);
+  EXPECT_NE(g.problems[0].find("s001_m02: not done"), std::string::npos);
+  std::stringstream summary(read(d / "summary.csv"));
+  std::string header, row0, row1;
+  std::getline(summary, header);
+  std::getline(summary, row0);
+  std::getline(summary, row1);
+  EXPECT_EQ(header,
+            "setting,time.end,runs,steps_mean,wall_s_mean,ke_mean,ke_std,ke_min,ke_max,"
+            "ke_reference,ke_error");
+  // Setting 0: 1, 2, 6: mean 3, sample deviation sqrt(7) = 2.645751311, error |3 - 2| / 2.
+  EXPECT_EQ(row0, "0,0.1,3,100,2,3,2.645751311,1,6,2,0.5");
+  // Setting 1: 4, 4 (the third missing): mean 4, deviation 0, error 1.
+  EXPECT_EQ(row1, "1,0.2,2,100,1.5,4,0,4,4,2,1");
+  EXPECT_NE(read(d / "results.csv").find("s000_m02,0,2,3,0.1,100,3,6,2\n"), std::string::npos)
+      << read(d / "results.csv");
+}
+
+// The local backend for real: GNU parallel runs four short runs of the default scene (two cell
+// sizes, two members each); the same command again runs nothing; a run whose summary is gone
+// runs again and gives the same numbers (the runs are deterministic).
+TEST(SweepLocal, RunsGathersAndResumes) {
+  const fs::path d = tempDir("local");
+  const std::string file =
+      write(d / "s.yaml", sweepText("set:\n  time.end: 0.02\n  output.particles: true\n"
+                                    "parameters:\n  grid.cell_size: [0.01, 0.005]\n"
+                                    "ensemble: {members: 2, perturbation_cells: 1.0e-3}\n"
+                                    "outputs:\n"
+                                    "  front:\n    measure: flow_front\n"
+                                    "  left:\n    measure: block_left_face\n    block: block2\n"
+                                    "  ke:\n    file: timeseries.csv\n    column: kinetic_energy\n"
+                                    "    at: 0.01\n"));
+  const std::string sweep = std::string(MPM_SDEM_SWEEP) + " " + file + " --jobs 2 --out " +
+                            (d / "out").string() + " 2>" + (d / "err.txt").string();
+  ASSERT_EQ(std::system(sweep.c_str()), 0) << read(d / "err.txt");
+  EXPECT_NE(read(d / "err.txt").find("4 runs, 0 already done, 4 to run"), std::string::npos);
+  EXPECT_NE(read(d / "err.txt").find("4 of 4 runs done"), std::string::npos) << read(d / "err.txt");
+  // Results without the wall times, which differ from run to run.
+  auto results = [&] {
+    std::stringstream in(read(d / "out" / "results.csv"));
+    std::string out, line;
+    while (std::getline(in, line)) {
+      std::stringstream cells(line);
+      std::string c;
+      for (int k = 0; std::getline(cells, c, ','); ++k)
+        if (k != 6) out += c + ",";  // run,setting,member,seed,grid.cell_size,steps,wall_s
+      out += "\n";
+    }
+    return out;
+  };
+  const std::string first = results();
+  EXPECT_EQ(std::count(first.begin(), first.end(), '\n'), 5) << first;
+  // The members differ (the perturbation acts), the settings too.
+  std::stringstream rows(first);
+  std::string header, r0, r1;
+  std::getline(rows, header);
+  std::getline(rows, r0);
+  std::getline(rows, r1);
+  EXPECT_NE(r0.substr(r0.find(",0.01,")), r1.substr(r1.find(",0.01,"))) << first;
+  ASSERT_EQ(std::system(sweep.c_str()), 0);
+  EXPECT_NE(read(d / "err.txt").find("4 runs, 4 already done, 0 to run"), std::string::npos);
+  fs::remove(d / "out" / "runs" / "s001_m01" / "summary.csv");
+  ASSERT_EQ(std::system(sweep.c_str()), 0);
+  EXPECT_NE(read(d / "err.txt").find("4 runs, 3 already done, 1 to run"), std::string::npos);
+  EXPECT_EQ(results(), first);
+}
