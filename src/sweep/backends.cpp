@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -105,7 +106,14 @@ int runLocal(const std::vector<Run>& pending, const Launch& launch) {
 int submitSlurm(const SweepDef& sweep, const std::vector<Run>& pending, const Launch& launch) {
   const fs::path dir = fs::path(launch.out_dir) / "slurm";
   fs::create_directories(dir);
-  const std::string list = (fs::path(launch.out_dir) / "pending.txt").string();
+  // The array's own copy of the pending commands: a later call rewrites pending.txt while this
+  // array may still be running.
+  const std::time_t now = std::time(nullptr);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
+  const std::string list = (dir / ("tasks_" + std::string(stamp) + ".txt")).string();
+  fs::copy_file(fs::path(launch.out_dir) / "pending.txt", list,
+                fs::copy_options::overwrite_existing);
   const std::string job = "mpm_sdem_" + sweep.name;
   auto header = [&](std::ofstream& f, const std::string& name) {
     f << "#!/bin/bash\n#SBATCH --job-name=" << name << "\n";
@@ -119,7 +127,7 @@ int submitSlurm(const SweepDef& sweep, const std::vector<Run>& pending, const La
       << "#SBATCH --cpus-per-task=" << launch.threads_per_run << "\n"
       << "#SBATCH --output=" << (dir / "run_%a.out").string() << "\n";
     if (!launch.time_limit.empty()) f << "#SBATCH --time=" << launch.time_limit << "\n";
-    f << "# Task k runs line k of pending.txt (the runs not done when this was written).\n"
+    f << "# Task k runs line k of the tasks file (the runs not done when this was written).\n"
       << "set -eu\n"
       << "line=$(sed -n \"${SLURM_ARRAY_TASK_ID}p\" " << shellWord(list) << ")\n"
       << "exec bash -c \"$line\"\n";

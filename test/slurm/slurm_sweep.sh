@@ -1,0 +1,106 @@
+#!/usr/bin/env bash
+# The Slurm backend on a real Slurm (issue 23): installs slurm-wlm and munge from Debian if
+# missing, starts a single-node cluster on this machine (its own munge key, slurmctld and slurmd
+# on the loopback address, configuration and state in a scratch folder), submits a sweep with
+# `mpm_sdem_sweep --backend slurm`, waits for the dependent gather job, and checks that the
+# gathered results.csv equals the local backend's (GNU parallel) but for the wall times.
+# usage: test/slurm/slurm_sweep.sh MPM_SDEM_SWEEP [SWEEP_FILE] [WORK_DIR]
+# (default sweep: test/data/sweep_4runs.yaml, four runs). Needs root or sudo for the packages and
+# the munge key. Exit 0 on equal results.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+sweep_bin="$(realpath "$1")"
+sweep_file="$(realpath "${2:-$here/../data/sweep_4runs.yaml}")"
+work="${3:-$(mktemp -d /tmp/mpm_sdem_slurm.XXXXXX)}"
+sudo="" as_root=() as_munge=(runuser -u munge --)
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo" as_root=(sudo -E) as_munge=(sudo -u munge); fi
+export PATH="/usr/bin:/usr/sbin:$PATH"
+
+missing=()
+for p in slurm-wlm munge; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "installing ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq -o DPkg::Lock::Timeout=300 \
+    "${missing[@]}" >/dev/null
+fi
+
+rm -rf "$work" && mkdir -p "$work"/{state,spool,munge}
+host="$(hostname -s)"
+cleanup() {
+  SLURM_CONF="$work/slurm.conf" scontrol shutdown >/dev/null 2>&1 || true
+  [ -f "$work/munge/munged.pid" ] && $sudo kill "$(cat "$work/munge/munged.pid")" 2>/dev/null || true
+}
+trap cleanup EXIT
+
+# munge: a key made here, a daemon with its own socket (no system service touched).
+$sudo chown munge:munge "$work/munge"
+"${as_munge[@]}" dd if=/dev/urandom of="$work/munge/munge.key" bs=1024 count=1 status=none
+$sudo chmod 400 "$work/munge/munge.key"
+socket="$work/munge/munge.socket"
+"${as_munge[@]}" /usr/sbin/munged --key-file="$work/munge/munge.key" --socket="$socket" \
+  --pid-file="$work/munge/munged.pid" --log-file="$work/munge/munged.log" \
+  --seed-file="$work/munge/munged.seed" --force
+for _ in $(seq 50); do [ -S "$socket" ] && break; sleep 0.1; done
+
+cat >"$work/slurm.conf" <<CONF
+ClusterName=mpmsdemtest
+SlurmctldHost=$host(127.0.0.1)
+SlurmUser=root
+SlurmdUser=root
+AuthType=auth/munge
+AuthInfo=socket=$socket
+CredType=cred/munge
+StateSaveLocation=$work/state
+SlurmdSpoolDir=$work/spool
+SlurmctldPidFile=$work/slurmctld.pid
+SlurmdPidFile=$work/slurmd.pid
+SlurmctldLogFile=$work/slurmctld.log
+SlurmdLogFile=$work/slurmd.log
+SlurmctldPort=16817
+SlurmdPort=16818
+ProctrackType=proctrack/linuxproc
+TaskPlugin=task/none
+JobAcctGatherType=jobacct_gather/none
+AccountingStorageType=accounting_storage/none
+SelectType=select/cons_tres
+SelectTypeParameters=CR_CPU
+ReturnToService=2
+MpiDefault=none
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$(nproc) State=UNKNOWN
+PartitionName=test Nodes=ALL Default=YES MaxTime=INFINITE State=UP
+CONF
+export SLURM_CONF="$work/slurm.conf"
+"${as_root[@]}" slurmctld
+"${as_root[@]}" slurmd
+for _ in $(seq 100); do
+  sinfo -h -o %t 2>/dev/null | grep -q idle && break
+  sleep 0.2
+done
+sinfo -h -o "%P %D %t %C" || { cat "$work"/slurm*.log; exit 1; }
+
+"$sweep_bin" "$sweep_file" --backend slurm --out "$work/slurm_out"
+ids="$(awk '{print $2}' "$work/slurm_out/slurm/jobs.txt" | paste -sd,)"
+echo "waiting for jobs $ids"
+for _ in $(seq 600); do
+  [ -z "$(squeue -h -j "$ids" 2>/dev/null)" ] && break
+  sleep 1
+done
+if [ -n "$(squeue -h -j "$ids" 2>/dev/null)" ]; then
+  echo "FAIL: jobs $ids still queued after 600 s"; squeue; exit 1
+fi
+cat "$work/slurm_out/slurm/gather.out"
+
+"$sweep_bin" "$sweep_file" --backend local --out "$work/local_out" 2>"$work/local.err" ||
+  { cat "$work/local.err"; exit 1; }
+# results.csv without the wall_s column.
+strip() { awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "wall_s") w = i }
+                   { out = ""; for (i = 1; i <= NF; ++i) if (i != w) out = out $i ","; print out }' "$1"; }
+if diff <(strip "$work/local_out/results.csv") <(strip "$work/slurm_out/results.csv"); then
+  echo "PASS: slurm and local results.csv agree ($(($(wc -l <"$work/slurm_out/results.csv") - 1)) runs)"
+  [ -n "${3:-}" ] || { cleanup; trap - EXIT; rm -rf "$work"; }  # a scratch folder of our own
+else
+  echo "FAIL: slurm and local results.csv differ"; exit 1
+fi
