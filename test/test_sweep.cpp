@@ -127,6 +127,7 @@ TEST(SweepFile, BadInputIsNamedWithItsLine) {
       {"ensemble: {members: 2}\n", "ensemble.perturbation: members of an ensemble differ only"},
       {"ensemble: {members: 0, perturbation: 1.0e-6}\n", "ensemble.members: 1 to 10000"},
       {"combine: cross\n", "combine: 'cross' is not valid; use one of: grid | zip"},
+
   };
   for (const Case& c : cases) {
     const std::string got = refusal(sweepText(c.body) + kOutputs);
@@ -146,11 +147,19 @@ TEST(SweepFile, BadInputIsNamedWithItsLine) {
       {"    file: summary.csv\n    column: steps\n    at: 0.5\n",
        "only timeseries.csv and blocks.csv have rows in time"},
       {"    file: summary.csv\n    column: steps\n    reference: 0\n", "must not be 0"},
+      {"    file: timeseries.csv\n    column: com_x\n    rate_between: [2, 1]\n",
+       "low must be below high"},
+      {"    file: blocks.csv\n    column: x\n    block: a\n    rate_between: [1, 2]\n",
+       "a slope over timeseries.csv rows"},
   };
   for (const OutputCase& c : outputs) {
     const std::string got = refusal(sweepText("outputs:\n  o:\n" + c.output));
     EXPECT_NE(got.find(c.expected), std::string::npos) << c.output << "\ngot: " << got;
   }
+  EXPECT_NE(refusal(sweepText("parameters:\n  time.end: [0.1, 0.2, 0.3]\noutputs:\n  o:\n"
+                              "    file: summary.csv\n    column: steps\n    reference: [1, 2]\n"))
+                .find("outputs.o.reference: 2 values for 3 settings; give one, or one per setting"),
+            std::string::npos);
   EXPECT_NE(refusal("name: t\nscene: nowhere.yaml\noutputs: {}\n").find("no such scene file"),
             std::string::npos);
   EXPECT_NE(refusal(sweepText("outputs: {}\n")).find("outputs: expected a map of named outputs"),
@@ -202,6 +211,33 @@ TEST(SweepResults, OutputsReadTheirRowAndColumn) {
   EXPECT_THROW(measureOutput(d.string(), o), SweepError);
 }
 
+// A rate: the least-squares slope over the rows whose value lies in the band, here a line of
+// slope 10 kg/(s m) through the band with rows outside it that would bend a fit of all rows.
+TEST(SweepResults, RateIsTheSlopeInsideTheBand) {
+  const fs::path d = tempDir("rate");
+  std::string rows = "time,outlet_mass\n";
+  for (int k = 0; k <= 20; ++k) {
+    const double t = 0.1 * k;
+    const double m = t < 0.5 ? 0 : t > 1.5 ? 10 + 2 * (t - 1.5) : 10 * (t - 0.5);
+    rows += std::to_string(t) + "," + std::to_string(m) + "\n";
+  }
+  write(d / "timeseries.csv", rows);
+  Output o;
+  o.file = "timeseries.csv";
+  o.column = "outlet_mass";
+  o.rate_between = std::make_pair(1.0, 9.0);
+  EXPECT_NEAR(measureOutput(d.string(), o), 10, 1e-9);
+  o.rate_between = std::make_pair(1.0, 3.5);  // three rows: 1, 2, 3
+  try {
+    measureOutput(d.string(), o);
+    ADD_FAILURE() << "a rate from three rows";
+  } catch (const SweepError& e) {
+    EXPECT_NE(std::string(e.what()).find("3 rows with outlet_mass in [1, 3.5]; a rate needs 5"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // summary.csv's statistics over members written by hand: two settings of three members, one
 // member of the second missing.
 TEST(SweepResults, SummaryHoldsEachSettingsStatistics) {
@@ -248,15 +284,17 @@ TEST(SweepResults, SummaryHoldsEachSettingsStatistics) {
 // runs again and gives the same numbers (the runs are deterministic).
 TEST(SweepLocal, RunsGathersAndResumes) {
   const fs::path d = tempDir("local");
-  const std::string file =
-      write(d / "s.yaml", sweepText("set:\n  time.end: 0.02\n  output.particles: true\n"
-                                    "parameters:\n  grid.cell_size: [0.01, 0.005]\n"
-                                    "ensemble: {members: 2, perturbation_cells: 1.0e-3}\n"
-                                    "outputs:\n"
-                                    "  front:\n    measure: flow_front\n"
-                                    "  left:\n    measure: block_left_face\n    block: block2\n"
-                                    "  ke:\n    file: timeseries.csv\n    column: kinetic_energy\n"
-                                    "    at: 0.01\n"));
+  const std::string file = write(
+      d / "s.yaml", sweepText("set:\n  time.end: 0.02\n  output.particles: true\n"
+                              "  output.gauges: {ahead: {right_of: 0.05}}\n"
+                              "parameters:\n  grid.cell_size: [0.01, 0.005]\n"
+                              "ensemble: {members: 2, perturbation_cells: 1.0e-3}\n"
+                              "outputs:\n"
+                              "  front:\n    measure: flow_front\n"
+                              "  left:\n    measure: block_left_face\n    block: block2\n"
+                              "  ke:\n    file: timeseries.csv\n    column: kinetic_energy\n"
+                              "    at: 0.01\n"
+                              "  ahead:\n    file: timeseries.csv\n    column: ahead_mass\n"));
   const std::string sweep = std::string(MPM_SDEM_SWEEP) + " " + file + " --jobs 2 --out " +
                             (d / "out").string() + " 2>" + (d / "err.txt").string();
   ASSERT_EQ(std::system(sweep.c_str()), 0) << read(d / "err.txt");
@@ -284,6 +322,27 @@ TEST(SweepLocal, RunsGathersAndResumes) {
   std::getline(rows, r0);
   std::getline(rows, r1);
   EXPECT_NE(r0.substr(r0.find(",0.01,")), r1.substr(r1.find(",0.01,"))) << first;
+  // The gauge's last row is the mass of the final points right of x = 5 cm.
+  {
+    std::stringstream points(read(d / "out" / "runs" / "s000_m00" / "particles.csv"));
+    std::string line;
+    std::getline(points, line);  // id,body,material,kind,x,y,vx,vy,mass,...
+    double ahead = 0;
+    int counted = 0;
+    while (std::getline(points, line)) {
+      std::vector<std::string> c;
+      std::stringstream cells(line);
+      for (std::string v; std::getline(cells, v, ',');) c.push_back(v);
+      if (std::stod(c[4]) > 0.05) ahead += std::stod(c[8]), ++counted;
+    }
+    EXPECT_GT(counted, 100);
+    std::stringstream res(read(d / "out" / "results.csv"));
+    std::string header, row;
+    std::getline(res, header);
+    std::getline(res, row);
+    EXPECT_EQ(header.substr(header.rfind(',') + 1), "ahead");
+    EXPECT_NEAR(std::stod(row.substr(row.rfind(',') + 1)), ahead, 1e-9 * ahead) << row;
+  }
   ASSERT_EQ(std::system(sweep.c_str()), 0);
   EXPECT_NE(read(d / "err.txt").find("4 runs, 4 already done, 0 to run"), std::string::npos);
   fs::remove(d / "out" / "runs" / "s001_m01" / "summary.csv");

@@ -647,12 +647,9 @@ SiloFlow siloFlow(World& w, Real t_max) {
   const Particles& P = w.particles();
   Real total = 0;
   for (std::size_t p = 0; p < P.size(); ++p) total += P.mass[p];
-  const Real below = kSiloPlateTop - 0.02;  // the plates' underside
-  auto discharged = [&] {
-    Real m = 0;
-    for (std::size_t p = 0; p < P.size(); ++p) m += P.y[p] < below ? P.mass[p] : 0;
-    return m;
-  };
+  // Below the plates' underside (scene output.gauges does the same).
+  const MassGauge outlet{"outlet", MassGauge::Side::kBelow, kSiloPlateTop - 0.02};
+  auto discharged = [&] { return gaugeMass(P, outlet); };
   Real next = 0;
   while (w.time() < t_max) {
     w.step(w.chooseTimeStep().dt);

@@ -8,6 +8,14 @@
 
 namespace mpm_sdem {
 
+Real gaugeMass(const Particles& P, const MassGauge& g) {
+  Real m = 0;
+  const bool below = g.side == MassGauge::Side::kBelow;
+  for (std::size_t p = 0; p < P.size(); ++p)
+    m += (below ? P.y[p] < g.at : P.x[p] > g.at) ? P.mass[p] : 0;
+  return m;
+}
+
 Diagnostics measure(const World& world) {
   const Particles& P = world.particles();
   const auto& params = world.materialParams();

@@ -151,7 +151,8 @@ int main(int argc, char** argv) {
 
   // A resumed run continues the files of the run it resumes (their rows up to the checkpoint).
   const bool fresh = resume_after < 0;
-  runner::TimeSeriesWriter series((out / "timeseries.csv").string(), resume_after);
+  runner::TimeSeriesWriter series((out / "timeseries.csv").string(), resume_after,
+                                  scene.output.gauges);
   std::unique_ptr<runner::BlockSeriesWriter> block_series;
   if (world.blocks()) {
     block_series =

@@ -33,19 +33,31 @@ std::ofstream openCsv(const std::string& path, const char* header = nullptr,
 
 }  // namespace
 
-TimeSeriesWriter::TimeSeriesWriter(const std::string& path, Real resume_after)
-    : out_(openCsv(path,
-                   "time,step,dt,dt_limit,kinetic_energy,elastic_energy,gravity_energy,"
-                   "total_energy,momentum_x,momentum_y,angular_momentum,com_x,com_y,max_speed,"
-                   "max_mach",
-                   resume_after)) {}
+namespace {
+
+std::string timeSeriesHeader(const std::vector<MassGauge>& gauges) {
+  std::string h =
+      "time,step,dt,dt_limit,kinetic_energy,elastic_energy,gravity_energy,total_energy,"
+      "momentum_x,momentum_y,angular_momentum,com_x,com_y,max_speed,max_mach";
+  for (const MassGauge& g : gauges) h += "," + g.name + "_mass";
+  return h;
+}
+
+}  // namespace
+
+TimeSeriesWriter::TimeSeriesWriter(const std::string& path, Real resume_after,
+                                   std::vector<MassGauge> gauges)
+    : gauges_(std::move(gauges)),
+      out_(openCsv(path, timeSeriesHeader(gauges_).c_str(), resume_after)) {}
 
 void TimeSeriesWriter::write(const World& w, const Diagnostics& d, const TimeStepChoice& dt) {
   out_ << w.time() << ',' << w.stepCount() << ',' << dt.dt << ',' << stepLimitName(dt.limit) << ','
        << d.kinetic << ',' << d.elastic << ',' << d.gravity << ',' << d.total() << ','
        << d.momentum.x() << ',' << d.momentum.y() << ',' << d.angular_momentum << ','
        << d.center_of_mass.x() << ',' << d.center_of_mass.y() << ',' << d.max_speed << ','
-       << d.max_mach << '\n';
+       << d.max_mach;
+  for (const MassGauge& g : gauges_) out_ << ',' << gaugeMass(w.particles(), g);
+  out_ << '\n';
   out_.flush();
 }
 

@@ -6,18 +6,22 @@
 
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "mpm_sdem/core/diagnostics.hpp"
 #include "mpm_sdem/core/world.hpp"
 
 namespace mpm_sdem::runner {
 
+// One row per sample: energies, momenta, the step, and a <name>_mass column per gauge (kg/m).
 class TimeSeriesWriter {
  public:
-  explicit TimeSeriesWriter(const std::string& path, Real resume_after = -1);
+  explicit TimeSeriesWriter(const std::string& path, Real resume_after = -1,
+                            std::vector<MassGauge> gauges = {});
   void write(const World& world, const Diagnostics& d, const TimeStepChoice& dt);
 
  private:
+  std::vector<MassGauge> gauges_;
   std::ofstream out_;
 };
 

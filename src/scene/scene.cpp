@@ -834,12 +834,29 @@ Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& s
   parseSph(ctx, top, s);
 
   if (top.has("output")) {
-    MapReader o(ctx, top.node("output"), "output", {"interval", "particles"});
+    MapReader o(ctx, top.node("output"), "output", {"interval", "particles", "gauges"});
     s.output.interval = o.number("interval", limits::kTimeStep, 0);
     o.require(
         s.output.interval <= s.end_time, "interval",
         "must be at most time.end = " + num(s.end_time) + " s, got " + num(s.output.interval));
     s.output.particles = o.boolean("particles", s.output.particles);
+    if (o.has("gauges")) {
+      const YAML::Node gauges = o.node("gauges");
+      if (!gauges.IsMap())
+        ctx.fail(gauges, "output.gauges", "expected a map of named gauges (outlet: {below: 0.2})");
+      for (const auto& kv : gauges) {
+        const std::string name = kv.first.Scalar();
+        if (!limits::nameProblem(name).empty())
+          ctx.fail(kv.first, "output.gauges." + name, limits::nameProblem(name));
+        MapReader g(ctx, kv.second, "output.gauges." + name, {"below", "right_of"});
+        g.require(g.has("below") != g.has("right_of"), "below",
+                  "give one of below (y, m) or right_of (x, m)");
+        const bool below = g.has("below");
+        const Real at = g.number(below ? "below" : "right_of", limits::kCoordinate);
+        s.output.gauges.push_back(
+            {name, below ? MassGauge::Side::kBelow : MassGauge::Side::kRightOf, at});
+      }
+    }
   }
   if (s.output.interval <= 0) s.output.interval = s.end_time / 100;
   parseView(ctx, top, s);

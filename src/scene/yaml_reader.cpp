@@ -25,11 +25,17 @@ std::size_t editDistance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
+// True when `at` is the value an override set or lies anywhere inside it (a key or a value of
+// a map or list given on the command line, however deep).
 bool isOverride(const YAML::Node& at, const YAML::Node& set) {
   if (at.is(set)) return true;
-  if (set.IsSequence() || set.IsMap()) {
+  if (set.IsMap()) {
     for (const auto& child : set) {
-      if (set.IsMap() ? at.is(child.second) : at.is(child)) return true;
+      if (at.is(child.first) || isOverride(at, child.second)) return true;
+    }
+  } else if (set.IsSequence()) {
+    for (const auto& child : set) {
+      if (isOverride(at, child)) return true;
     }
   }
   return false;

@@ -111,6 +111,27 @@ double measureOutput(const std::string& run_dir, const Output& o) {
     return mean(v) * static_cast<double>(v.size());
   }
   const int time_col = o.file == "summary.csv" ? -1 : csv.column("time", path);
+  if (o.rate_between) {
+    // Least-squares slope of the value against time over the rows in the band.
+    double n = 0, st = 0, sv = 0, stt = 0, stv = 0;
+    for (const auto& row : csv.rows) {
+      const double v = number(row.at(col), path, o.column);
+      if (v < o.rate_between->first || v > o.rate_between->second) continue;
+      const double t = number(row.at(time_col), path, "time");
+      n += 1;
+      st += t;
+      sv += v;
+      stt += t * t;
+      stv += t * v;
+    }
+    if (n < 5)
+      throw SweepError(path + ": " + std::to_string(static_cast<int>(n)) + " rows with " +
+                       o.column + " in [" + cell(o.rate_between->first) + ", " +
+                       cell(o.rate_between->second) +
+                       "]; a rate needs 5: run longer (time.end) or sample more often "
+                       "(output.interval)");
+    return (n * stv - st * sv) / (n * stt - st * st);
+  }
   const int name_col = o.block.empty() ? -1 : csv.column("name", path);
   const std::string* found = nullptr;
   for (const auto& row : csv.rows) {
@@ -144,7 +165,7 @@ Gathered gather(const SweepDef& sweep, const std::string& out_dir) {
   res << ",steps,wall_s";
   for (const Output& o : sweep.outputs) res << ',' << o.name;
   for (const Output& o : sweep.outputs)
-    if (o.reference) res << ',' << o.name << "_error";
+    if (o.hasReference()) res << ',' << o.name << "_error";
   res << '\n';
   for (const Run& r : runs) {
     const std::string dir = runDir(out_dir, r);
@@ -172,8 +193,10 @@ Gathered gather(const SweepDef& sweep, const std::string& out_dir) {
     res << ',' << cell(run_steps) << ',' << cell(run_wall);
     for (double x : v) res << ',' << cell(x);
     for (std::size_t k = 0; k < n_out; ++k) {
-      const auto& ref = sweep.outputs[k].reference;
-      if (ref) res << ',' << cell(std::abs(v[k] - *ref) / std::abs(*ref));
+      const Output& o = sweep.outputs[k];
+      if (!o.hasReference()) continue;
+      const double ref = o.referenceAt(r.setting);
+      res << ',' << cell(std::abs(v[k] - ref) / std::abs(ref));
     }
     res << '\n';
     for (std::size_t k = 0; k < n_out; ++k) values[r.setting][k].push_back(v[k]);
@@ -187,7 +210,7 @@ Gathered gather(const SweepDef& sweep, const std::string& out_dir) {
   sum << ",runs,steps_mean,wall_s_mean";
   for (const Output& o : sweep.outputs) {
     sum << ',' << o.name << "_mean," << o.name << "_std," << o.name << "_min," << o.name << "_max";
-    if (o.reference) sum << ',' << o.name << "_reference," << o.name << "_error";
+    if (o.hasReference()) sum << ',' << o.name << "_reference," << o.name << "_error";
   }
   sum << '\n';
   for (const Run& r : runs) {
@@ -204,9 +227,10 @@ Gathered gather(const SweepDef& sweep, const std::string& out_dir) {
       sum << ',' << cell(any ? mean(v) : nan) << ',' << cell(any ? deviation(v) : nan) << ','
           << cell(any ? *std::min_element(v.begin(), v.end()) : nan) << ','
           << cell(any ? *std::max_element(v.begin(), v.end()) : nan);
-      if (const auto& ref = sweep.outputs[o].reference)
-        sum << ',' << cell(*ref) << ','
-            << cell(any ? std::abs(mean(v) - *ref) / std::abs(*ref) : nan);
+      if (sweep.outputs[o].hasReference()) {
+        const double ref = sweep.outputs[o].referenceAt(k);
+        sum << ',' << cell(ref) << ',' << cell(any ? std::abs(mean(v) - ref) / std::abs(ref) : nan);
+      }
     }
     sum << '\n';
   }

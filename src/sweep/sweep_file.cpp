@@ -48,7 +48,8 @@ constexpr Named kNamed[] = {
 
 Output readOutput(const Context& ctx, const std::string& name, const YAML::Node& node) {
   const std::string path = "outputs." + name;
-  MapReader r(ctx, node, path, {"measure", "file", "column", "block", "at", "reduce", "reference"});
+  MapReader r(ctx, node, path,
+              {"measure", "file", "column", "block", "at", "reduce", "rate_between", "reference"});
   Output o;
   o.name = name;
   if (r.has("measure")) {
@@ -100,9 +101,29 @@ Output readOutput(const Context& ctx, const std::string& name, const YAML::Node&
                 "only timeseries.csv and blocks.csv have rows in time");
     }
   }
-  if (r.has("reference")) o.reference = r.number("reference", "(the output's unit)");
-  r.require(!o.reference || *o.reference != 0, "reference",
-            "must not be 0 (the error is relative); compare with a small scale instead");
+  if (r.has("rate_between")) {
+    r.require(o.file == "timeseries.csv" && !r.has("at"), "rate_between",
+              "a slope over timeseries.csv rows; not with at");
+    const YAML::Node b = r.node("rate_between");
+    if (!b.IsSequence() || b.size() != 2)
+      ctx.fail(b, path + ".rate_between", "expected [low, high]: the values between which");
+    const double lo = MapReader::toNumber(ctx, b[0], path + ".rate_between", "(the column's)");
+    const double hi = MapReader::toNumber(ctx, b[1], path + ".rate_between", "(the column's)");
+    r.require(lo < hi, "rate_between", "low must be below high");
+    o.rate_between = std::make_pair(lo, hi);
+  }
+  if (r.has("reference")) {
+    const YAML::Node ref = r.node("reference");
+    if (ref.IsSequence()) {
+      for (const auto& v : ref)
+        o.reference.push_back(MapReader::toNumber(ctx, v, path + ".reference", "(the output's)"));
+    } else {
+      o.reference.push_back(r.number("reference", "(the output's unit)"));
+    }
+    for (double v : o.reference)
+      r.require(v != 0, "reference",
+                "must not be 0 (the error is relative); compare with a small scale instead");
+  }
   return o;
 }
 
@@ -218,6 +239,11 @@ SweepDef loadSweep(const std::string& path) {
   for (const Parameter& p : s.parameters)
     settings =
         s.zip ? static_cast<long>(p.values.size()) : settings * static_cast<long>(p.values.size());
+  for (const Output& o : s.outputs)
+    if (o.reference.size() > 1 && static_cast<long>(o.reference.size()) != settings)
+      throw SweepError(path + ": outputs." + o.name +
+                       ".reference: " + std::to_string(o.reference.size()) + " values for " +
+                       std::to_string(settings) + " settings; give one, or one per setting");
   if (settings * s.ensemble.members > 100000)
     throw SweepError(path + ": " + std::to_string(settings * s.ensemble.members) +
                      " runs; a sweep holds at most 100000");

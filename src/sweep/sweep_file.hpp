@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mpm_sdem::sweep {
@@ -33,13 +34,21 @@ struct Ensemble {
 
 // A number read from one run's output files (the runner's CSVs, README "Outputs").
 struct Output {
-  std::string name;                 // its column in results.csv
-  std::string file;                 // timeseries.csv | blocks.csv | particles.csv | summary.csv
-  std::string column;               // a column of that file
-  std::string block;                // blocks.csv: whose row
-  double at = -1;                   // s: the first row at or after this time; < 0: the last row
-  std::string reduce;               // particles.csv: max | min | mean | sum over the points
-  std::optional<double> reference;  // error = |value - reference| / |reference|
+  std::string name;    // its column in results.csv
+  std::string file;    // timeseries.csv | blocks.csv | particles.csv | summary.csv
+  std::string column;  // a column of that file
+  std::string block;   // blocks.csv: whose row
+  double at = -1;      // s: the first row at or after this time; < 0: the last row
+  std::string reduce;  // particles.csv: max | min | mean | sum over the points
+  // timeseries.csv: instead of one row, the least-squares slope against time (unit/s) over the
+  // rows whose value lies in [first, second] (a discharge rate over part of the discharge).
+  std::optional<std::pair<double, double>> rate_between;
+  // error = |value - reference| / |reference|; one for every setting, or one per setting.
+  std::vector<double> reference;
+  bool hasReference() const { return !reference.empty(); }
+  double referenceAt(int setting) const {
+    return reference.size() == 1 ? reference[0] : reference.at(setting);
+  }
 };
 
 struct SweepDef {

@@ -32,6 +32,16 @@ struct Diagnostics {
 
 Diagnostics measure(const World& world);
 
+// The material mass on one side of a line (a discharge or a front gauge; scene output.gauges).
+struct MassGauge {
+  enum class Side { kBelow, kRightOf };
+  std::string name;
+  Side side = Side::kBelow;
+  Real at = 0;  // m: the height (kBelow: y < at) or the abscissa (kRightOf: x > at)
+};
+// kg per metre of thickness, over the material points (SPH particles included).
+Real gaugeMass(const Particles& P, const MassGauge& g);
+
 // The Mach number past which the runner and the node warn (once): a density error of about
 // Ma^2 / 2 = 0.5% (docs/scene_reference.md, fluid).
 inline constexpr Real kMachWarning = 0.1;

@@ -8,14 +8,16 @@
 #include <vector>
 
 #include "mpm_sdem/core/checkpoint.hpp"
+#include "mpm_sdem/core/diagnostics.hpp"
 #include "mpm_sdem/core/world.hpp"
 #include "mpm_sdem/render/view.hpp"
 
 namespace mpm_sdem {
 
 struct OutputDef {
-  Real interval = 0;      // s between time-series rows; 0 means end / 100
-  bool particles = true;  // write the final particle states
+  Real interval = 0;              // s between time-series rows; 0 means end / 100
+  bool particles = true;          // write the final particle states
+  std::vector<MassGauge> gauges;  // a <name>_mass column of the time series each
 };
 
 struct LimitsDef {
