@@ -197,6 +197,39 @@ TEST(RuntimeBlocks, AddedToASceneWithoutBlocksFallsAndIsRemoved) {
   EXPECT_TRUE(world.step(world.chooseTimeStep().dt).finite);
 }
 
+// The step names a moving block whose centre leaves the domain (a disk thrown out of its top)
+// while the state stays finite, and one whose state is no longer finite (a load of 1e300 N/m,
+// beyond what single-precision Box2D holds). Neither a static floor reaching outside nor a disk
+// resting on it, its outline pressed past the domain's bottom, is named.
+TEST(RuntimeBlocks, StepNamesABlockOutsideTheDomainOrNotFinite) {
+  World world(loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/test/data/valid.yaml").world);
+  world.addBlock(test::boxBlock("floor", Vec2(0.2, -0.01), 0.5, 0.02, 0.002, BodyType::kStatic));
+  const BlockId stone =
+      world.addBlock(test::diskBlock("stone", Vec2(0.37, 0.05), 0.01, BodyType::kDynamic, 1000));
+  StepInfo info;
+  while (world.time() < 0.3 && info.block_problem.empty())
+    info = world.step(world.chooseTimeStep().dt);
+  EXPECT_EQ(info.block_problem, "");
+  EXPECT_LT(world.blocks()->blockBounds(1).min.y(), 0) << "resting, pressed past the bottom";
+  EXPECT_NEAR(world.blocks()->state(1).velocity.norm(), 0, 1e-3);
+  world.setBlockPose(stone, Vec2(0.37, 0.185), 0);
+  world.setBlockVelocity(stone, Vec2(0, 5), 0);
+  for (int n = 0; n < 100 && info.block_problem.empty(); ++n)
+    info = world.step(world.chooseTimeStep().dt);
+  EXPECT_TRUE(info.finite);
+  EXPECT_NE(info.block_problem.find("block 'stone'"), std::string::npos) << info.block_problem;
+  EXPECT_NE(info.block_problem.find("left the domain"), std::string::npos);
+  world.setBlockPose(stone, Vec2(0.37, 0.1), 0);
+  world.setBlockVelocity(stone, Vec2(0, 0), 0);
+  world.addBlockLoad(stone, Vec2(1e300, 0), Vec2(0.37, 0.1), 0);
+  info = world.step(world.chooseTimeStep().dt);
+  EXPECT_FALSE(info.finite);
+  EXPECT_NE(info.block_problem.find("block 'stone': its position, angle or velocity is no longer "
+                                    "finite"),
+            std::string::npos)
+      << info.block_problem;
+}
+
 // A kinematic block moves with its twist exactly: its pose is summed in double and handed to
 // Box2D, whose own single-precision sum of these 10,000 steps drifts by 93 um and 2e-5 rad
 // (measured). Left: one rounding of the pose to single precision, 6e-8 of 7 Box2D units (25

@@ -129,6 +129,70 @@ TEST(BlockChecks, OnlyAStaticBlockMayReachOutsideTheDomain) {
   EXPECT_FALSE(domainProblem(b, lo, hi).empty()) << "a static block away from the domain";
 }
 
+// The acceleration of the fastest point from a load: |F| / M for a force at the centre of mass,
+// tau R / I for a torque, and the lever of a force off the centre counted at its full length
+// (the load's frame may turn against the block). A block without mass takes no load.
+TEST(BlockChecks, LoadAccelerationIsThatOfTheFastestPoint) {
+  BlockDef b = square(BodyType::kDynamic);
+  b.density = 500;
+  const MassProperties m = blockMass(b);
+  const Real R = std::sqrt(2.0) * 0.01 + 0.002;  // corner of the core plus the rounding
+  EXPECT_NEAR(loadAcceleration(b, Vec2(3, 4), m.centroid, 0), 5 / m.mass, 1e-12);
+  EXPECT_NEAR(loadAcceleration(b, Vec2(0, 0), m.centroid, 0.01), 0.01 * R / m.inertia, 1e-9);
+  const Vec2 lever(0.005, 0);
+  EXPECT_NEAR(loadAcceleration(b, Vec2(0, 2), m.centroid + lever, 0),
+              2 / m.mass + 0.005 * 2 * R / m.inertia, 1e-9);
+  EXPECT_EQ(loadAcceleration(square(BodyType::kKinematic), Vec2(1, 0), Vec2(0, 0), 0), INFINITY);
+}
+
+// Loads held together: accelerations add up to at most 1e4 m/s^2 (kLoadAcceleration), and the
+// speed the ending ones add, a d summed, to at most 1000 m/s (kSpeed); one held until cleared
+// counts only for the first.
+TEST(BlockChecks, HeldLoadsBoundTheAccelerationAndTheSpeedTheyAdd) {
+  const Real forever = INFINITY;
+  EXPECT_TRUE(heldLoadsProblem({{9e3, 0.1}}).empty());  // 900 m/s
+  EXPECT_EQ(heldLoadsProblem({{9e3, 0.2}}).key, "duration");
+  EXPECT_NE(heldLoadsProblem({{9e3, 0.2}}).message.find("1800 m/s"), std::string::npos);
+  EXPECT_EQ(heldLoadsProblem({{2e4, 1e-3}}).key, "wrench");
+  EXPECT_TRUE(heldLoadsProblem({{5e3, forever}}).empty());
+  EXPECT_EQ(heldLoadsProblem({{6e3, forever}, {5e3, 0.01}}).key, "wrench");
+  EXPECT_EQ(heldLoadsProblem({{4e3, 0.1}, {5e3, 0.1}, {1, forever}}).key, "");
+  EXPECT_EQ(heldLoadsProblem({{5e3, 0.1}, {5e3, 0.11}}).key, "duration");
+  for (Real a : {Real(1e30), Real(1e300), Real(INFINITY), Real(std::nan(""))})
+    EXPECT_EQ(heldLoadsProblem({{a, 1e-3}}).key, "wrench") << a;
+}
+
+// A kinematic block stops at the walls: a velocity that would carry its box across a side in
+// the step is cut to what reaches the side, none once it is outside, away from the wall is
+// kept; a spin whose sweep would cross a side is dropped.
+TEST(BlockChecks, MovingBlocksStopAtTheDomainsWalls) {
+  const Vec2 lo(0, 0), hi(0.4, 0.2);
+  const Box box{Vec2(0.1, 0.05), Vec2(0.2, 0.1)};
+  const Real h = 0.01;
+  Vec2 v(50, -1);
+  Real w = 0;
+  EXPECT_TRUE(keepInsideDomain(box, 0.1, h, lo, hi, v, w));
+  EXPECT_DOUBLE_EQ(v.x(), 20);  // (0.4 - 0.2) / 0.01
+  EXPECT_EQ(v.y(), -1);
+  v = Vec2(-5, 4);
+  EXPECT_FALSE(keepInsideDomain(box, 0.1, h, lo, hi, v, w));
+  EXPECT_EQ(v, Vec2(-5, 4));
+  const Box outside{Vec2(0.35, 0.15), Vec2(0.45, 0.25)};
+  v = Vec2(5, 3);
+  EXPECT_TRUE(keepInsideDomain(outside, 0.1, h, lo, hi, v, w));
+  EXPECT_EQ(v, Vec2(0, 0));
+  v = Vec2(-3, -2);
+  EXPECT_FALSE(keepInsideDomain(outside, 0.1, h, lo, hi, v, w)) << "back inside is free";
+  const Box near{Vec2(0.1, 0.05), Vec2(0.395, 0.1)};
+  v = Vec2(0, 0);
+  w = 10;  // sweeps 10 * 0.01 * 0.1 = 1 cm, the wall is 5 mm away
+  EXPECT_TRUE(keepInsideDomain(near, 0.1, h, lo, hi, v, w));
+  EXPECT_EQ(w, 0);
+  w = 4;  // 4 mm
+  EXPECT_FALSE(keepInsideDomain(near, 0.1, h, lo, hi, v, w));
+  EXPECT_EQ(w, 4);
+}
+
 TEST(RealTimeMeter, LeavesPausesOutAndSlidesItsWindow) {
   using Clock = RealTimeMeter::Clock;
   const Clock::time_point t0{};

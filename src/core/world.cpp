@@ -481,6 +481,7 @@ StepInfo World::step(Real dt) {
   }
   stage(&Coupling::afterMaterialStep);
   if (coupled) stepBodies(dt);
+  if (blocks_) checkBlocks(info);
   velocity_lag_ = Real(0.5) * dt;
   time_ += dt;
   ++steps_;
@@ -512,6 +513,33 @@ void World::stepBodies(Real dt) {
   StageTimer timer(profile_, Stage::kBodies);
   ContactBodies& bodies = *contactBodies();
   bodies.step(dt, bodies.stableStep(def_.time_step.contact_factor));
+}
+
+void World::checkBlocks(StepInfo& info) const {
+  const Blocks& B = *blocks_;
+  const Vec2 &lo = def_.domain.min, &hi = def_.domain.max;
+  for (int i = 0; i < B.count(); ++i) {
+    if (B.def(i).type == BodyType::kStatic) continue;
+    const BlockState& s = B.state(i);
+    if (!s.position.allFinite() || !std::isfinite(s.angle) || !s.velocity.allFinite() ||
+        !std::isfinite(s.angular_velocity)) {
+      info.finite = false;
+      info.block_problem =
+          "block '" + B.def(i).name + "': its position, angle or velocity is no longer finite";
+      return;
+    }
+    // Its centre, not its outline: a block resting on a floor at the domain's edge overlaps the
+    // floor by its contact springs' compression, past the edge.
+    if ((s.position.array() < lo.array()).any() || (s.position.array() > hi.array()).any()) {
+      char where[160];
+      std::snprintf(where, sizeof where,
+                    ": its centre of mass (%.4g, %.4g) m left the domain [%.4g, %.4g] x "
+                    "[%.4g, %.4g] m",
+                    s.position.x(), s.position.y(), lo.x(), hi.x(), lo.y(), hi.y());
+      info.block_problem = "block '" + B.def(i).name + "'" + where;
+      return;
+    }
+  }
 }
 
 void World::setPointLoad(int particle, const Vec2& force, const Vec2& offset) {

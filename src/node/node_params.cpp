@@ -1,6 +1,7 @@
 #include "node_params.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <ctime>
 #include <filesystem>
 
@@ -42,9 +43,13 @@ std::string defaultBagPath(const std::string& scene) {
       .string();
 }
 
-// A tf frame: names (limits::nameProblem) joined by '/', without a leading one (tf2).
+}  // namespace
+
 std::string frameProblem(const std::string& frame) {
   if (frame.empty()) return "must not be empty";
+  if (frame.size() > kMaxFrameLength)
+    return "must be at most " + std::to_string(kMaxFrameLength) + " characters, got " +
+           std::to_string(frame.size());
   std::size_t start = 0;
   while (true) {
     const std::size_t end = frame.find('/', start);
@@ -54,8 +59,6 @@ std::string frameProblem(const std::string& frame) {
     start = end + 1;
   }
 }
-
-}  // namespace
 
 bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
   if (!pnh.getParam("scene", p.scene) || p.scene.empty()) {
@@ -85,6 +88,7 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
       read(pnh, "follow_tf", p.follow_tf,
            "a dictionary {block name: tf frame}, e.g. {blade: excavator/blade_link}", error) &&
       read(pnh, "follow_tf_time_constant", p.follow_tf_time_constant, "a number (s)", error) &&
+      read(pnh, "follow_tf_max_speed", p.follow_tf_max_speed, "a number (m/s)", error) &&
       read(pnh, "cloud_decimation", decimation, "a whole number >= 1", error) &&
       read(pnh, "image/width", p.image.width, "a whole number of pixels", error) &&
       read(pnh, "image/color_by", color, "speed, pressure or kind", error) &&
@@ -130,6 +134,14 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
   if (!(p.follow_tf_time_constant > 0) || !std::isfinite(p.follow_tf_time_constant))
     return fail("parameter ~follow_tf_time_constant must be a finite number > 0 s, got " +
                 std::to_string(p.follow_tf_time_constant));
+  if (!(p.follow_tf_max_speed > 0) || !(p.follow_tf_max_speed <= limits::kSpeed.max)) {
+    char m[160];
+    std::snprintf(m, sizeof m,
+                  "parameter ~follow_tf_max_speed must be in (0, %g] m/s (the speed cap of every "
+                  "block), got %g",
+                  limits::kSpeed.max, p.follow_tf_max_speed);
+    return fail(m);
+  }
   for (const auto& [block, frame] : p.follow_tf) {
     if (const std::string n = limits::nameProblem(block); !n.empty())
       return fail("parameter ~follow_tf: block name " + n);

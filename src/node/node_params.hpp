@@ -39,6 +39,9 @@ struct NodeParams {
   double cmd_vel_timeout = 0.5;
   std::map<std::string, std::string> follow_tf;  // kinematic block name -> tf frame it follows
   double follow_tf_time_constant = 0.05;         // s: how fast a follower closes on its frame
+  // m/s: the fastest a follower's points move. A frame that moves faster (a jump) is closed on
+  // at this speed, with a warning naming it.
+  double follow_tf_max_speed = 5;
   render::RenderDef image;            // its scale set by chooseImageScale once the scene is read
   render::ViewRequest image_request;  // ~image/color_by and ~image/max_value, where given
   // Pacing: 0 runs as fast as possible; r > 0 keeps simulation time <= r * wall time.
@@ -64,6 +67,12 @@ struct NodeParams {
   std::string vtk_dir;
   double vtk_interval = 0.1;
 };
+
+// What is wrong with a tf frame name (names joined by '/', without a leading one; at most
+// kMaxFrameLength characters), or "": the one check of ~fixed_frame, ~tf_prefix, ~follow_tf and
+// the requests' reference frames.
+inline constexpr std::size_t kMaxFrameLength = 256;
+std::string frameProblem(const std::string& frame);
 
 // Fills params from the private node handle; false with a message on a bad value.
 bool loadParams(const ros::NodeHandle& pnh, NodeParams& params, std::string& error);

@@ -7,6 +7,7 @@
 #include "mpm_sdem/core/rigid/block_checks.hpp"
 #include "mpm_sdem/ros/conversions.hpp"
 #include "sim_loop.hpp"
+#include "throttle.hpp"
 
 namespace mpm_sdem::node {
 
@@ -94,7 +95,8 @@ void ObstacleDrivers::onCmdVel(const std::string& name, const geometry_msgs::Twi
     const int i = place(world, it->id);
     const Vec2 v = rotated(B.state(i).angle, v_body);  // the block's axes -> fixed frame
     if (const Problem p = twistProblem(B.def(i), v, w); !p.empty()) {
-      ROS_WARN_THROTTLE(1, "~obstacles/%s/cmd_vel ignored: %s", name.c_str(), p.message.c_str());
+      MPM_SDEM_WARN_THROTTLE(1, "~obstacles/%s/cmd_vel ignored: %s", name.c_str(),
+                             p.message.c_str());
       return {false, p.message};
     }
     world.setBlockVelocity(it->id, v, w);
@@ -118,8 +120,19 @@ Reply ObstacleDrivers::addLoad(World& world, const std::string& name, const Vec2
   if (loads_.size() >= kMaxLoads)
     return {false, "already " + std::to_string(kMaxLoads) +
                        " loads held; let some end or call ~clear_obstacle_wrenches"};
-  const Real until = duration < 0 ? std::numeric_limits<Real>::infinity() : world.time() + duration;
-  loads_.push_back({id, force, point, in_block_frame, torque, until});
+  const Real t = world.time();
+  const Real until = duration < 0 ? std::numeric_limits<Real>::infinity() : t + duration;
+  // With the loads held on it already: together they must not throw it past the speed cap.
+  const Real acceleration = loadAcceleration(B.def(B.indexOf(id)), force, point, torque);
+  std::vector<HeldLoad> held{{acceleration, until - t}};
+  for (const Load& l : loads_)
+    if (l.id == id && t < l.until) held.push_back({l.acceleration, l.until - t});
+  if (const Problem p = heldLoadsProblem(held); !p.empty())
+    return {false, "load on '" + name + "' refused: " + p.message +
+                       (held.size() > 1 ? " (" + std::to_string(held.size() - 1) +
+                                              " loads already held on it count too)"
+                                        : std::string())};
+  loads_.push_back({id, force, point, in_block_frame, torque, until, acceleration});
   return {true, "holding a load on '" + name + "' " +
                     (duration < 0 ? std::string("until cleared")
                                   : "until t = " + std::to_string(until) + " s")};
@@ -135,7 +148,7 @@ Reply ObstacleDrivers::clearLoads(const World& world, const std::string& name) {
   return {true, "cleared " + std::to_string(before - loads_.size()) + " loads"};
 }
 
-void ObstacleDrivers::beforeStep(World& world) {
+void ObstacleDrivers::beforeStep(World& world, Real h) {
   const Real t = world.time();
   // A load acts in the steps that start before its end.
   loads_.erase(
@@ -159,6 +172,29 @@ void ObstacleDrivers::beforeStep(World& world) {
              c.name.c_str(), params_.cmd_vel_timeout, c.name.c_str(), t);
   }
   for (Follower& f : followers_) steer(world, f);
+  const Blocks* B = world.blocks();
+  for (int i = 0; B && i < B->count(); ++i)
+    if (B->def(i).type == BodyType::kKinematic) keepInside(world, i, h);
+}
+
+void ObstacleDrivers::keepInside(World& world, int i, Real h) {
+  const Blocks& B = *world.blocks();
+  const BlockState& s = B.state(i);
+  Vec2 v = B.originVelocity(i);
+  Real w = s.angular_velocity;
+  if (v.squaredNorm() == 0 && w == 0) return;
+  const DomainDef& domain = world.def().domain;
+  if (!keepInsideDomain(B.blockBounds(i), blockReach(B.def(i)), h, domain.min, domain.max, v, w))
+    return;
+  const std::string& name = B.def(i).name;
+  const auto follower = std::find_if(followers_.begin(), followers_.end(),
+                                     [&](const Follower& f) { return f.name == name; });
+  const std::string who =
+      "'" + name + "'" +
+      (follower == followers_.end() ? std::string() : " (following " + follower->frame + ")");
+  MPM_SDEM_WARN_THROTTLE(1, "%s stops at the domain's wall: its velocity towards it is cut",
+                         who.c_str());
+  world.setBlockVelocity(B.id(i), v, w);
 }
 
 void ObstacleDrivers::steer(World& world, Follower& f) {
@@ -168,14 +204,29 @@ void ObstacleDrivers::steer(World& world, Follower& f) {
   try {
     ts = tf_.lookupTransform(params_.fixed_frame, f.frame, ros::Time(0));
   } catch (const tf2::TransformException& e) {
-    ROS_WARN_THROTTLE(5, "~follow_tf: '%s' holds still: no transform %s -> %s yet (%s)",
-                      f.name.c_str(), params_.fixed_frame.c_str(), f.frame.c_str(), e.what());
+    MPM_SDEM_WARN_THROTTLE(5, "~follow_tf: '%s' holds still: no transform %s -> %s yet (%s)",
+                           f.name.c_str(), params_.fixed_frame.c_str(), f.frame.c_str(), e.what());
     world.setBlockVelocity(f.id, Vec2(0, 0), 0);
     return;
   }
   const Vec2 p(ts.transform.translation.x, ts.transform.translation.y);
   const Real yaw = conversions::yaw(ts.transform.rotation);
+  const Blocks& B = *world.blocks();
+  const BlockDef& d = B.def(i);
+  const Real reach = blockReach(d);
+  const Real max_speed = params_.follow_tf_max_speed;
   if (f.samples == 0 || ts.header.stamp != f.stamp[1]) {
+    // A frame that moves faster than the followers may (a jump, a reset of its publisher) is
+    // closed on at that speed, not followed.
+    if (f.samples > 0) {
+      const Real gap = (ts.header.stamp - f.stamp[1]).toSec();
+      const Real moved = (p - f.position[1]).norm() + std::abs(wrapped(yaw - f.angle[1])) * reach;
+      if (!(moved <= max_speed * std::fmax(gap, 0.0)))
+        MPM_SDEM_WARN_THROTTLE(1,
+                               "~follow_tf: frame %s moved %.3g m in %.3g s, faster than "
+                               "~follow_tf_max_speed %g m/s; '%s' closes in at that speed",
+                               f.frame.c_str(), moved, gap, max_speed, f.name.c_str());
+    }
     f.stamp[0] = f.stamp[1], f.position[0] = f.position[1], f.angle[0] = f.angle[1];
     f.stamp[1] = ts.header.stamp, f.position[1] = p, f.angle[1] = yaw;
     f.samples = std::min(f.samples + 1, 2);
@@ -190,16 +241,14 @@ void ObstacleDrivers::steer(World& world, Follower& f) {
     w_ff = wrapped(f.angle[1] - f.angle[0]) / gap;
   }
   const Real ahead = std::clamp((ros::Time::now() - f.stamp[1]).toSec(), 0.0, 0.5);
-  const Blocks& B = *world.blocks();
   const Real tau = params_.follow_tf_time_constant;
   Vec2 v = v_ff + (f.position[1] + ahead * v_ff - B.origin(i)) / tau;
   Real w = w_ff + wrapped(f.angle[1] + ahead * w_ff - B.state(i).angle) / tau;
-  // Far from its frame (a jump), a block closes in at the fastest speed the step allows.
-  const BlockDef& d = B.def(i);
-  const Real speed = v.norm() + std::abs(w) * blockReach(d);
-  if (speed > limits::kSpeed.max) {
-    v *= limits::kSpeed.max / speed;
-    w *= limits::kSpeed.max / speed;
+  // Far from its frame, a block closes in no faster than its fastest point may move.
+  const Real speed = v.norm() + std::abs(w) * reach;
+  if (speed > max_speed) {
+    v *= max_speed / speed;
+    w *= max_speed / speed;
   }
   world.setBlockVelocity(f.id, v, w);
 }

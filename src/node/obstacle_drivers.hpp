@@ -5,7 +5,12 @@
 //   that lapse to zero after ~cmd_vel_timeout of simulation time without a new one
 //   (diff_drive_controller's rule);
 // - kinematic blocks that follow a tf frame (~follow_tf: a robot's blade link): each step their
-//   twist is the frame's velocity plus the pose error over ~follow_tf_time_constant.
+//   twist is the frame's velocity plus the pose error over ~follow_tf_time_constant, its
+//   fastest point no faster than ~follow_tf_max_speed (a frame that jumps is closed on at that
+//   speed, with a warning naming it).
+// And the domain's walls: every kinematic block, however it is driven, stops at them (its
+// velocity towards a wall is cut, with a warning); a dynamic block that leaves the domain
+// pauses the loop (Simulation::advance).
 // Blocks are held by id, so a removed block's drivers lapse with it.
 #pragma once
 
@@ -35,13 +40,14 @@ class ObstacleDrivers {
   // follower whose block is gone (removed by a request) stops following until one of its name
   // and kind is there again.
   void sync(const World& world, bool fresh = false);
-  // Loop thread, before each step: adds the held loads, lapses old commands, steers the
-  // followers.
-  void beforeStep(World& world);
+  // Loop thread, before a step of h (s): adds the held loads, lapses old commands, steers the
+  // followers, stops kinematic blocks at the domain's walls.
+  void beforeStep(World& world, Real h);
 
   // Loop thread, from requests. A load's force (N/m) acts at point (block frame, m), in the
   // block's axes when in_block_frame, else the fixed frame's; torque in N m/m; for duration s
-  // of simulation time (< 0: until cleared).
+  // of simulation time (< 0: until cleared). Refused when the loads on the block would exceed
+  // heldLoadsProblem's bounds (rigid/block_checks.hpp).
   Reply addLoad(World& world, const std::string& name, const Vec2& force, const Vec2& point,
                 bool in_block_frame, Real torque, Real duration);
   Reply clearLoads(const World& world, const std::string& name);  // "" clears all
@@ -55,6 +61,7 @@ class ObstacleDrivers {
     Vec2 force, point;
     bool in_block_frame;
     Real torque, until;  // until: s of simulation time, infinite for "until cleared"
+    Real acceleration;   // of the block's fastest point (loadAcceleration), m/s^2
   };
   struct Command {
     BlockId id;
@@ -74,6 +81,8 @@ class ObstacleDrivers {
   };
   void onCmdVel(const std::string& name, const geometry_msgs::Twist& twist);
   void steer(World& world, Follower& f);
+  // Cuts a kinematic block's velocity towards a wall it would cross in h (keepInsideDomain).
+  void keepInside(World& world, int i, Real h);
 
   ros::NodeHandle pnh_;
   CommandQueue& queue_;

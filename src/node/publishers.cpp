@@ -32,7 +32,7 @@ bool Publishers::Channel::due(Real t, bool force, bool always) {
 }
 
 Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParams& params,
-                       const std::string& scene_text)
+                       const std::string& scene_text, const World& world)
     : params_(params), pnh_(pnh) {
   particles_ = {pnh.advertise<sensor_msgs::PointCloud2>("particles", 2, true),
                 SampleClock(params.particles_rate), true};
@@ -44,10 +44,12 @@ Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
   image_ = {pnh.advertise<sensor_msgs::Image>("image", 1), SampleClock(params.image_rate)};
   // FEM bodies' triangles coloured by von Mises stress, at the blocks' rate; latched, so a
   // late listener sees them while paused.
-  fem_ = {pnh.advertise<visualization_msgs::Marker>("fem_mesh", 2, true),
-          SampleClock(params.blocks_rate), true};
-  fem_nodes_ = {pnh.advertise<sensor_msgs::PointCloud2>("fem_nodes", 2, true),
-                SampleClock(params.blocks_rate), true};
+  if (world.femBodies()) {
+    fem_ = {pnh.advertise<visualization_msgs::Marker>("fem_mesh", 2, true),
+            SampleClock(params.blocks_rate), true};
+    fem_nodes_ = {pnh.advertise<sensor_msgs::PointCloud2>("fem_nodes", 2, true),
+                  SampleClock(params.blocks_rate), true};
+  }
   markers_ = {pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, true),
               SampleClock(params.blocks_rate), true};
   arrows_ = {pnh.advertise<visualization_msgs::MarkerArray>("force_arrows", 1, true),

@@ -23,8 +23,10 @@ namespace mpm_sdem::node {
 
 class Publishers {
  public:
+  // Topics only for what the world has: ~fem_mesh and ~fem_nodes with FEM bodies (none can be
+  // added while running).
   Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParams& params,
-             const std::string& scene_text);
+             const std::string& scene_text, const World& world);
 
   // After a step: publishes what is due at the world's time. force: everything now (after a
   // command while paused, so that listeners see its effect). status: the step, pause and

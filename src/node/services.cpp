@@ -9,17 +9,25 @@
 #include "mpm_sdem/core/rigid/block_checks.hpp"
 #include "mpm_sdem/ros/conversions.hpp"
 #include "sim_loop.hpp"
+#include "throttle.hpp"
 
 namespace mpm_sdem::node {
 
 namespace {
 
+// A reply, and the log line of a refusal, hold at most this much: a request's bad field is
+// echoed as a bounded prefix (the checks cut names and frames already; this is the backstop).
+constexpr std::size_t kMaxReply = 1024;
+
 template <class Res>
 bool answer(Res& res, const Reply& r) {
   res.success = r.success;
-  res.message = r.message;
+  res.message = r.message.size() <= kMaxReply
+                    ? r.message
+                    : r.message.substr(0, kMaxReply) + "... (" + std::to_string(r.message.size()) +
+                          " characters in all)";
   // Throttled: a caller looping on a bad request must not flood the log (it gets every reply).
-  if (!r.success) ROS_WARN_THROTTLE(1, "request refused: %s", r.message.c_str());
+  if (!r.success) MPM_SDEM_WARN_THROTTLE(1, "request refused: %s", res.message.c_str());
   return true;  // the call itself succeeded; success says whether the request did
 }
 
@@ -83,7 +91,7 @@ Services::Services(ros::NodeHandle& pnh, CommandQueue& queue) : queue_(queue) {
     servers_.push_back(pnh.advertiseService<Empty::Request, Empty::Response>(
         name, [this, f, name](Empty::Request&, Empty::Response&) {
           const Reply r = queue_.call([f](Simulation& s) { return (s.*f)(); });
-          if (!r.success) ROS_WARN_THROTTLE(1, "~%s refused: %s", name, r.message.c_str());
+          if (!r.success) MPM_SDEM_WARN_THROTTLE(1, "~%s refused: %s", name, r.message.c_str());
           return true;
         }));
   };
@@ -217,6 +225,9 @@ bool Services::getState(mpm_sdem::GetObstacleState::Request& req,
                         mpm_sdem::GetObstacleState::Response& res) {
   if (const std::string p = limits::nameProblem(req.name); !p.empty())
     return answer(res, {false, "name " + p});
+  if (!req.reference_frame.empty())
+    if (const std::string p = frameProblem(req.reference_frame); !p.empty())
+      return answer(res, {false, "reference_frame " + p});
   const std::string name = req.name, frame = req.reference_frame;
   mpm_sdem::GetObstacleState::Response out;
   const Reply r = queue_.call([&](Simulation& s) -> Reply {
@@ -316,7 +327,7 @@ bool Services::clearWrenches(mpm_sdem::ClearObstacleWrenches::Request& req,
 
 void Services::obstacleCommand(const mpm_sdem::ObstacleCommand::ConstPtr& msg) {
   if (const std::string p = limits::nameProblem(msg->name); !p.empty()) {
-    ROS_WARN_THROTTLE(1, "~obstacle_cmd ignored: name %s", p.c_str());
+    MPM_SDEM_WARN_THROTTLE(1, "~obstacle_cmd ignored: name %s", p.c_str());
     return;
   }
   const std::string name = msg->name;
@@ -326,7 +337,7 @@ void Services::obstacleCommand(const mpm_sdem::ObstacleCommand::ConstPtr& msg) {
     const Reply r = id.isNull() ? Reply{false, "no block named '" + name + "'"}
                                 : applyTwist(s.world(), id, twist);
     if (!r.success)
-      ROS_WARN_THROTTLE(1, "~obstacle_cmd ignored: %s", r.message.c_str());
+      MPM_SDEM_WARN_THROTTLE(1, "~obstacle_cmd ignored: %s", r.message.c_str());
     else
       s.noteRequest("~obstacle_cmd '" + name + "' twist " + describe(twist));
     return r;

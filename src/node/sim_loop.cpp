@@ -32,7 +32,7 @@ Simulation::Simulation(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
       scene_text_(std::move(scene_text)),
       world_(std::make_unique<World>(scene_.world)),
       drivers_(pnh, commands_, params_),
-      publishers_(nh, pnh, params_, scene_text_),
+      publishers_(nh, pnh, params_, scene_text_, *world_),
       paused_(params.start_paused) {
   if (!params_.resume.empty()) resumeFromCheckpoint();
   logCommands();
@@ -196,6 +196,18 @@ void Simulation::fail(const std::string& what, Real dt) {
   publishers_.publish(*world_, status(), true);
 }
 
+void Simulation::pauseOutside(const std::string& what) {
+  paused_ = true;
+  pending_steps_ = 0;
+  const std::string cause =
+      last_request_.empty() ? "" : " The last request before it was " + last_request_ + ".";
+  ROS_ERROR(
+      "%s at step %ld, t = %.6g s; paused.%s Move it back (~set_obstacle_state), remove it "
+      "(~remove_obstacle) or call ~reset, then ~resume.",
+      what.c_str(), world_->stepCount(), world_->time(), cause.c_str());
+  publishers_.publish(*world_, status(), true);
+}
+
 void Simulation::publishWhilePaused() {
   // /clock holds its time and ~stats (latched) stays fresh for late listeners.
   const auto now = Clock::now();
@@ -216,11 +228,19 @@ bool Simulation::advance() {
   }
   const bool to_end = params_.end_action != EndAction::kContinue && !end_reached_;
   const Real h = to_end ? stepTowards(dt_.dt, scene_.end_time, world_->time()) : dt_.dt;
-  drivers_.beforeStep(*world_);
+  drivers_.beforeStep(*world_, h);
   const StepInfo info = world_->step(h);
   if (tuner_) tuner_->afterStep(std::chrono::duration<double>(Clock::now() - start).count());
   if (!info.finite) {
-    fail("the state became non-finite", h);
+    fail("the state became non-finite" +
+             (info.block_problem.empty() ? std::string() : " (" + info.block_problem + ")"),
+         h);
+    return false;
+  }
+  if (!info.block_problem.empty()) {
+    // A dynamic block pushed or thrown out of the domain (kinematic ones stop at its walls):
+    // the step is sound, but the block has left the material's grid.
+    pauseOutside(info.block_problem);
     return false;
   }
   real_time_.sample(world_->time());

@@ -55,6 +55,8 @@ class Simulation {
   // (the loop then pauses).
   bool advance();
   void fail(const std::string& what, Real dt);
+  // A sound state with a block outside the domain: paused, saying what to do.
+  void pauseOutside(const std::string& what);
   conversions::StatsInput status() const;
   void publishWhilePaused();
   void openRecordings();

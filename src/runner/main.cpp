@@ -233,7 +233,7 @@ int main(int argc, char** argv) {
   }
   runner::Progress progress(scene.end_time, !opt.quiet);
   int status = 0;
-  bool mach_warned = false;
+  bool mach_warned = false, outside_warned = false;
   while (world.time() < scene.end_time - eps && !g_interrupted) {
     const auto start = std::chrono::steady_clock::now();
     if (tuner) tuner->beforeStep();
@@ -255,10 +255,17 @@ int main(int argc, char** argv) {
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     if (!info.finite) {
       std::cerr << "\nerror: the state became non-finite at step " << world.stepCount()
-                << ", t = " << world.time() << " s (dt = " << h
-                << " s). Lower time.cfl or time.dt, or refine the grid.\n";
+                << ", t = " << world.time() << " s (dt = " << h << " s"
+                << (info.block_problem.empty() ? "" : "; " + info.block_problem)
+                << "). Lower time.cfl or time.dt, or refine the grid.\n";
       status = 3;
       break;
+    }
+    // A block outside the domain leaves the material's grid: said once, the run goes on (the
+    // node pauses instead, as it does for the requests that push blocks out).
+    if (!info.block_problem.empty() && !outside_warned) {
+      std::cerr << "\nwarning: at t = " << world.time() << " s, " << info.block_problem << "\n";
+      outside_warned = true;
     }
     if (bag) {
       bag_stats.dt = dt;

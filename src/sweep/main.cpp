@@ -40,10 +40,11 @@ std::string executable() {
   return fs::read_symlink("/proc/self/exe").string();
 }
 
-// The plots (scripts/sweep_plots.py, matplotlib); the CSVs are the result, so a missing
-// matplotlib is a warning.
+// The plots (scripts/sweep_plots.py, matplotlib): installed beside this program, or in the
+// source tree of a devel build. The CSVs are the result, so a missing matplotlib is a warning.
 void plot(const std::string& out_dir) {
-  const fs::path script = fs::path(MPM_SDEM_SOURCE_DIR) / "scripts" / "sweep_plots.py";
+  fs::path script = fs::path(executable()).parent_path() / "sweep_plots.py";
+  if (!fs::exists(script)) script = fs::path(MPM_SDEM_SOURCE_DIR) / "scripts" / "sweep_plots.py";
   const std::string command = "/usr/bin/python3 '" + script.string() + "' '" + out_dir + "'";
   if (std::system(command.c_str()) != 0)
     std::cerr << "warning: no plots (" << command

@@ -9,11 +9,13 @@
 #include <ros/ros.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
+#include <rosgraph_msgs/Log.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <map>
@@ -61,6 +63,43 @@ class Latest {
   mutable std::mutex m_;
   M msg_;
   long count_ = 0;
+  ros::Subscriber sub_;
+};
+
+// Every message logged to /rosout since construction (callbacks on an AsyncSpinner thread).
+class RosoutLog {
+ public:
+  explicit RosoutLog(ros::NodeHandle& nh)
+      : sub_(nh.subscribe("/rosout", 1000, &RosoutLog::add, this)) {}
+  // How many messages of at least this level hold text.
+  int count(const std::string& text, std::uint8_t level = rosgraph_msgs::Log::DEBUG) const {
+    std::lock_guard<std::mutex> l(m_);
+    int n = 0;
+    for (const rosgraph_msgs::Log& m : logs_)
+      n += m.level >= level && m.msg.find(text) != std::string::npos;
+    return n;
+  }
+  // The first message holding text, or "".
+  std::string find(const std::string& text) const {
+    std::lock_guard<std::mutex> l(m_);
+    for (const rosgraph_msgs::Log& m : logs_)
+      if (m.msg.find(text) != std::string::npos) return m.msg;
+    return "";
+  }
+  std::size_t longest() const {
+    std::lock_guard<std::mutex> l(m_);
+    std::size_t n = 0;
+    for (const rosgraph_msgs::Log& m : logs_) n = std::max(n, m.msg.size());
+    return n;
+  }
+
+ private:
+  void add(const rosgraph_msgs::Log::ConstPtr& m) {
+    std::lock_guard<std::mutex> l(m_);
+    logs_.push_back(*m);
+  }
+  mutable std::mutex m_;
+  std::vector<rosgraph_msgs::Log> logs_;
   ros::Subscriber sub_;
 };
 

@@ -192,6 +192,27 @@ TEST(Robot, StateInAReferenceFrameAndStaticFrames) {
   g.request.name = "nobody";
   g.request.reference_frame = "";
   EXPECT_FALSE(n.call("get_obstacle_state", g).response.success);
+  // A frame of 1 MB, or of 300,000 good names: refused with a reply of a few lines, and no
+  // longer log lines.
+  test::RosoutLog log(n.nh);
+  g.request.name = "blade";
+  for (const std::string& frame : {std::string(1 << 20, 'f'), [] {
+                                     std::string f = "a";
+                                     for (int k = 0; k < 300000; ++k) f += "/a";
+                                     return f;
+                                   }()}) {
+    g.request.reference_frame = frame;
+    g = n.call("get_obstacle_state", g);
+    EXPECT_FALSE(g.response.success);
+    EXPECT_LT(g.response.message.size(), 300u) << g.response.message.substr(0, 300);
+  }
+  ros::WallDuration(0.5).sleep();
+  EXPECT_LT(log.longest(), 1000u);
+  // Topics only for what the scene has: no FEM bodies here, so no ~fem_mesh or ~fem_nodes.
+  ros::master::V_TopicInfo topics;
+  ASSERT_TRUE(ros::master::getTopics(topics));
+  for (const ros::master::TopicInfo& t : topics)
+    EXPECT_EQ(t.name.find(test::kNs + "fem_"), std::string::npos) << t.name;
 }
 
 // Started paused, nothing has stepped: a listener that subscribes now still gets the cloud, the
@@ -228,6 +249,171 @@ TEST(Robot, PausedStartServesLateListenersAndGazeboNames) {
   ASSERT_TRUE(waitFor([&] { return n.stats.get().paused; }, 5));
   n.call("reset_simulation", e);
   ASSERT_TRUE(waitFor([&] { return n.stats.get().step == 0; }, 5));
+}
+
+namespace {
+
+mpm_sdem::ApplyObstacleWrench::Response load(test::NodeClient& n, double fy, double torque,
+                                             double duration) {
+  mpm_sdem::ApplyObstacleWrench a;
+  a.request.name = "box";
+  a.request.wrench.force.y = fy;
+  a.request.wrench.torque.z = torque;
+  a.request.duration = duration;
+  return n.call("apply_obstacle_wrench", a).response;
+}
+
+void clearLoads(test::NodeClient& n) {
+  mpm_sdem::ClearObstacleWrenches c;
+  c.request.name = "box";
+  EXPECT_TRUE(n.call("clear_obstacle_wrenches", c).response.success);
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+// Held loads on the box (0.8 kg/m), judged while paused so that nothing moves: every load the
+// issue threw it with (1e4 to 1e300 N/m: 1.25e4 m/s^2 and more) and a torque of 100 N m/m
+// (1.3e4 m/s^2 at its corners) are refused, naming the bound; 7000 N/m for 10 ms is held (8750
+// m/s^2, 87.5 m/s) but 2000 N/m more on top of it is not; 1000 N/m for 1 s would add 1250 m/s,
+// for 0.5 s 625. Then three times its weight upward, held until cleared, carries it out through
+// the top of the domain: the node pauses, naming the box and the load, and ~reset recovers.
+TEST(Robot, HeldLoadsAreBoundedAndABlockPushedOutPauses) {
+  test::NodeClient& n = *g_node;
+  test::RosoutLog log(n.nh);
+  ASSERT_TRUE(waitFor([&] { return n.stats.has(); }, 20));
+  ASSERT_TRUE(n.stats.get().paused);
+  // ~blocks is not sent while paused; ~get_obstacle_state answers.
+  auto boxHeight = [&n] {
+    mpm_sdem::GetObstacleState g;
+    g.request.name = "box";
+    g = n.call("get_obstacle_state", g);
+    EXPECT_TRUE(g.response.success) << g.response.message;
+    return g.response.pose.position.y;
+  };
+  const double y0 = boxHeight();
+  for (double f : {1e4, 1e6, 1e30, 1e38, 1e300}) {
+    const auto r = load(n, f, 0, 1e-3);
+    EXPECT_FALSE(r.success) << f << " N/m";
+    EXPECT_TRUE(contains(r.message, "m/s^2")) << r.message;
+  }
+  auto r = load(n, 0, 100, 1e-3);
+  EXPECT_FALSE(r.success);
+  EXPECT_TRUE(contains(r.message, "m/s^2")) << r.message;
+  r = load(n, 7000, 0, 0.01);
+  EXPECT_TRUE(r.success) << r.message;
+  r = load(n, 2000, 0, 0.01);
+  EXPECT_FALSE(r.success);
+  EXPECT_TRUE(contains(r.message, "already held on it")) << r.message;
+  clearLoads(n);
+  r = load(n, 1000, 0, 1.0);
+  EXPECT_FALSE(r.success);
+  // 1253 m/s: the box is 0.798 kg/m, its corners rounded.
+  EXPECT_TRUE(contains(r.message, "could add 125")) << r.message;
+  EXPECT_TRUE(contains(r.message, "at most 1000 m/s")) << r.message;
+  EXPECT_TRUE(load(n, 1000, 0, 0.5).success);
+  clearLoads(n);
+
+  r = load(n, 3 * kBoxWeight, 0, -1);
+  ASSERT_TRUE(r.success) << r.message;
+  ASSERT_TRUE(n.trigger("resume"));
+  ASSERT_TRUE(waitFor([&] { return n.stats.get().step > 0 && n.stats.get().paused; }, 20))
+      << "the node did not pause when the box left the domain";
+  const std::string why = log.find("left the domain");
+  EXPECT_TRUE(contains(why, "block 'box'")) << why;
+  EXPECT_TRUE(contains(why, "~apply_obstacle_wrench on 'box'")) << why;
+  // Out through the top (0.2 m) and no further than a step or two past it.
+  const double out = boxHeight();
+  EXPECT_GT(out, 0.2);
+  EXPECT_LT(out, 0.201);
+  ASSERT_TRUE(n.trigger("reset"));
+  ASSERT_TRUE(waitFor([&] { return n.stats.get().step == 0; }, 5));
+  EXPECT_EQ(boxHeight(), y0);
+  ASSERT_TRUE(n.trigger("resume")) << "the state was sound: ~resume works after the reset";
+}
+
+// Kinematic blocks stop at the domain's walls however they are driven: the blade under a cmd_vel
+// of 1 m/s up (its own x) and under an ~obstacle_cmd of 999 m/s right; a follower whose frame
+// jumps 1e6 m closes in at ~follow_tf_max_speed (5 m/s), with a warning naming the frame, and
+// stops at the right wall. The node keeps running throughout.
+TEST(Robot, KinematicBlocksStopAtTheWallsAndFollowersAtTheirSpeed) {
+  test::NodeClient& n = *g_node;
+  test::RosoutLog log(n.nh);
+  ros::Publisher cmd =
+      n.nh.advertise<geometry_msgs::Twist>(test::kNs + "obstacles/blade/cmd_vel", 1);
+  ASSERT_TRUE(waitFor([&] { return cmd.getNumSubscribers() > 0 && n.blocks.has(); }, 20));
+  geometry_msgs::Twist t;
+  t.linear.x = 1;
+  for (int k = 0; k < 20; ++k) {
+    cmd.publish(t);
+    ros::WallDuration(0.05).sleep();
+  }
+  RigidBlockState blade;
+  ASSERT_TRUE(n.block("blade", blade));
+  // Turned 90 degrees, 1 cm tall (its size holds the rounding): its centre stops 5 mm below the
+  // top, to Box2D's single precision.
+  EXPECT_NEAR(blade.pose.position.y, 0.2 - 0.005, 1e-6);
+  EXPECT_NEAR(blade.twist.linear.y, 0, 1e-9);
+  EXPECT_TRUE(contains(log.find("stops at the domain's wall"), "'blade'"));
+  ObstacleCommand c;
+  c.name = "blade";
+  c.twist.linear.x = 999;
+  n.cmd.publish(c);
+  ASSERT_TRUE(waitFor([&] { return n.block("blade", blade) && blade.pose.position.x > 0.1; }, 10));
+  ros::WallDuration(0.3).sleep();
+  ASSERT_TRUE(n.block("blade", blade));
+  EXPECT_NEAR(blade.pose.position.x, 0.2 - 0.015, 1e-6);  // 3 cm wide
+  EXPECT_NEAR(blade.twist.linear.x, 0, 1e-9);
+
+  tf2_ros::TransformBroadcaster tf;
+  auto send = [&](double x) {
+    geometry_msgs::TransformStamped ts;
+    ts.header.stamp = ros::Time::now();
+    ts.header.frame_id = "world";
+    ts.child_frame_id = "target";
+    ts.transform.translation.x = x;
+    ts.transform.translation.y = 0.15;
+    ts.transform.rotation.w = 1;
+    tf.sendTransform(ts);
+  };
+  for (int k = 0; k < 50; ++k, ros::WallDuration(0.02).sleep()) send(0);
+  RigidBlockState follower;
+  ASSERT_TRUE(n.block("follower", follower));
+  EXPECT_NEAR(follower.pose.position.x, 0, 1e-3);
+  double fastest = 0;
+  for (int k = 0; k < 100; ++k, ros::WallDuration(0.02).sleep()) {
+    send(1e6);
+    if (n.block("follower", follower))
+      fastest = std::max(fastest, std::hypot(follower.twist.linear.x, follower.twist.linear.y));
+  }
+  ASSERT_TRUE(n.block("follower", follower));
+  EXPECT_GT(fastest, 1);
+  EXPECT_LT(fastest, 5 * (1 + 1e-6));
+  EXPECT_NEAR(follower.pose.position.x, 0.2 - 0.01, 1e-6);  // 2 cm wide
+  EXPECT_TRUE(contains(log.find("frame target moved"), "~follow_tf_max_speed")) << "no warning";
+  EXPECT_TRUE(contains(log.find("(following target)"), "stops at the domain's wall"));
+  EXPECT_FALSE(n.stats.get().paused);
+}
+
+// Warnings are throttled in wall time and the first comes at once: the follower's frame is never
+// broadcast, so once resumed it holds still and says so in its first simulated second (ROS
+// time, counted from 0 under /use_sim_time, held the first back for 5 simulated s), then once
+// per 5 s of wall time, however fast the simulation runs.
+TEST(Robot, FirstWarningAtOnceThenThrottledInWallTime) {
+  test::NodeClient& n = *g_node;
+  test::RosoutLog log(n.nh);
+  ASSERT_TRUE(waitFor([&] { return n.stats.has(); }, 20));
+  ASSERT_TRUE(n.stats.get().paused);
+  ros::WallDuration(1.0).sleep();  // the node's /rosout reaches the log
+  ASSERT_EQ(log.count("holds still"), 0);
+  ASSERT_TRUE(n.trigger("resume"));
+  ASSERT_TRUE(waitFor([&] { return log.count("holds still") > 0; }, 10)) << "no warning";
+  EXPECT_LT(n.stats.get().sim_time, 1.0);
+  ros::WallDuration(5.5).sleep();
+  EXPECT_EQ(log.count("holds still"), 2) << "at 0 and 5 s of wall time";
 }
 
 int main(int argc, char** argv) {

@@ -42,6 +42,10 @@ inline constexpr Range kArtificialViscosity{0, 10, ""};   // SPH alpha, beta (1 
 inline constexpr Range kRestitution{0, 1, "", true};      // 0 would need an infinite damper
 inline constexpr Range kSpeed{0, 1e3, "m/s"};      // fastest point of a body, block or command
 inline constexpr Range kGravity{0, 1e4, "m/s^2"};  // magnitude: 1000 g, beyond any centrifuge
+// Loads held on a block from outside (the node's ~apply_obstacle_wrench): the acceleration they
+// give its fastest point, all together, at most the strongest gravity accepted; and the speed
+// they add over their durations at most kSpeed.max (rigid/block_checks.hpp, heldLoadsProblem).
+inline constexpr Range kLoadAcceleration{0, kGravity.max, "m/s^2"};
 inline constexpr Range kCellSize{1e-5, 1e3, "m"};
 inline constexpr Range kLength{1e-5, 1e3, "m"};      // block roundings and core extents
 inline constexpr Range kCoordinate{-1e5, 1e5, "m"};  // domain corners and positions

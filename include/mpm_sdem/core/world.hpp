@@ -99,8 +99,11 @@ struct TimeStepChoice {
 
 struct StepInfo {
   Real dt = 0;
-  bool finite = true;  // false: a particle position became NaN or infinite
+  bool finite = true;  // false: a point's position or a block's state became NaN or infinite
   long clamped = 0;    // particles put back inside the domain this step
+  // The first moving block whose state is not finite (finite is then false) or whose centre of
+  // mass has left the domain, and how, naming it; empty when every block is sound and inside.
+  std::string block_problem;
 };
 
 class World {
@@ -192,6 +195,8 @@ class World {
   void applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const;
   void couplingStage(Real dt, Real kick, void (Coupling::*stage)(CouplingStep&));
   void stepBodies(Real dt);
+  // StepInfo::block_problem and, for a block's state, finite.
+  void checkBlocks(StepInfo& info) const;
   void initCoupling();
   // Whenever the blocks come or go: the set of every kind of contact body, and what the FEM
   // bodies meet.

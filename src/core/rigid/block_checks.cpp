@@ -1,7 +1,9 @@
 #include "mpm_sdem/core/rigid/block_checks.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace mpm_sdem {
 
@@ -99,6 +101,59 @@ Problem blockProblem(const BlockDef& d, BlockContactModel model) {
   if (!twist.empty() && twist.key == "velocity" && d.velocity.squaredNorm() == 0)
     twist.key = "angular_velocity";
   return twist;
+}
+
+Real loadAcceleration(const BlockDef& d, const Vec2& force, const Vec2& point, Real torque) {
+  if (d.type != BodyType::kDynamic) return std::numeric_limits<Real>::infinity();
+  const MassProperties m = blockMass(d);
+  Real reach = 0;  // R: the outline's farthest point from the centre of mass
+  for (const Spheropolygon& part : blockParts(d))
+    for (const Vec2& v : part.core)
+      reach = std::fmax(reach, (v - m.centroid).norm() + part.rounding);
+  const Real f = force.norm();
+  const Real spin = ((point - m.centroid).norm() * f + std::abs(torque)) / m.inertia;
+  return f / m.mass + spin * reach;
+}
+
+Problem heldLoadsProblem(const std::vector<HeldLoad>& loads) {
+  Real acceleration = 0, speed = 0;
+  for (const HeldLoad& l : loads) {
+    acceleration += l.acceleration;
+    if (std::isfinite(l.duration)) speed += l.acceleration * l.duration;
+  }
+  if (!(acceleration <= limits::kLoadAcceleration.max))
+    return {"wrench", "the loads held on the block would accelerate its fastest point at up to " +
+                          num(acceleration) + " m/s^2; at most " +
+                          num(limits::kLoadAcceleration.max) +
+                          " m/s^2 (the strongest gravity accepted): lower the force or torque"};
+  if (!(speed <= limits::kSpeed.max))
+    return {"duration", "the loads held on the block could add " + num(speed) +
+                            " m/s to its fastest point before they end; at most " +
+                            num(limits::kSpeed.max) +
+                            " m/s (the speed cap of every block): lower or shorten them"};
+  return {};
+}
+
+bool keepInsideDomain(const Box& b, Real reach, Real h, const Vec2& lo, const Vec2& hi, Vec2& v,
+                      Real& w) {
+  bool cut = false;
+  const Real sweep = std::abs(w) * h * reach;
+  if (sweep > 0 && ((b.min - Vec2::Constant(sweep)).array() < lo.array() ||
+                    (b.max + Vec2::Constant(sweep)).array() > hi.array())
+                       .any()) {
+    w = 0;
+    cut = true;
+  }
+  for (int a = 0; a < 2; ++a) {
+    // The largest step towards each side that keeps the box inside (0 once it is outside).
+    const Real up = std::fmax(hi[a] - b.max[a], Real(0)) / h;
+    const Real down = std::fmin(lo[a] - b.min[a], Real(0)) / h;
+    if (v[a] > up || v[a] < down) {
+      v[a] = std::clamp(v[a], down, up);
+      cut = true;
+    }
+  }
+  return cut;
 }
 
 Problem domainProblem(const BlockDef& d, const Vec2& lo, const Vec2& hi) {

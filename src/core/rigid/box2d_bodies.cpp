@@ -192,6 +192,12 @@ void Blocks::setPose(BlockId id, const Vec2& origin, Real angle) {
   refresh();
 }
 
+Vec2 Blocks::originVelocity(int i) const {
+  const BlockState& s = bodies_[i].state;
+  const Vec2 r = origin(i) - s.position;
+  return s.velocity + s.angular_velocity * Vec2(-r.y(), r.x());
+}
+
 void Blocks::setVelocity(BlockId id, const Vec2& origin_velocity, Real angular_velocity) {
   const int i = checkedIndex(id);
   // Box2D's linear velocity is that of the centre of mass.

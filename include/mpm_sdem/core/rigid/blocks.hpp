@@ -139,6 +139,8 @@ class Blocks final : public ContactBodies {
   const BlockState& state(int i) const { return bodies_[i].state; }
   // Origin of block i's own frame (the frame its outline is given in), world frame (m).
   Vec2 origin(int i) const;
+  // Velocity of block i's frame origin (m/s): what setVelocity sets.
+  Vec2 originVelocity(int i) const;
   // Moves the block's frame to origin and angle (a teleport: no force, velocities kept).
   void setPose(BlockId id, const Vec2& origin, Real angle);
   // Sets the velocity of the block frame's origin (m/s) and its angular velocity (rad/s). A
