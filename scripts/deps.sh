@@ -21,6 +21,10 @@ MPM_SDEM_PACKAGES=(
   rviz xvfb python3-pil python3-numpy python3-matplotlib
   parallel
   clang libclang-rt-14-dev libomp-14-dev
+  # What Debian's rosdep data resolves package.xml's ROS keys to beyond the above (`rosdep check`
+  # in test/rosdep_check.sh), rosdep itself, and rospack/rosrun for the README's commands.
+  ros-rosgraph-msgs ros-std-srvs ros-visualization-msgs ros-tf2-msgs python3-tf2-ros librviz-dev
+  python3-rosdep2 rospack-tools rosbash
 )
 
 mpm_sdem_install_deps() {

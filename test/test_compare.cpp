@@ -88,6 +88,36 @@ TEST(CompareRuns, SelfIsZeroPerturbedIsNot) {
   fs::remove_all(fs::temp_directory_path() / "mpm_sdem_test_compare");
 }
 
+// Blocks spawned while running appear in the states from their spawn on: a block both runs
+// spawned is compared wherever both recorded it, and one spawned in a single run is listed as
+// present there only (before, only the blocks of each run's first state were compared).
+TEST(CompareRuns, SpawnedBlocksAreComparedAndOneSidedOnesListed) {
+  auto states = [](double t, std::vector<std::pair<std::string, double>> blocks) {
+    mpm_sdem::BlockStates s;
+    s.header.stamp.fromSec(t);
+    for (const auto& [name, x] : blocks) {
+      mpm_sdem::RigidBlockState b;
+      b.name = name;
+      b.pose.position.x = x;
+      b.pose.orientation.w = 1;
+      s.blocks.push_back(b);
+    }
+    return s;
+  };
+  RunSeries a, b;
+  a.blocks = {states(0, {{"post", 0}}), states(0.1, {{"post", 0}, {"rock", 0.5}}),
+              states(0.2, {{"post", 0}, {"rock", 0.6}, {"only_a", 1}})};
+  b.blocks = {states(0, {{"post", 0}}), states(0.1, {{"post", 0}, {"rock", 0.5}}),
+              states(0.2, {{"post", 0}, {"rock", 0.7}}), states(0.3, {{"post", 0}, {"only_b", 2}})};
+  const Comparison c = compareRuns(a, b, 0.005);
+  ASSERT_EQ(c.blocks.size(), 2u);
+  EXPECT_EQ(c.blocks[1].name, "rock");
+  ASSERT_EQ(c.blocks[1].time.size(), 2u);  // 0.1 and 0.2 s
+  EXPECT_NEAR(c.blocks[1].final_position, 0.1, 1e-12);
+  EXPECT_EQ(c.only_a, std::vector<std::string>{"only_a"});
+  EXPECT_EQ(c.only_b, std::vector<std::string>{"only_b"});
+}
+
 // Runs with FEM bodies: their nodes are recorded (~fem_nodes) and compared node by node; a run
 // against itself differs by nothing, a barrier twice as stiff by half of the sag under its
 // own weight.

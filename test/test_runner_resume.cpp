@@ -112,6 +112,22 @@ TEST_F(RunnerResume, FromABagAtATime) {
   EXPECT_NE(log.find("resuming from the checkpoint at t = 0.2"), std::string::npos) << log;
   for (const char* f : {"timeseries.csv", "blocks.csv", "particles.csv", "vtk/points.pvd"})
     EXPECT_TRUE(text(out / f) == text(kDir / "whole" / f)) << f << " differs from the whole run's";
+  // About 0.05 s before the time asked for (the checkpoints fall on the first step at or past
+  // each 0.1 s), far more than a step: said, with the bag's spacing and the rate to record with.
+  EXPECT_NE(log.find("warning: resuming 0.04"), std::string::npos) << log;
+  EXPECT_NE(log.find("before the t = 0.25 s asked for"), std::string::npos) << log;
+  EXPECT_NE(log.find("checkpoints 0.09"), std::string::npos) << log;
+  EXPECT_NE(log.find("--bag-checkpoint-rate"), std::string::npos) << log;
+  // At the checkpoint's own time: nothing to say.
+  const std::size_t at = log.find("the checkpoint at t = ") + 22;
+  const std::string t = log.substr(at, log.find(' ', at) - at);
+  ASSERT_EQ(runner(kRun + " --resume " + (kDir / "whole.bag").string() + "@" + t + " --out " +
+                       (kDir / "at_checkpoint").string(),
+                   &log),
+            0)
+      << log;
+  EXPECT_NE(log.find("the checkpoint at t = " + t), std::string::npos) << log;
+  EXPECT_EQ(log.find("warning: resuming"), std::string::npos) << log;
 }
 
 TEST_F(RunnerResume, ALongerEndIsAllowed) {

@@ -36,6 +36,16 @@ const mpm_sdem::RigidBlockState* findBlock(const mpm_sdem::BlockStates& s, const
   return nullptr;
 }
 
+// Every block name a run recorded, in the order they first appear.
+std::vector<std::string> blockNames(const RunSeries& run) {
+  std::vector<std::string> names;
+  std::unordered_set<std::string> seen;
+  for (const auto& s : run.blocks)
+    for (const auto& b : s.blocks)
+      if (seen.insert(b.name).second) names.push_back(b.name);
+  return names;
+}
+
 double firstContact(const RunSeries& run, const std::string& name) {
   for (const auto& s : run.blocks) {
     const auto* b = findBlock(s, name);
@@ -84,32 +94,38 @@ double occupancyIoU(const std::vector<float>& a, const std::vector<float>& b, do
 Comparison compareRuns(const RunSeries& a, const RunSeries& b, double raster) {
   Comparison out;
   out.raster = raster;
-  // Blocks by name, present in both runs' first state.
-  if (!a.blocks.empty() && !b.blocks.empty()) {
-    for (const auto& blk : a.blocks.front().blocks) {
-      if (!findBlock(b.blocks.front(), blk.name)) continue;
-      BlockError e;
-      e.name = blk.name;
-      auto t = [](const mpm_sdem::BlockStates& s) { return s.header.stamp.toSec(); };
-      forMatched(a.blocks, b.blocks, t, t, [&](std::size_t i, std::size_t j) {
-        const auto* pa = findBlock(a.blocks[i], blk.name);
-        const auto* pb = findBlock(b.blocks[j], blk.name);
-        if (!pa || !pb) return;
-        e.time.push_back(t(a.blocks[i]));
-        e.position.push_back(std::hypot(pa->pose.position.x - pb->pose.position.x,
-                                        pa->pose.position.y - pb->pose.position.y));
-        e.angle.push_back(std::abs(std::remainder(
-            conversions::yaw(pa->pose.orientation) - conversions::yaw(pb->pose.orientation),
-            2 * M_PI)));
-      });
-      e.rms_position = rms(e.position);
-      e.rms_angle = rms(e.angle);
-      e.final_position = e.position.empty() ? 0 : e.position.back();
-      e.final_angle = e.angle.empty() ? 0 : e.angle.back();
-      e.first_contact_a = firstContact(a, blk.name);
-      e.first_contact_b = firstContact(b, blk.name);
-      out.blocks.push_back(std::move(e));
-    }
+  // Blocks by name, wherever both runs recorded them (a block spawned while running appears
+  // from its spawn on).
+  const std::vector<std::string> names_a = blockNames(a), names_b = blockNames(b);
+  const std::unordered_set<std::string> in_a(names_a.begin(), names_a.end()),
+      in_b(names_b.begin(), names_b.end());
+  for (const std::string& n : names_a)
+    if (!in_b.count(n)) out.only_a.push_back(n);
+  for (const std::string& n : names_b)
+    if (!in_a.count(n)) out.only_b.push_back(n);
+  for (const std::string& name : names_a) {
+    if (!in_b.count(name)) continue;
+    BlockError e;
+    e.name = name;
+    auto t = [](const mpm_sdem::BlockStates& s) { return s.header.stamp.toSec(); };
+    forMatched(a.blocks, b.blocks, t, t, [&](std::size_t i, std::size_t j) {
+      const auto* pa = findBlock(a.blocks[i], name);
+      const auto* pb = findBlock(b.blocks[j], name);
+      if (!pa || !pb) return;
+      e.time.push_back(t(a.blocks[i]));
+      e.position.push_back(std::hypot(pa->pose.position.x - pb->pose.position.x,
+                                      pa->pose.position.y - pb->pose.position.y));
+      e.angle.push_back(std::abs(std::remainder(
+          conversions::yaw(pa->pose.orientation) - conversions::yaw(pb->pose.orientation),
+          2 * M_PI)));
+    });
+    e.rms_position = rms(e.position);
+    e.rms_angle = rms(e.angle);
+    e.final_position = e.position.empty() ? 0 : e.position.back();
+    e.final_angle = e.angle.empty() ? 0 : e.angle.back();
+    e.first_contact_a = firstContact(a, name);
+    e.first_contact_b = firstContact(b, name);
+    out.blocks.push_back(std::move(e));
   }
   auto tc = [](const Cloud& c) { return c.time; };
   forMatched(a.clouds, b.clouds, tc, tc, [&](std::size_t i, std::size_t j) {

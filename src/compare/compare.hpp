@@ -37,7 +37,10 @@ struct EnergyError {
 };
 
 struct Comparison {
-  std::vector<BlockError> blocks;  // blocks present in both runs
+  // Blocks present in both runs at some time, spawned ones included (compared where both
+  // recorded them), in the order they first appear in a; and those present in one run only.
+  std::vector<BlockError> blocks;
+  std::vector<std::string> only_a, only_b;
   CloudError clouds;
   FemError fem;  // empty unless both runs recorded the same FEM nodes
   EnergyError energy;

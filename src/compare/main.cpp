@@ -57,6 +57,14 @@ void printTable(const Comparison& c) {
     std::printf("%-12s %12.4g %12.4g %12.4g %12.4g %10.4g %10.4g\n", b.name.c_str(), b.rms_position,
                 b.final_position, b.rms_angle, b.final_angle, b.first_contact_a, b.first_contact_b);
   }
+  // Blocks one run recorded and the other never did (spawned in one only, or renamed): named,
+  // since they are not compared.
+  for (const auto& [side, names] : {std::pair{"a", &c.only_a}, std::pair{"b", &c.only_b}}) {
+    if (names->empty()) continue;
+    std::printf("only in %s, not compared:", side);
+    for (const std::string& n : *names) std::printf(" %s", n.c_str());
+    std::printf("\n");
+  }
   double dmax = 0, dmean = 0, iou_min = 1;
   for (std::size_t k = 0; k < c.clouds.time.size(); ++k) {
     dmax = std::max(dmax, c.clouds.distance[k]);

@@ -64,6 +64,8 @@ void Simulation::resumeFromCheckpoint() {
   resumed_bag_ = from.bag;
   ROS_INFO("resumed from %s: t = %.6g s, step %ld", from.description.c_str(), world_->time(),
            world_->stepCount());
+  if (const std::string w = resumeGapWarning(from, world_->chooseTimeStep().dt); !w.empty())
+    ROS_WARN("~resume: %s", w.c_str());
 }
 
 void Simulation::logCommands() {

@@ -35,6 +35,16 @@ std::string seconds(Real t) {
   return s;
 }
 
+// A bag stamp to the nanosecond, as BAG@TIME takes it back (0.200043977 s).
+std::string stampText(const ros::Time& t) {
+  char s[48];
+  std::snprintf(s, sizeof s, "%u.%09u", t.sec, t.nsec);
+  std::string out = s;
+  out.erase(out.find_last_not_of('0') + 1);
+  if (out.back() == '.') out.pop_back();
+  return out + " s";
+}
+
 CheckpointSource fromFile(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read the checkpoint " + file.string());
@@ -79,9 +89,10 @@ CheckpointSource fromBag(const std::string& path, bool at, Real t) {
   std::vector<ros::Time> times;
   const rosbag::MessageInstance* chosen = nullptr;
   std::vector<rosbag::MessageInstance> all(view.begin(), view.end());
+  std::size_t k_chosen = 0;
   for (const rosbag::MessageInstance& m : all) {
     times.push_back(m.getTime());
-    if (!at || m.getTime() <= limit) chosen = &m;
+    if (!at || m.getTime() <= limit) chosen = &m, k_chosen = times.size() - 1;
   }
   if (all.empty())
     throw std::runtime_error(path + " holds no checkpoint (record with a checkpoint rate > 0)");
@@ -99,12 +110,33 @@ CheckpointSource fromBag(const std::string& path, bool at, Real t) {
   s.bytes.assign(msg->data.begin(), msg->data.end());
   s.bag = path;
   s.time = msg->time;
-  s.description = "the checkpoint at t = " + seconds(msg->time) + " (step " +
+  s.description = "the checkpoint at t = " + stampText(chosen->getTime()) + " (step " +
                   std::to_string(msg->steps) + ") in " + path;
+  if (at) s.asked = t;
+  if (times.size() > 1) {
+    const std::size_t next = std::min(k_chosen + 1, times.size() - 1);
+    s.spacing = (times[next] - times[next - 1]).toSec();
+  }
   return s;
 }
 
 }  // namespace
+
+std::string resumeGapWarning(const CheckpointSource& from, Real dt) {
+  const Real gap = from.asked - from.time;
+  if (from.asked < 0 || !(gap > dt)) return "";
+  char m[480];
+  std::snprintf(m, sizeof m,
+                "resuming %.6g s before the t = %.9g s asked for: the bag's last checkpoint "
+                "before it is at t = %.9g s%s. Record with a checkpoint rate of R Hz "
+                "(~bag_checkpoint_rate, mpm_sdem_run --bag-checkpoint-rate) to resume within "
+                "1/R s of any time (%.3g Hz: within %.3g s); within a step (%.3g s) takes %.3g Hz",
+                gap, from.asked, from.time,
+                from.spacing > 0 ? (", its checkpoints " + seconds(from.spacing) + " apart").c_str()
+                                 : " (the only one)",
+                10 / gap, gap / 10, dt, 1 / dt);
+  return m;
+}
 
 CheckpointSource loadCheckpointSource(const std::string& spec) {
   // BAG@TIME: the @ splits only a .bag's name from a number.

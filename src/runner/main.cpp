@@ -80,6 +80,8 @@ bool resume(const std::string& spec, const Scene& scene, World& world, Checkpoin
     return false;
   }
   std::fprintf(stderr, "resuming from %s\n", from.description.c_str());
+  if (const std::string w = resumeGapWarning(from, world.chooseTimeStep().dt); !w.empty())
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
   return true;
 }
 
