@@ -7,6 +7,7 @@
 #include <std_msgs/String.h>
 
 #include <algorithm>
+#include <unordered_map>
 
 #include "mpm_sdem/core/diagnostics.hpp"
 #include "mpm_sdem/core/terrain.hpp"
@@ -85,16 +86,24 @@ void Publishers::restart(const World& world) {
 
 void Publishers::blocksChanged(const World& world) {
   const Blocks* B = world.blocks();
-  // One wrench topic per block, made and dropped with it.
+  // One wrench topic per block, made and dropped with it (by name: a thousand obstacles make a
+  // thousand topics, each looked up once).
+  std::unordered_map<std::string, Obstacle> before;
+  for (Obstacle& o : obstacles_) before.emplace(o.name, std::move(o));
   std::vector<Obstacle> kept;
   for (int i = 0; B && i < B->count(); ++i) {
     const std::string& name = B->def(i).name;
-    auto it = std::find_if(obstacles_.begin(), obstacles_.end(),
-                           [&](const Obstacle& o) { return o.name == name; });
-    kept.push_back(it != obstacles_.end()
-                       ? *it
-                       : Obstacle{name, pnh_.advertise<geometry_msgs::WrenchStamped>(
-                                            "obstacles/" + name + "/wrench", 10)});
+    if (auto it = before.find(name); it != before.end()) {
+      kept.push_back(std::move(it->second));
+      continue;
+    }
+    auto listeners = std::make_shared<std::atomic<int>>(0);
+    ros::AdvertiseOptions o = ros::AdvertiseOptions::create<geometry_msgs::WrenchStamped>(
+        "obstacles/" + name + "/wrench", 10,
+        [listeners](const ros::SingleSubscriberPublisher&) { ++*listeners; },
+        [listeners](const ros::SingleSubscriberPublisher&) { --*listeners; }, ros::VoidConstPtr(),
+        nullptr);
+    kept.push_back({name, pnh_.advertise(o), listeners});
   }
   obstacles_.swap(kept);
   // The arrows' scale: the whole weight (material and dynamic blocks) a fifth of the domain.
@@ -107,15 +116,44 @@ void Publishers::blocksChanged(const World& world) {
   arrow_scale_ = params_.force_arrow_scale > 0 ? params_.force_arrow_scale
                  : weight > 0                  ? 0.2 * extent.maxCoeff() / weight
                                                : 0;
-  // The domain's frame and the static blocks, once (a new broadcaster: removed blocks go).
+  // The domain's frame and the static blocks on /tf_static: the new ones added to the latched
+  // message, or all of them anew (a new broadcaster) when one went or moved. (tf2_ros matches
+  // each frame sent against those it holds, one by one: resending a thousand each time a block
+  // came cost 60% of a spawn.)
   std_msgs::Header header;
   header.stamp = conversions::toRosTime(world.time());
   header.frame_id = params_.fixed_frame;
   std::vector<geometry_msgs::TransformStamped> fixed = conversions::toTransforms(
       conversions::toBlockStates(world, header), params_.tf_prefix, conversions::Frames::kStatic);
   fixed.push_back(conversions::domainTransform(world, header, params_.tf_prefix));
-  tf_static_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
-  tf_static_->sendTransform(fixed);
+  auto same = [](const geometry_msgs::Transform& a, const geometry_msgs::Transform& b) {
+    return a.translation.x == b.translation.x && a.translation.y == b.translation.y &&
+           a.translation.z == b.translation.z && a.rotation.x == b.rotation.x &&
+           a.rotation.y == b.rotation.y && a.rotation.z == b.rotation.z &&
+           a.rotation.w == b.rotation.w;
+  };
+  std::vector<geometry_msgs::TransformStamped> added;
+  std::size_t kept_frames = 0;
+  bool changed = false;
+  for (const geometry_msgs::TransformStamped& t : fixed) {
+    const auto it = static_sent_.find(t.child_frame_id);
+    if (it == static_sent_.end()) {
+      added.push_back(t);
+    } else if (same(it->second, t.transform)) {
+      ++kept_frames;
+    } else {
+      changed = true;
+    }
+  }
+  if (changed || kept_frames < static_sent_.size() || !tf_static_) {
+    tf_static_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
+    static_sent_.clear();
+    added = fixed;
+  }
+  if (added.empty()) return;
+  for (const geometry_msgs::TransformStamped& t : added)
+    static_sent_[t.child_frame_id] = t.transform;
+  tf_static_->sendTransform(added);
 }
 
 void Publishers::publishClock(const std_msgs::Header& header) {
@@ -163,9 +201,7 @@ void Publishers::publishBlocks(const World& world, const std_msgs::Header& heade
         conversions::toTransforms(states, params_.tf_prefix, conversions::Frames::kMoving);
     if (!moving.empty()) tf_.sendTransform(moving);
     for (std::size_t i = 0; i < states.blocks.size() && i < obstacles_.size(); ++i) {
-      if (obstacles_[i].name != states.blocks[i].name ||
-          obstacles_[i].wrench.getNumSubscribers() == 0)
-        continue;
+      if (obstacles_[i].name != states.blocks[i].name || *obstacles_[i].listeners == 0) continue;
       geometry_msgs::WrenchStamped w;
       w.header.stamp = header.stamp;
       w.header.frame_id = conversions::blockFrame(params_.tf_prefix, states.blocks[i].name);

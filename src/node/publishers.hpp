@@ -11,7 +11,9 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <atomic>
 #include <chrono>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -53,6 +55,9 @@ class Publishers {
   struct Obstacle {
     std::string name;
     ros::Publisher wrench;  // ~obstacles/<name>/wrench
+    // Its listeners, counted by roscpp's connect callbacks: asking roscpp looks the topic up
+    // among all the node's topics by name, a thousand of them with a thousand obstacles.
+    std::shared_ptr<std::atomic<int>> listeners;
   };
 
   const NodeParams& params_;
@@ -62,8 +67,10 @@ class Publishers {
   ros::Publisher scene_;
   std::vector<Obstacle> obstacles_;
   tf2_ros::TransformBroadcaster tf_;
-  // Replaced when the blocks change: its latched message then holds only the blocks there are.
+  // The static frames sent: new ones are added to the latched message; when one goes or moves,
+  // the broadcaster is replaced, so that its message holds only the blocks there are.
   std::unique_ptr<tf2_ros::StaticTransformBroadcaster> tf_static_;
+  std::map<std::string, geometry_msgs::Transform> static_sent_;
   Real arrow_scale_ = 0;       // m per N/m
   std::vector<Real> heights_;  // ~terrain's columns, reused
   bool use_sim_time_ = false;

@@ -140,6 +140,10 @@ BlockId Blocks::find(const std::string& name) const {
 }
 
 void Blocks::layoutShapes() {
+  ++layout_version_;
+  moving_.clear();
+  for (int i = 0; i < count(); ++i)
+    if (bodies_[i].type != BodyType::kStatic) moving_.push_back(i);
   shapes_.clear();
   int vertices = 0;
   for (int i = 0; i < count(); ++i) {

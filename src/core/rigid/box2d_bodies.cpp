@@ -43,7 +43,11 @@ struct Box2DBodies::World {
   explicit World(const b2Vec2& g) : world(g) { world.SetContactListener(&rule); }
   SmallerOfTwo rule;  // declared before the world, so destroyed after it
   b2World world;
+  // Null for a static block without fixtures (the penalty model): it never moves, so it stays
+  // out of Box2D, whose every step walks all its bodies (a thousand static obstacles cost a
+  // third of the step); its pose is kept in pose[i] as Box2D would hold it (Box2D units, float).
   std::vector<b2Body*> bodies;
+  std::vector<Raw> pose;
 };
 
 Box2DBodies::Box2DBodies(const Vec2& gravity, Real scale, BlockContactModel model)
@@ -70,6 +74,11 @@ void Box2DBodies::add(const BlockDef& d, const std::vector<Spheropolygon>& parts
                                              : b2_dynamicBody;
   bd.position = at ? b2Vec2(at->x, at->y) : toB2(d.position + rotated(d.angle, m.centroid), scale_);
   bd.angle = at ? at->angle : static_cast<float>(d.angle);
+  if (d.type == BodyType::kStatic && !box2d) {
+    w_->bodies.push_back(nullptr);
+    w_->pose.push_back({bd.position.x, bd.position.y, bd.angle, 0, 0, 0});
+    return;
+  }
   bd.allowSleep = false;  // a sleeping body ignores the coupling forces
   bd.bullet = d.type == BodyType::kDynamic && box2d;
   b2Body* body = w_->world.CreateBody(&bd);
@@ -110,38 +119,52 @@ void Box2DBodies::add(const BlockDef& d, const std::vector<Spheropolygon>& parts
   // The body's place in the list, for reportContacts.
   body->GetUserData().pointer = w_->bodies.size();
   w_->bodies.push_back(body);
+  w_->pose.emplace_back();
 }
 
 void Box2DBodies::remove(int i) {
-  w_->world.DestroyBody(w_->bodies[i]);
+  if (w_->bodies[i]) w_->world.DestroyBody(w_->bodies[i]);
   w_->bodies.erase(w_->bodies.begin() + i);
-  for (std::size_t k = i; k < w_->bodies.size(); ++k) w_->bodies[k]->GetUserData().pointer = k;
+  w_->pose.erase(w_->pose.begin() + i);
+  for (std::size_t k = i; k < w_->bodies.size(); ++k)
+    if (w_->bodies[k]) w_->bodies[k]->GetUserData().pointer = k;
 }
 
 Box2DBodies::Raw Box2DBodies::raw(int i) const {
   const b2Body* b = w_->bodies[i];
+  if (!b) return w_->pose[i];
   return {b->GetPosition().x,       b->GetPosition().y,       b->GetAngle(),
           b->GetLinearVelocity().x, b->GetLinearVelocity().y, b->GetAngularVelocity()};
 }
 
 Vec2 Box2DBodies::centre(int i) const {
-  return fromB2(w_->bodies[i]->GetPosition(), scale_);
+  const b2Body* b = w_->bodies[i];
+  return fromB2(b ? b->GetPosition() : b2Vec2(w_->pose[i].x, w_->pose[i].y), scale_);
 }
 Real Box2DBodies::angle(int i) const {
-  return w_->bodies[i]->GetAngle();
+  const b2Body* b = w_->bodies[i];
+  return b ? b->GetAngle() : w_->pose[i].angle;
 }
 Vec2 Box2DBodies::velocity(int i) const {
-  return fromB2(w_->bodies[i]->GetLinearVelocity(), scale_);
+  const b2Body* b = w_->bodies[i];
+  return b ? fromB2(b->GetLinearVelocity(), scale_) : Vec2(0, 0);
 }
 Real Box2DBodies::angularVelocity(int i) const {
-  return w_->bodies[i]->GetAngularVelocity();
+  const b2Body* b = w_->bodies[i];
+  return b ? b->GetAngularVelocity() : 0;
 }
 
 void Box2DBodies::setTransform(int i, const Vec2& centre, Real angle) {
-  w_->bodies[i]->SetTransform(toB2(centre, scale_), static_cast<float>(angle));
+  const b2Vec2 p = toB2(centre, scale_);
+  if (!w_->bodies[i]) {
+    w_->pose[i] = {p.x, p.y, static_cast<float>(angle), 0, 0, 0};
+    return;
+  }
+  w_->bodies[i]->SetTransform(p, static_cast<float>(angle));
 }
 
 void Box2DBodies::setVelocity(int i, const Vec2& v, Real w) {
+  if (!w_->bodies[i]) return;  // static: Box2D would ignore it too
   w_->bodies[i]->SetLinearVelocity(toB2(v, scale_));
   w_->bodies[i]->SetAngularVelocity(static_cast<float>(w));
 }
@@ -189,7 +212,8 @@ void Blocks::setPose(BlockId id, const Vec2& origin, Real angle) {
   b.kinematic_centre = origin + rotated(angle, b.mass.centroid);
   b.kinematic_angle = angle;
   b2_->setTransform(i, b.kinematic_centre, angle);
-  refresh();
+  ++layout_version_;
+  refresh(i);
 }
 
 Vec2 Blocks::originVelocity(int i) const {
@@ -206,14 +230,13 @@ void Blocks::setVelocity(BlockId id, const Vec2& origin_velocity, Real angular_v
   b2_->setVelocity(i, v, angular_velocity);
   bodies_[i].kinematic_velocity = v;
   bodies_[i].kinematic_angular_velocity = angular_velocity;
-  refresh();
+  refresh(i);
 }
 
 void Blocks::holdDrives() {
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    const BlockDrive& d = bodies_[i].drive;
-    if (bodies_[i].type != BodyType::kDynamic || !d.any()) continue;
-    const int k = static_cast<int>(i);
+  for (const int k : moving_) {
+    const BlockDrive& d = bodies_[k].drive;
+    if (bodies_[k].type != BodyType::kDynamic || !d.any()) continue;
     Vec2 v = b2_->velocity(k);
     Real w = b2_->angularVelocity(k);
     if (d.hold_vx) v.x() = d.velocity.x();
@@ -224,25 +247,27 @@ void Blocks::holdDrives() {
 }
 
 void Blocks::refresh() {
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
-    Body& b = bodies_[i];
-    BlockState& s = b.state;
-    s.angle = b2_->angle(static_cast<int>(i));
-    s.velocity = b2_->velocity(static_cast<int>(i));
-    s.angular_velocity = b2_->angularVelocity(static_cast<int>(i));
-    s.position = b2_->centre(static_cast<int>(i));
-    const Real c = std::cos(s.angle), sn = std::sin(s.angle);
-    const Vec2 origin = s.position - Vec2(c * b.mass.centroid.x() - sn * b.mass.centroid.y(),
-                                          sn * b.mass.centroid.x() + c * b.mass.centroid.y());
-    auto toWorld = [&](const Vec2& v) {
-      return Vec2(origin.x() + c * v.x() - sn * v.y(), origin.y() + sn * v.x() + c * v.y());
-    };
-    for (int k = 0; k < b.shape_count; ++k) {
-      const Shape& shape = shapes_[b.first_shape + k];
-      const std::vector<Vec2>& core = parts_[i][k].core;
-      for (int v = 0; v < shape.vertex_count; ++v)
-        world_vertices_[shape.first_vertex + v] = toWorld(core[v]);
-    }
+  for (int i = 0; i < count(); ++i) refresh(i);
+}
+
+void Blocks::refresh(int i) {
+  Body& b = bodies_[i];
+  BlockState& s = b.state;
+  s.angle = b2_->angle(i);
+  s.velocity = b2_->velocity(i);
+  s.angular_velocity = b2_->angularVelocity(i);
+  s.position = b2_->centre(i);
+  const Real c = std::cos(s.angle), sn = std::sin(s.angle);
+  const Vec2 origin = s.position - Vec2(c * b.mass.centroid.x() - sn * b.mass.centroid.y(),
+                                        sn * b.mass.centroid.x() + c * b.mass.centroid.y());
+  auto toWorld = [&](const Vec2& v) {
+    return Vec2(origin.x() + c * v.x() - sn * v.y(), origin.y() + sn * v.x() + c * v.y());
+  };
+  for (int k = 0; k < b.shape_count; ++k) {
+    const Shape& shape = shapes_[b.first_shape + k];
+    const std::vector<Vec2>& core = parts_[i][k].core;
+    for (int v = 0; v < shape.vertex_count; ++v)
+      world_vertices_[shape.first_vertex + v] = toWorld(core[v]);
   }
 }
 
@@ -252,27 +277,31 @@ int Blocks::step(Real dt, Real max_substep) {
   // one MPM step (multi-rate explicit integration), each within the block-block bound.
   const int substeps = dt > max_substep ? static_cast<int>(std::ceil(dt / max_substep)) : 1;
   const Real h = dt / substeps;
-  for (Body& b : bodies_) {
+  // A static block takes forces (recorded in block_contact_ and coupling_) but never moves: only
+  // the moving blocks' are held and applied.
+  for (const int i : moving_) {
+    Body& b = bodies_[i];
     b.held_force = b.force;
     b.held_torque = b.torque;
   }
   for (Coupling& c : block_contact_) c = Coupling();
   substep_share_ = Real(1) / substeps;
   for (int s = 0; s < substeps; ++s) {
-    for (Body& b : bodies_) {
+    for (const int i : moving_) {
+      Body& b = bodies_[i];
       b.force = b.held_force;
       b.torque = b.held_torque;
     }
     for (Coupling& c : block_contact_) c.contacts = 0;  // the last substep's count
     if (contact_.model == BlockContactModel::kPenalty) penalty_->apply(*this, h);
-    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    for (const int i : moving_) {
       Body& b = bodies_[i];
       if (b.type != BodyType::kDynamic) continue;
       // A held component moves at its value: the forces along it do nothing.
       if (b.drive.hold_vx) b.force.x() = 0;
       if (b.drive.hold_vy) b.force.y() = 0;
       if (b.drive.hold_angular) b.torque = 0;
-      b2_->applyForce(static_cast<int>(i), b.force, b.torque);
+      b2_->applyForce(i, b.force, b.torque);
     }
     holdDrives();
     b2_->step(h);
@@ -282,14 +311,14 @@ int Blocks::step(Real dt, Real max_substep) {
     // A kinematic block moves with its twist exactly: Box2D's single-precision sum of small
     // steps drifts (93 um over 10,000 steps, RuntimeBlocks.KinematicBlockFollowsItsTwist), so
     // its pose is summed here in double and set.
-    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    for (const int i : moving_) {
       Body& b = bodies_[i];
       if (b.type != BodyType::kKinematic) continue;
       b.kinematic_centre += h * b.kinematic_velocity;
       b.kinematic_angle += h * b.kinematic_angular_velocity;
-      b2_->setTransform(static_cast<int>(i), b.kinematic_centre, b.kinematic_angle);
+      b2_->setTransform(i, b.kinematic_centre, b.kinematic_angle);
     }
-    refresh();
+    for (const int i : moving_) refresh(i);
   }
   for (Body& b : bodies_) {
     b.force.setZero();

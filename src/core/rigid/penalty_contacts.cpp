@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <tuple>
 
@@ -26,23 +27,80 @@ bool PenaltyContacts::Key::operator==(const Key& o) const {
 
 void PenaltyContacts::apply(Blocks& B, Real h) {
   next_history_.clear();
-  const int n = B.count();
-  boxes_.resize(n);
-  for (int i = 0; i < n; ++i) boxes_[i] = B.blockBounds(i);
+  findPairs(B);
   // Two outlines can overlap only where their boxes do: blocks first, then their shapes.
-  for (int i = 0; i < n; ++i) {
-    for (int j = i + 1; j < n; ++j) {
-      if (!B.movable(B.firstShape(i)) && !B.movable(B.firstShape(j))) continue;
-      if (!overlap(boxes_[i], boxes_[j])) continue;
-      const bool single = B.shapesOf(i) == 1 && B.shapesOf(j) == 1;
-      for (int p = B.firstShape(i); p < B.firstShape(i) + B.shapesOf(i); ++p)
-        for (int q = B.firstShape(j); q < B.firstShape(j) + B.shapesOf(j); ++q)
-          if (single || overlap(B.bounds(p), B.bounds(q))) pair(B, p, q, h);
-    }
+  for (const auto& [i, j] : pairs_) {
+    const bool single = B.shapesOf(i) == 1 && B.shapesOf(j) == 1;
+    for (int p = B.firstShape(i); p < B.firstShape(i) + B.shapesOf(i); ++p)
+      for (int q = B.firstShape(j); q < B.firstShape(j) + B.shapesOf(j); ++q)
+        if (single || overlap(B.bounds(p), B.bounds(q))) pair(B, p, q, h);
   }
   std::sort(next_history_.begin(), next_history_.end(),
             [](const auto& x, const auto& y) { return x.first < y.first; });
   history_.swap(next_history_);
+}
+
+namespace {
+
+// A box (m) in Box2D units, rounded outwards: the tree never misses a pair the boxes make.
+b2AABB treeBox(const Box& b, Real scale) {
+  b2AABB a;
+  a.lowerBound.Set(std::nextafter(static_cast<float>(b.min.x() * scale), -INFINITY),
+                   std::nextafter(static_cast<float>(b.min.y() * scale), -INFINITY));
+  a.upperBound.Set(std::nextafter(static_cast<float>(b.max.x() * scale), INFINITY),
+                   std::nextafter(static_cast<float>(b.max.y() * scale), INFINITY));
+  return a;
+}
+
+}  // namespace
+
+void PenaltyContacts::placeBoxes(const Blocks& B) {
+  const int n = B.count();
+  const Real scale = B.lengthScale();
+  if (tree_ && placed_version_ == B.layoutVersion() && static_cast<int>(boxes_.size()) == n) {
+    for (int i = 0; i < n; ++i) {
+      if (B.def(i).type == BodyType::kStatic) continue;
+      boxes_[i] = B.blockBounds(i);
+      tree_->MoveProxy(proxies_[i], treeBox(boxes_[i], scale), b2Vec2(0, 0));
+    }
+    return;
+  }
+  // Blocks came, went or were moved: the tree anew.
+  tree_ = std::make_unique<b2DynamicTree>();
+  boxes_.resize(n);
+  proxies_.resize(n);
+  dynamic_.clear();
+  for (int i = 0; i < n; ++i) {
+    boxes_[i] = B.blockBounds(i);
+    proxies_[i] = tree_->CreateProxy(treeBox(boxes_[i], scale),
+                                     reinterpret_cast<void*>(static_cast<std::uintptr_t>(i)));
+    if (B.movable(B.firstShape(i))) dynamic_.push_back(i);
+  }
+  placed_version_ = B.layoutVersion();
+}
+
+void PenaltyContacts::findPairs(const Blocks& B) {
+  placeBoxes(B);
+  pairs_.clear();
+  struct Query {
+    const b2DynamicTree* tree;
+    const std::vector<Box>* boxes;
+    const Blocks* blocks;
+    std::vector<std::pair<int, int>>* pairs;
+    int i;
+    bool QueryCallback(std::int32_t proxy) {
+      const int j = static_cast<int>(reinterpret_cast<std::uintptr_t>(tree->GetUserData(proxy)));
+      // A pair of dynamic blocks is asked for by both: kept once, by the first of the two.
+      if (j == i || (j < i && blocks->movable(blocks->firstShape(j)))) return true;
+      if (overlap((*boxes)[i], (*boxes)[j])) pairs->emplace_back(std::min(i, j), std::max(i, j));
+      return true;
+    }
+  };
+  for (int i : dynamic_) {
+    Query q{tree_.get(), &boxes_, &B, &pairs_, i};
+    tree_->Query(&q, tree_->GetFatAABB(proxies_[i]));
+  }
+  std::sort(pairs_.begin(), pairs_.end());
 }
 
 void PenaltyContacts::pair(Blocks& B, int i, int j, Real h) {

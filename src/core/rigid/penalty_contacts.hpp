@@ -4,7 +4,10 @@
 // contact shapes, so a cluster of discs meets other blocks disc by disc. Internal header.
 #pragma once
 
+#include <box2d/b2_dynamic_tree.h>
+
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -47,11 +50,23 @@ class PenaltyContacts {
     ar(history_);  // the tangential springs' stretch
   }
   void pair(Blocks& blocks, int p, int q, Real h);
+  // The broad phase: block pairs whose boxes overlap, at least one of them dynamic, into
+  // pairs_ in the order (i < j) of the list, as a loop over all pairs would give them.
+  void findPairs(const Blocks& blocks);
+  void placeBoxes(const Blocks& blocks);
 
   BlockContactDef def_;
   std::vector<std::pair<Key, Vec2>> history_, next_history_;  // sorted by key
   std::vector<Spring> springs_;                               // one pair's, reused
-  std::vector<Box> boxes_;                                    // per block, reused
+  // Broad phase: every block's box (m) and its proxy in a Box2D dynamic tree, in Box2D units
+  // (whose fattening, 0.1 unit, suits the blocks' sizes). A static block's is placed when the
+  // blocks change (Blocks::layoutVersion) and stays; the others move each substep.
+  std::vector<Box> boxes_;
+  std::vector<std::int32_t> proxies_;
+  std::vector<int> dynamic_;  // the dynamic blocks, which ask the tree for their neighbours
+  std::unique_ptr<b2DynamicTree> tree_;
+  std::uint64_t placed_version_ = 0;
+  std::vector<std::pair<int, int>> pairs_;
 };
 
 }  // namespace mpm_sdem::detail

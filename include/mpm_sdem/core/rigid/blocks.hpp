@@ -165,6 +165,9 @@ class Blocks final : public ContactBodies {
   std::vector<Spheropolygon> currentParts(int i) const;
   // Box around block i's outline (m).
   Box blockBounds(int i) const;
+  // Changes whenever blocks are added or removed or one is moved by setPose: what was derived
+  // from where the blocks are (the block springs' broad phase) is stale.
+  std::uint64_t layoutVersion() const { return layout_version_; }
 
   // ContactBodies: core vertices in the world frame, refreshed after every step.
   int shapeCount() const override { return static_cast<int>(shapes_.size()); }
@@ -236,8 +239,9 @@ class Blocks final : public ContactBodies {
   void checkDef(const BlockDef& def) const;  // throws std::invalid_argument
   int checkedIndex(BlockId id) const;        // throws std::invalid_argument
   void layoutShapes();
-  void refresh();     // state and world vertices from Box2D (box2d_bodies.cpp)
-  void holdDrives();  // sets the held velocity components of driven blocks in Box2D
+  void refresh();       // state and world vertices from Box2D (box2d_bodies.cpp)
+  void refresh(int i);  // block i's alone
+  void holdDrives();    // sets the held velocity components of driven blocks in Box2D
 
   // What every step reads and writes, one entry per block (hot); the definitions, names
   // included, stay in defs_ (cold).
@@ -299,11 +303,15 @@ class Blocks final : public ContactBodies {
   std::vector<Vec2> world_vertices_;     // the shapes' core vertices, world frame
   std::vector<Coupling> coupling_;       // records for outputs
   std::vector<Coupling> block_contact_;  // from the other blocks, last step
+  // The blocks that move (not static), in list order: a substep touches only these, so that a
+  // thousand static obstacles cost nothing per step (layoutShapes keeps it).
+  std::vector<int> moving_;
   // Slot table: the place of the block in each slot (-1 free), its generation, free slots.
   std::vector<int> slot_place_;
   std::vector<std::uint32_t> slot_generation_;
   std::vector<int> free_slots_;
   Real max_zeta_ = 0;
+  std::uint64_t layout_version_ = 0;
   Real substep_share_ = 1;  // 1 / substeps of the step under way
   Vec2 gravity_{0, 0};
   BlockContactDef contact_;
