@@ -207,6 +207,59 @@ TEST(BlockStack, StableAtTheSubstepBound) {
   }
 }
 
+// The springs' broad phase (a Box2D dynamic tree of the blocks' boxes, static ones placed once)
+// among many static blocks: twelve dynamic disks of 2.5 mm dropped into the valleys of a bed of
+// 3 x 40 static disks of 2 mm, 6 mm apart (gaps of 2 mm), all come to rest on its top row, none
+// lower (a pair the broad phase missed lets a disk through). Then the blocks change: the static
+// disk under a resting one removed, that one drops through the hole onto the next row (the tree
+// rebuilt without it); a static shelf teleported from afar (setPose) under a falling disk catches
+// it where it now is (without the teleport's rebuild, the disk falls through: checked).
+TEST(BlockStack, BroadPhaseAmongManyStaticBlocks) {
+  std::vector<BlockDef> defs;
+  const Real spacing = 0.006, top = 2 * spacing;
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 40; ++col)
+      defs.push_back(test::diskBlock("s" + std::to_string(row) + "_" + std::to_string(col),
+                                     Vec2(col * spacing, row * spacing), 0.002, BodyType::kStatic,
+                                     500));
+  defs.push_back(test::boxBlock("shelf", Vec2(0.5, 0.1), 0.04, 0.004, 0.001, BodyType::kStatic));
+  for (int k = 0; k < 12; ++k) {
+    defs.push_back(test::diskBlock("d" + std::to_string(k), Vec2(0.015 + 0.018 * k, 0.05), 0.0025,
+                                   BodyType::kDynamic, 500));
+    defs.back().restitution = 0.05;
+  }
+  Blocks blocks(defs, BlockContactDef(), Vec2(0, -9.81));
+  const Real dt = blocks.stableStep(0.3);
+  auto run = [&](Real seconds) {
+    for (int n = 0; n < static_cast<int>(seconds / dt); ++n) blocks.step(dt);
+  };
+  auto y = [&](const std::string& name) {
+    return blocks.state(blocks.indexOf(blocks.find(name))).position.y();
+  };
+  run(1.0);
+  // In a valley of the top row: 3 mm off each disk below, 4.5 mm from its centre.
+  const Real resting = top + std::sqrt(0.0045 * 0.0045 - 0.003 * 0.003);
+  for (int k = 0; k < 12; ++k) {
+    const int i = blocks.indexOf(blocks.find("d" + std::to_string(k)));
+    EXPECT_NEAR(blocks.state(i).position.y(), resting, 2e-4) << defs[i].name;
+    EXPECT_LT(blocks.state(i).velocity.norm(), 1e-3) << defs[i].name;
+  }
+  // d0 rests on s2_2 and s2_3: without s2_2 it drops through to the row below.
+  blocks.remove(blocks.find("s2_2"));
+  run(0.5);
+  EXPECT_LT(y("d0"), spacing + 0.0046) << "d0 did not drop onto the middle row";
+  EXPECT_GT(y("d0"), spacing + 0.003) << "d0 fell through the middle row";
+  // A disk falling from 0.12 m; while it falls, the shelf is teleported under it.
+  BlockDef drop = test::diskBlock("drop", Vec2(0.1, 0.12), 0.0025, BodyType::kDynamic, 500);
+  drop.restitution = 0.05;
+  blocks.add(drop);
+  run(0.02);
+  blocks.setPose(blocks.find("shelf"), Vec2(0.1, 0.06), 0);
+  run(0.5);
+  EXPECT_NEAR(y("drop"), 0.06 + 0.002 + 0.0025, 2e-4)
+      << "the shelf did not catch it: " << y("drop");
+}
+
 namespace {
 
 BlockContactDef box2dContact() {

@@ -172,9 +172,9 @@ void ObstacleDrivers::beforeStep(World& world, Real h) {
              c.name.c_str(), params_.cmd_vel_timeout, c.name.c_str(), t);
   }
   for (Follower& f : followers_) steer(world, f);
-  const Blocks* B = world.blocks();
-  for (int i = 0; B && i < B->count(); ++i)
-    if (B->def(i).type == BodyType::kKinematic) keepInside(world, i, h);
+  if (const Blocks* B = world.blocks())
+    for (const int i : B->movingBlocks())
+      if (B->def(i).type == BodyType::kKinematic) keepInside(world, i, h);
 }
 
 void ObstacleDrivers::keepInside(World& world, int i, Real h) {

@@ -28,8 +28,11 @@ Profile since(const Profile& now, const Profile& then) {
 
 bool Publishers::Channel::due(Real t, bool force, bool always) {
   if (force && latched) return clock.due(t, true);
-  if (!always && pub.getNumSubscribers() == 0) return false;
-  return clock.due(t, force);
+  // The schedule before the listeners: roscpp finds a topic's listeners by its name among all
+  // the node's topics (a thousand with a thousand obstacles' wrenches), once per channel and
+  // step otherwise. A listener that comes between two samples waits for the next.
+  if (!clock.due(t, force)) return false;
+  return always || pub.getNumSubscribers() > 0;
 }
 
 Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParams& params,

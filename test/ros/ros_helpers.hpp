@@ -35,6 +35,15 @@ inline bool waitFor(const std::function<bool()>& cond, double timeout_s) {
   return cond();
 }
 
+// Publishes msg count times, period_s of wall time apart (a stream of commands).
+template <class M>
+void publishRepeatedly(const ros::Publisher& pub, const M& msg, int count, double period_s) {
+  for (int k = 0; k < count; ++k) {
+    pub.publish(msg);
+    ros::WallDuration(period_s).sleep();
+  }
+}
+
 // Keeps the last message of a topic (callbacks on an AsyncSpinner thread).
 template <class M>
 class Latest {

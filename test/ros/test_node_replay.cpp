@@ -82,10 +82,7 @@ TEST(Replay, TheRunnerReplaysTheNodesCommandsExactly) {
   ASSERT_TRUE(n.call("apply_obstacle_wrench", w).response.success) << w.response.message;
   geometry_msgs::Twist t;
   t.linear.x = 0.05;
-  for (int k = 0; k < 5; ++k) {
-    cmd_vel.publish(t);
-    ros::WallDuration(0.03).sleep();
-  }
+  test::publishRepeatedly(cmd_vel, t, 5, 0.03);
   SetObstacleState s;
   s.request.name = "rock";
   s.request.set_pose = true;

@@ -7,6 +7,7 @@
 #include <mpm_sdem/ApplyObstacleWrench.h>
 #include <mpm_sdem/ClearObstacleWrenches.h>
 #include <mpm_sdem/GetObstacleState.h>
+#include <mpm_sdem/SetObstacleState.h>
 #include <sensor_msgs/point_cloud2_iterator.h>
 #include <std_srvs/Empty.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -107,10 +108,7 @@ TEST(Robot, CmdVelInTheBladesAxesLapsesAfterTheTimeout) {
   t.linear.x = 0.02;
   RigidBlockState blade;
   // Commands at 20 Hz for 1 s of wall time (real-time pacing: about 1 s of simulation).
-  for (int k = 0; k < 20; ++k) {
-    cmd.publish(t);
-    ros::WallDuration(0.05).sleep();
-  }
+  test::publishRepeatedly(cmd, t, 20, 0.05);
   ASSERT_TRUE(n.block("blade", blade));
   EXPECT_NEAR(blade.twist.linear.x, 0, 1e-6);
   EXPECT_NEAR(blade.twist.linear.y, 0.02, 1e-6);
@@ -336,7 +334,8 @@ TEST(Robot, HeldLoadsAreBoundedAndABlockPushedOutPauses) {
 }
 
 // Kinematic blocks stop at the domain's walls however they are driven: the blade under a cmd_vel
-// of 1 m/s up (its own x) and under an ~obstacle_cmd of 999 m/s right; a follower whose frame
+// of 1 m/s up (its own x), an ~obstacle_cmd of 999 m/s right and a ~set_obstacle_state twist of
+// 999 m/s left (a pose outside is refused: bad_obstacle_state.test); a follower whose frame
 // jumps 1e6 m closes in at ~follow_tf_max_speed (5 m/s), with a warning naming the frame, and
 // stops at the right wall. The node keeps running throughout.
 TEST(Robot, KinematicBlocksStopAtTheWallsAndFollowersAtTheirSpeed) {
@@ -347,10 +346,7 @@ TEST(Robot, KinematicBlocksStopAtTheWallsAndFollowersAtTheirSpeed) {
   ASSERT_TRUE(waitFor([&] { return cmd.getNumSubscribers() > 0 && n.blocks.has(); }, 20));
   geometry_msgs::Twist t;
   t.linear.x = 1;
-  for (int k = 0; k < 20; ++k) {
-    cmd.publish(t);
-    ros::WallDuration(0.05).sleep();
-  }
+  test::publishRepeatedly(cmd, t, 20, 0.05);
   RigidBlockState blade;
   ASSERT_TRUE(n.block("blade", blade));
   // Turned 90 degrees, 1 cm tall (its size holds the rounding): its centre stops 5 mm below the
@@ -366,6 +362,17 @@ TEST(Robot, KinematicBlocksStopAtTheWallsAndFollowersAtTheirSpeed) {
   ros::WallDuration(0.3).sleep();
   ASSERT_TRUE(n.block("blade", blade));
   EXPECT_NEAR(blade.pose.position.x, 0.2 - 0.015, 1e-6);  // 3 cm wide
+  EXPECT_NEAR(blade.twist.linear.x, 0, 1e-9);
+  // ~set_obstacle_state's twist: 999 m/s left, to the left wall (-0.2 m).
+  mpm_sdem::SetObstacleState set;
+  set.request.name = "blade";
+  set.request.set_twist = true;
+  set.request.twist.linear.x = -999;
+  ASSERT_TRUE(n.call("set_obstacle_state", set).response.success) << set.response.message;
+  ASSERT_TRUE(waitFor([&] { return n.block("blade", blade) && blade.pose.position.x < 0; }, 10));
+  ros::WallDuration(0.3).sleep();
+  ASSERT_TRUE(n.block("blade", blade));
+  EXPECT_NEAR(blade.pose.position.x, -0.2 + 0.015, 1e-6);
   EXPECT_NEAR(blade.twist.linear.x, 0, 1e-9);
 
   tf2_ros::TransformBroadcaster tf;

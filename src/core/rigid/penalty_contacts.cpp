@@ -58,8 +58,7 @@ void PenaltyContacts::placeBoxes(const Blocks& B) {
   const int n = B.count();
   const Real scale = B.lengthScale();
   if (tree_ && placed_version_ == B.layoutVersion() && static_cast<int>(boxes_.size()) == n) {
-    for (int i = 0; i < n; ++i) {
-      if (B.def(i).type == BodyType::kStatic) continue;
+    for (const int i : B.movingBlocks()) {
       boxes_[i] = B.blockBounds(i);
       tree_->MoveProxy(proxies_[i], treeBox(boxes_[i], scale), b2Vec2(0, 0));
     }
@@ -96,9 +95,10 @@ void PenaltyContacts::findPairs(const Blocks& B) {
       return true;
     }
   };
+  const Real scale = B.lengthScale();
   for (int i : dynamic_) {
     Query q{tree_.get(), &boxes_, &B, &pairs_, i};
-    tree_->Query(&q, tree_->GetFatAABB(proxies_[i]));
+    tree_->Query(&q, treeBox(boxes_[i], scale));
   }
   std::sort(pairs_.begin(), pairs_.end());
 }

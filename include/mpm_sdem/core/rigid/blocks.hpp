@@ -165,6 +165,8 @@ class Blocks final : public ContactBodies {
   std::vector<Spheropolygon> currentParts(int i) const;
   // Box around block i's outline (m).
   Box blockBounds(int i) const;
+  // The blocks that are not static, in list order (places, valid until blocks change).
+  const std::vector<int>& movingBlocks() const { return moving_; }
   // Changes whenever blocks are added or removed or one is moved by setPose: what was derived
   // from where the blocks are (the block springs' broad phase) is stale.
   std::uint64_t layoutVersion() const { return layout_version_; }
