@@ -518,8 +518,7 @@ void World::stepBodies(Real dt) {
 void World::checkBlocks(StepInfo& info) const {
   const Blocks& B = *blocks_;
   const Vec2 &lo = def_.domain.min, &hi = def_.domain.max;
-  for (int i = 0; i < B.count(); ++i) {
-    if (B.def(i).type == BodyType::kStatic) continue;
+  for (const int i : B.movingBlocks()) {
     const BlockState& s = B.state(i);
     if (!s.position.allFinite() || !std::isfinite(s.angle) || !s.velocity.allFinite() ||
         !std::isfinite(s.angular_velocity)) {
