@@ -27,8 +27,12 @@ int place(const World& world, BlockId id) {
 ObstacleDrivers::ObstacleDrivers(ros::NodeHandle& pnh, CommandQueue& queue,
                                  const NodeParams& params)
     : pnh_(pnh), queue_(queue), params_(params), listener_(tf_) {
-  for (const auto& [name, frame] : params.follow_tf)
-    followers_.push_back({name, frame, {}, {}, {}});
+  for (const auto& [name, frame] : params.follow_tf) {
+    Follower f;
+    f.name = name;
+    f.frame = frame;
+    followers_.push_back(f);
+  }
 }
 
 void ObstacleDrivers::sync(const World& world, bool fresh) {
@@ -49,6 +53,7 @@ void ObstacleDrivers::sync(const World& world, bool fresh) {
       ROS_WARN("~follow_tf: block '%s' is gone or not kinematic; it follows %s no more",
                f.name.c_str(), f.frame.c_str());
     f.id = kinematic ? id : BlockId();
+    if (kinematic) f.reach = blockReach(B->def(B->indexOf(id)));
     f.samples = 0;
   }
   for (int i = 0; B && i < B->count(); ++i) {
@@ -184,8 +189,9 @@ void ObstacleDrivers::keepInside(World& world, int i, Real h) {
   Real w = s.angular_velocity;
   if (v.squaredNorm() == 0 && w == 0) return;
   const DomainDef& domain = world.def().domain;
-  if (!keepInsideDomain(B.blockBounds(i), blockReach(B.def(i)), h, domain.min, domain.max, v, w))
-    return;
+  // The outline's reach matters only to a spin (and costs the block's parts).
+  const Real reach = w != 0 ? blockReach(B.def(i)) : 0;
+  if (!keepInsideDomain(B.blockBounds(i), reach, h, domain.min, domain.max, v, w)) return;
   const std::string& name = B.def(i).name;
   const auto follower = std::find_if(followers_.begin(), followers_.end(),
                                      [&](const Follower& f) { return f.name == name; });
@@ -212,8 +218,7 @@ void ObstacleDrivers::steer(World& world, Follower& f) {
   const Vec2 p(ts.transform.translation.x, ts.transform.translation.y);
   const Real yaw = conversions::yaw(ts.transform.rotation);
   const Blocks& B = *world.blocks();
-  const BlockDef& d = B.def(i);
-  const Real reach = blockReach(d);
+  const Real reach = f.reach;
   const Real max_speed = params_.follow_tf_max_speed;
   if (f.samples == 0 || ts.header.stamp != f.stamp[1]) {
     // A frame that moves faster than the followers may (a jump, a reset of its publisher) is

@@ -73,6 +73,7 @@ class ObstacleDrivers {
   struct Follower {
     std::string name, frame;
     BlockId id;
+    Real reach = 0;  // m, of its block's outline from its frame origin (blockReach)
     // The frame's last two distinct samples, for its velocity.
     ros::Time stamp[2];
     Vec2 position[2];

@@ -129,12 +129,6 @@ void Publishers::blocksChanged(const World& world) {
   std::vector<geometry_msgs::TransformStamped> fixed = conversions::toTransforms(
       conversions::toBlockStates(world, header), params_.tf_prefix, conversions::Frames::kStatic);
   fixed.push_back(conversions::domainTransform(world, header, params_.tf_prefix));
-  auto same = [](const geometry_msgs::Transform& a, const geometry_msgs::Transform& b) {
-    return a.translation.x == b.translation.x && a.translation.y == b.translation.y &&
-           a.translation.z == b.translation.z && a.rotation.x == b.rotation.x &&
-           a.rotation.y == b.rotation.y && a.rotation.z == b.rotation.z &&
-           a.rotation.w == b.rotation.w;
-  };
   std::vector<geometry_msgs::TransformStamped> added;
   std::size_t kept_frames = 0;
   bool changed = false;
@@ -142,7 +136,7 @@ void Publishers::blocksChanged(const World& world) {
     const auto it = static_sent_.find(t.child_frame_id);
     if (it == static_sent_.end()) {
       added.push_back(t);
-    } else if (same(it->second, t.transform)) {
+    } else if (it->second == t.transform) {
       ++kept_frames;
     } else {
       changed = true;

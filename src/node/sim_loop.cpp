@@ -239,17 +239,17 @@ bool Simulation::advance() {
          h);
     return false;
   }
-  if (!info.block_problem.empty()) {
-    // A dynamic block pushed or thrown out of the domain (kinematic ones stop at its walls):
-    // the step is sound, but the block has left the material's grid.
-    pauseOutside(info.block_problem);
-    return false;
-  }
   real_time_.sample(world_->time());
   if (bag_) bag_->record(*world_, status());
   if (video_) video_->record(*world_);
   if (vtk_ && vtk_clock_.due(world_->time())) writeVtk();
   publishers_.publish(*world_, status());
+  if (!info.block_problem.empty()) {
+    // A dynamic block pushed or thrown out of the domain (kinematic ones stop at its walls):
+    // the step is sound and recorded, but the block has left the material's grid.
+    pauseOutside(info.block_problem);
+    return false;
+  }
   if (to_end && world_->time() >= scene_.end_time * (1 - 1e-9)) {
     end_reached_ = true;
     logProgress(true);
