@@ -413,3 +413,75 @@ TEST(FemWater, GateTipPeaksWithinThePublishedRange) {
   EXPECT_LE(g.peak_time, ref.time_max);
   EXPECT_LT(g.max_mach, kMachWarning);
 }
+
+// Issue 40: local damping is a numerical knob, so it may not move a static equilibrium. A soft
+// elastic layer (E = 0.1 MPa, 5 cm) rests on a clamped FEM beam (0.6 x 0.04 m, E = 20 MPa); the
+// beam's mid-span deflection with solver.damping 0.3 and without must agree within 1% for the
+// penalty-free scheme (its impulses come after the velocity update: damping that saw only the
+// internal force and gravity, which the contact balances, held the layer 16% heavier on the
+// beam) and for IMP's springs. The beam settles under critical mass damping of its first mode
+// (zero force at rest); the undamped layer keeps ringing, so both runs average the last 0.1 s
+// of 0.6 s (the layer's vertical period is about 0.02 s).
+TEST(FemLayer, LocalDampingLeavesARestingLayersLoadWhereItIs) {
+  auto deflection = [](CouplingScheme scheme, Real damping) {
+    const Real h = 0.01, E = 20e6, nu = 0.3, rho = 1000, L = 0.6, H = 0.04;
+    WorldDef def;
+    def.domain.min = Vec2(-0.1, -0.1);
+    def.domain.max = Vec2(0.7, 0.2);
+    def.cell_size = h;
+    def.solver.gravity = Vec2(0, -9.81);
+    def.solver.damping = damping;
+    MaterialDef m;
+    m.name = "layer";
+    m.density = 1000;
+    m.bulk_modulus = 0.1e6 / (3 * (1 - 2 * nu));
+    m.shear_modulus = 0.1e6 / (2 * (1 + nu));
+    def.materials.push_back(m);
+    BodyDef layer;
+    layer.name = "layer";
+    layer.shape.type = ShapeType::kRectangle;
+    // The lowest points' contact disks reach the beam's top face (contact_radius capped at
+    // their depth).
+    layer.shape.min = Vec2(0.05, H / 2);
+    layer.shape.max = Vec2(L - 0.05, H / 2 + 0.05);
+    layer.points_per_cell = 2;
+    def.bodies.push_back(layer);
+    FemBodyDef beam;
+    beam.name = "beam";
+    beam.mesh = meshPolygon({{0, -H / 2}, {L, -H / 2}, {L, H / 2}, {0, H / 2}}, H / 2);
+    beam.youngs_modulus = E;
+    beam.poisson_ratio = nu;
+    beam.density = rho;
+    beam.friction = 0.5;
+    // Clamped: both ends' nodes held.
+    beam.held = {Box{Vec2(-1, -1), Vec2(1e-9, 1)}, Box{Vec2(L - 1e-9, -1), Vec2(1, 1)}};
+    const Real Ep = E / (1 - nu * nu), I = H * H * H / 12;
+    beam.mass_damping = 2 * 22.37 / (L * L) * std::sqrt(Ep * I / (rho * H));
+    def.fem_bodies.push_back(beam);
+    def.coupling.scheme = scheme;
+    def.coupling.normal_stiffness = 1e6;
+    def.coupling.tangential_stiffness = 5e5;
+    World w(def);
+    const FemBodies& F = *w.femBodies();
+    int mid = 0;  // the bottom node nearest mid-span
+    for (int k = 0; k < F.totalNodes(); ++k)
+      if ((F.reference(k) - Vec2(L / 2, -H / 2)).norm() <
+          (F.reference(mid) - Vec2(L / 2, -H / 2)).norm())
+        mid = k;
+    Real sum = 0;
+    long samples = 0;
+    while (w.time() < 0.6) {
+      w.step(w.chooseTimeStep().dt);
+      if (w.time() < 0.5) continue;
+      sum += F.reference(mid).y() - F.position(mid).y();
+      ++samples;
+    }
+    return sum / samples;
+  };
+  for (const CouplingScheme scheme : {CouplingScheme::kParticleSurface, CouplingScheme::kImp}) {
+    const Real damped = deflection(scheme, 0.3), free = deflection(scheme, 0);
+    std::printf("%s: mid-span deflection %.4f mm damped, %.4f mm undamped\n",
+                couplingSchemeName(scheme), 1e3 * damped, 1e3 * free);
+    EXPECT_NEAR(damped / free, 1, 0.01) << couplingSchemeName(scheme);
+  }
+}

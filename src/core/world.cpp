@@ -409,25 +409,29 @@ TimeStepChoice World::stepBound(Real cfl, Real kappa2) const {
   }
   if (fem_ && cfl * fem_->elementStep() < choice.dt)
     choice = {cfl * fem_->elementStep(), StepLimit::kElement};
-  if (hasContactBodies() && coupling_->hasSprings()) {
-    // Eq. 51, second term, for the coupling springs (lightest point or body). The springs
-    // between bodies do not bound this step: the bodies take substeps within their own bound.
-    const ContactBodies& bodies = *contactBodies();
-    const CouplingDef& c = coupling_->def();
-    const Real zeta = bodies.maxDampingRatio();  // the most damped contact bounds the step
-    const Real block = bodies.lightestMass() / largest_spring_scale_;
-    Real dt =
-        contactTimeStep(std::fmin(lightest_point_, block), c.normal_stiffness, zeta, 1, kappa2);
-    if (c.normal_integration == ContactIntegration::kExact) {
-      // Integrated exactly, a normal spring allows any step on its point; the block still
-      // takes the summed forces explicitly (its own term), and the points the tangential
-      // springs (undamped, explicit).
-      dt = std::fmin(contactTimeStep(block, c.normal_stiffness, zeta, 1, kappa2),
-                     contactTimeStep(lightest_point_, c.tangential_stiffness, 0, 1, kappa2));
-    }
+  // The springs between bodies never bound this step (the bodies take substeps within their
+  // own bound), nor do subcycled coupling springs.
+  if (hasContactBodies() && coupling_->hasSprings() && !coupling_->subcycles()) {
+    const Real dt = springStep(kappa2);
     if (dt < choice.dt) choice = {dt, StepLimit::kContact};
   }
   return choice;
+}
+
+Real World::springStep(Real kappa2) const {
+  // Eq. 51, second term, for the coupling springs (lightest point or body).
+  const ContactBodies& bodies = *contactBodies();
+  const CouplingDef& c = coupling_->def();
+  const Real zeta = bodies.maxDampingRatio();  // the most damped contact bounds the step
+  const Real block = bodies.lightestMass() / largest_spring_scale_;
+  if (c.normal_integration == ContactIntegration::kExact) {
+    // Integrated exactly, a normal spring allows any step on its point; the block still takes
+    // the summed forces explicitly (its own term), and the points the tangential springs
+    // (undamped, explicit).
+    return std::fmin(contactTimeStep(block, c.normal_stiffness, zeta, 1, kappa2),
+                     contactTimeStep(lightest_point_, c.tangential_stiffness, 0, 1, kappa2));
+  }
+  return contactTimeStep(std::fmin(lightest_point_, block), c.normal_stiffness, zeta, 1, kappa2);
 }
 
 StepInfo World::step(Real dt) {
@@ -441,6 +445,14 @@ StepInfo World::step(Real dt) {
   // part in the stages of coupling.hpp.
   const bool coupled = hasContactBodies();
   const bool corrected = coupled && coupling_->correctsVelocities();
+  // A correction's impulses are forces the local damping must see, or it would move a static
+  // equilibrium that a contact holds (it would damp the internal force and gravity alone, which
+  // the contact balances): it damps the step's whole velocity change then. A correction may
+  // also push into a wall.
+  auto correctedWalls = [this](Real kick) {
+    if (def_.solver.damping > 0) dampVelocityChange(kick);
+    applyWalls(grid_.vel_x, grid_.vel_y);
+  };
   if (coupled) {
     StageTimer timer(profile_, Stage::kBodies);  // FEM bodies' internal forces (eq. 20)
     contactBodies()->beginCoupling(dt);
@@ -461,9 +473,9 @@ StepInfo World::step(Real dt) {
     if (sph_) sphForces();  // before any point moves: the pairs are read at x^n
     spreadPointLoads();
     stage(&Coupling::addGridForces);
-    gridVelocity(kick, true);
+    gridVelocity(kick, true, !corrected);
     stage(&Coupling::correctGridVelocity);
-    if (corrected) applyWalls(grid_.vel_x, grid_.vel_y);  // a correction may push into a wall
+    if (corrected) correctedWalls(kick);
     gridToParticle(dt, info);
     if (sph_) sphMove(dt, kick, info);
     stress_lag_ = dt;
@@ -472,15 +484,15 @@ StepInfo World::step(Real dt) {
     spreadPointLoads();
     stage(&Coupling::addGridForces);
     gridVelocity(0, false);
-    gridVelocity(kick, true);
+    gridVelocity(kick, true, !corrected);
     stage(&Coupling::correctGridVelocity);
-    if (corrected) applyWalls(grid_.vel_x, grid_.vel_y);
+    if (corrected) correctedWalls(kick);
     gridToParticle(dt, info);
     constitutiveUpdate(dt);
     stress_lag_ = 0;
   }
   stage(&Coupling::afterMaterialStep);
-  if (coupled) stepBodies(dt);
+  if (coupled && !coupling_->subcycles()) stepBodies(dt);  // else in correctGridVelocity
   if (blocks_) checkBlocks(info);
   velocity_lag_ = Real(0.5) * dt;
   time_ += dt;
@@ -502,6 +514,10 @@ void World::couplingStage(Real dt, Real kick, void (Coupling::*stage)(CouplingSt
   StageTimer timer(profile_, Stage::kContact);
   CouplingStep s{particles_,          grid_, tiles_, *contactBodies(), def_.solver.kernel,
                  def_.solver.gravity, dt,    kick};
+  if (stage == &Coupling::correctGridVelocity && coupling_->subcycles()) {
+    s.contact_substep = springStep(def_.time_step.contact_factor);
+    s.body_substep = contactBodies()->stableStep(def_.time_step.contact_factor);
+  }
   if (sph_) {
     s.sph_ax = sph_->columns.ax.data();
     s.sph_ay = sph_->columns.ay.data();
@@ -654,7 +670,7 @@ void World::particleToGrid(bool momentum, bool force) {
   });
 }
 
-void World::gridVelocity(Real kick, bool after_force) {
+void World::gridVelocity(Real kick, bool after_force, bool damp) {
   StageTimer timer(profile_, Stage::kGridUpdate);
   Grid& G = grid_;
   if (!after_force) {
@@ -672,7 +688,7 @@ void World::gridVelocity(Real kick, bool after_force) {
     return;
   }
   const Real gx = def_.solver.gravity.x(), gy = def_.solver.gravity.y();
-  const Real damping = def_.solver.damping;
+  const Real damping = damp ? def_.solver.damping : Real(0);
   forActiveNodes(tiles_.active, [&](int first, int end) {
     const Real *m = G.mass.data(), *fx = G.force_x.data(), *fy = G.force_y.data();
     const Real *vx0 = G.vel0_x.data(), *vy0 = G.vel0_y.data();
@@ -687,6 +703,23 @@ void World::gridVelocity(Real kick, bool after_force) {
     }
   });
   applyWalls(G.vel_x, G.vel_y);
+}
+
+void World::dampVelocityChange(Real kick) {
+  if (kick == 0) return;
+  StageTimer timer(profile_, Stage::kGridUpdate);
+  Grid& G = grid_;
+  const Real damping = def_.solver.damping;
+  forActiveNodes(tiles_.active, [&](int first, int end) {
+    const Real *vx0 = G.vel0_x.data(), *vy0 = G.vel0_y.data();
+    Real *vx = G.vel_x.data(), *vy = G.vel_y.data();
+#pragma omp simd
+    for (int i = first; i < end; ++i) {
+      // The same law as gridVelocity's on the force per unit mass (v - v0) / kick.
+      vx[i] = vx0[i] + kick * detail::localDamping((vx[i] - vx0[i]) / kick, vx0[i], damping);
+      vy[i] = vy0[i] + kick * detail::localDamping((vy[i] - vy0[i]) / kick, vy0[i], damping);
+    }
+  });
 }
 
 void World::applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const {

@@ -594,13 +594,18 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
     r.require(c.stiffness_per == SpringBasis::kPerPoint || c.scheme == CouplingScheme::kImp ||
                   c.scheme == CouplingScheme::kImpGrid,
               "stiffness_per", "'length' applies to the imp and imp_grid schemes only");
-    c.normal_integration = r.choice<ContactIntegration>(
-        "normal_integration",
-        {{"explicit", ContactIntegration::kExplicit}, {"exact", ContactIntegration::kExact}},
-        c.normal_integration);
+    c.normal_integration =
+        r.choice<ContactIntegration>("normal_integration",
+                                     {{"explicit", ContactIntegration::kExplicit},
+                                      {"exact", ContactIntegration::kExact},
+                                      {"subcycled", ContactIntegration::kSubcycled}},
+                                     c.normal_integration);
     r.require(c.normal_integration == ContactIntegration::kExplicit ||
                   c.scheme == CouplingScheme::kImp || c.scheme == CouplingScheme::kImpGrid,
-              "normal_integration", "'exact' applies to the imp and imp_grid schemes only");
+              "normal_integration",
+              std::string(c.normal_integration == ContactIntegration::kExact ? "'exact'"
+                                                                             : "'subcycled'") +
+                  " applies to the imp and imp_grid schemes only");
     c.block_points_per_cell = r.integer("block_points_per_cell", c.block_points_per_cell);
     r.require(c.block_points_per_cell >= 1 && c.block_points_per_cell <= 8, "block_points_per_cell",
               "must be 1 to 8 points per cell side, got " + num(c.block_points_per_cell));

@@ -182,13 +182,20 @@ class World {
   friend struct detail::CheckpointAccess;
   // The automatic step (seed 000 eq. 51) with factors kappa_1 = cfl and kappa_2.
   TimeStepChoice stepBound(Real cfl, Real kappa2) const;
+  // The coupling springs' stable step (seed 000 eq. 51, second term): the step's bound, or the
+  // substep of subcycled springs.
+  Real springStep(Real kappa2) const;
   void binParticles();
   // f(first, end) for each run of consecutive nodes of the tiles (Tiles::nodeRuns), in parallel.
   template <class F>
   void forActiveNodes(const std::vector<int>& tiles, F&& f);
   void clearGrid();
   void particleToGrid(bool momentum, bool force);
-  void gridVelocity(Real kick, bool after_force);
+  // damp: local damping on the nodal force (internal, gravity and the coupling's forces).
+  void gridVelocity(Real kick, bool after_force, bool damp = true);
+  // Local damping on the whole of a step's velocity change, for a coupling that changes the
+  // velocities after the update (its impulses are part of the force the damping must see).
+  void dampVelocityChange(Real kick);
   void stressAndInternalForce(Real dt);
   void gridToParticle(Real dt, StepInfo& info);
   void constitutiveUpdate(Real dt);

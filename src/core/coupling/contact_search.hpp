@@ -45,6 +45,10 @@ class ContactSearch {
   // outline there is their union) and d its closest point to the point.
   template <class F>
   void forEachContact(const Particles& P, const ContactBodies& B, F&& f);
+  // The same with the points at where(group, particle) instead, and f(group, c, shape, d):
+  // group numbers the calls from 0 (the same numbering while the pairs are not rebuilt).
+  template <class X, class F>
+  void forEachContactAt(const ContactBodies& B, X&& where, F&& f);
   // Rebuild at the next update (the bodies or the points changed).
   void invalidate() { built_ = false; }
 
@@ -75,9 +79,17 @@ class ContactSearch {
 
 template <class F>
 void ContactSearch::forEachContact(const Particles& P, const ContactBodies& B, F&& f) {
-  for (std::size_t g = 0; g < pairs_.size();) {
+  forEachContactAt(
+      B, [&P](int, int p) { return Vec2(P.x[p], P.y[p]); },
+      [&f](int, ContactPair& c, int shape, const CoreDistance& d) { f(c, shape, d); });
+}
+
+template <class X, class F>
+void ContactSearch::forEachContactAt(const ContactBodies& B, X&& where, F&& f) {
+  int group = 0;
+  for (std::size_t g = 0; g < pairs_.size(); ++group) {
     ContactPair& c = pairs_[g];
-    const Vec2 x(P.x[c.particle], P.y[c.particle]);
+    const Vec2 x = where(group, c.particle);
     int shape = c.shape;
     CoreDistance d = B.closest(shape, x);
     std::size_t end = g + 1;
@@ -91,7 +103,7 @@ void ContactSearch::forEachContact(const Particles& P, const ContactBodies& B, F
       }
       pairs_[end].force.setZero();
     }
-    f(c, shape, d);
+    f(group, c, shape, d);
     g = end;
   }
 }

@@ -56,4 +56,11 @@ int ContactSet::step(Real dt, Real max_substep) {
   return substeps;
 }
 
+int ContactSet::substep(Real h, Real max_substep, Real share) {
+  int substeps = 0;
+  for (ContactBodies* b : members_)
+    substeps = std::max(substeps, b->substep(h, max_substep, share));
+  return substeps;
+}
+
 }  // namespace mpm_sdem

@@ -395,14 +395,30 @@ void FemBodies::beginCoupling(Real dt) {
 }
 
 void FemBodies::applyForce(int s, const Vec2& force, const Vec2& x) {
+  pushForce(s, force, x);
+  recordForce(s, force, x);
+}
+
+void FemBodies::pushForce(int s, const Vec2& force, const Vec2& x) {
   const Real pa = phiA(s, x);
   const Segment& g = segments_[s];
   cfx_[g.a] += pa * force.x();
   cfy_[g.a] += pa * force.y();
   cfx_[g.b] += (1 - pa) * force.x();
   cfy_[g.b] += (1 - pa) * force.y();
+}
+
+void FemBodies::recordForce(int s, const Vec2& force, const Vec2&) {
+  const Segment& g = segments_[s];
   coupling_[g.body].force += force;
   ++coupling_[g.body].contacts;
+}
+
+int FemBodies::substep(Real h, Real max_substep, Real) {
+  step(h, max_substep);
+  std::fill(cfx_.begin(), cfx_.end(), Real(0));
+  std::fill(cfy_.begin(), cfy_.end(), Real(0));
+  return 1;
 }
 
 void FemBodies::applyImpulse(int s, const Vec2& impulse, const Vec2& x, Real dt) {

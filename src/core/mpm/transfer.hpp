@@ -6,6 +6,7 @@
 #include <optional>
 #include <type_traits>
 
+#include "contact_stencil.hpp"
 #include "mpm_sdem/core/mpm/constitutive.hpp"
 #include "mpm_sdem/core/mpm/grid.hpp"
 #include "mpm_sdem/core/mpm/kernels.hpp"
@@ -346,11 +347,14 @@ void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& cla
 // / D_p with r_I = x_I - x_p and D_p = sum S_Ip |r_I|^2. They sum to zero (sum S_Ip r_I = 0) and
 // their moment about x_p is d x f, so a contact force and its reaction on a block act at one
 // point and keep angular momentum. Every part is weighted by S_Ip, so no node gets more than a
-// few times f S_Ip / m_I, whatever its mass.
+// few times f S_Ip / m_I, whatever its mass. As a map, A_I = S_Ip (1 + r_I^perp d^perp^T / D_p)
+// (d x f = d^perp . f); its transpose reads the grid's velocity at x_p + d with the nodes' mean
+// rotation about x_p.
 template <class K>
-void spreadParticleForce(Grid& G, const Particles& P, int p, const Vec2& f,
-                         const Vec2& offset = Vec2(0, 0)) {
+void particleForceStencil(const Grid& G, const Particles& P, int p, const Vec2& offset,
+                          ContactStencil& st) {
   constexpr int S = K::kSupport;
+  static_assert(S * S <= ContactStencil::kMaxNodes);
   Real xg, yg;
   Stencil1D sx, sy;
   stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
@@ -362,75 +366,102 @@ void spreadParticleForce(Grid& G, const Particles& P, int p, const Vec2& f,
       second += sx.w[i] * sy.w[j] * (rx * rx + ry * ry);
     }
   }
-  // (d x f) / D_p in grid units: the couple's force per unit S_Ip r_I^perp (r in cells).
-  const Real c = second > 0 ? cross(offset, f) * G.inv_h / second : 0;
+  // The couple's force per unit S_Ip r_I^perp (r in cells) is (d^perp . f) inv_h / D.
+  st.lever = second > 0 ? Vec2(Vec2(-offset.y(), offset.x()) * (G.inv_h / second)) : Vec2(0, 0);
+  st.count = 0;
   for (int j = 0; j < S; ++j) {
     const int row = (sy.base + j) * G.nx + sx.base;
     const Real ry = (sy.base + j) - yg;
     for (int i = 0; i < S; ++i) {
       const Real rx = (sx.base + i) - xg;
-      const Real w = sx.w[i] * sy.w[j];
-      G.force_x[row + i] += w * (f.x() - c * ry);
-      G.force_y[row + i] += w * (f.y() + c * rx);
+      const int k = st.count++;
+      st.node[k] = row + i;
+      st.w[k] = sx.w[i] * sy.w[j];
+      st.rx[k] = -ry;  // r_I^perp
+      st.ry[k] = rx;
     }
   }
 }
 
-// A point load at x on the nodes that carry mass, the weights renormalised over them (seed 003
-// eq. 14), so that all of it reaches the material; it acts at the weights' centroid xbar (x
-// itself where every node around x has mass). With a couple (N m/m, counter-clockwise) the nodes
-// also get w_I c r_I^perp, r_I from xbar: these sum to zero and their moment is the couple (as
-// spreadParticleForce's offset), so a contact force that reaches the material inside its outline
-// keeps the lever it has on the body at the contact point. Where few nodes around x carry mass
-// (the ragged edge of a flow) their second moment about xbar can be tiny and c huge on a node of
-// little mass; the divisor is therefore at least the whole stencil's, as if every node had mass,
-// and such a load hands on only part of its couple. (Moving f itself from xbar to x as well
-// spun up torn-off bits of the wooden-block flow: its partitioned wall, split as they flew,
-// slowed the step to 11 ms.)
-// Returns false, adding nothing, when no node around x has mass.
-// half_size: GIMP's half width of the load's area, in cells (> 0).
 template <class K>
-bool spreadPointLoad(Grid& G, const Vec2& x, Real half_size, const Vec2& f,
-                     std::optional<Real> couple = std::nullopt) {
+void spreadParticleForce(Grid& G, const Particles& P, int p, const Vec2& f,
+                         const Vec2& offset = Vec2(0, 0)) {
+  ContactStencil st;
+  particleForceStencil<K>(G, P, p, offset, st);
+  st.spread(G.force_x, G.force_y, f);
+}
+
+// A point load at x on the nodes that carry mass, the weights renormalised over them (seed 003
+// eq. 14), so that all of it reaches the material: A_I = S_I(x) / sum_J S_J(x) over those nodes.
+// Returns false, adding no node, when no node around x has mass. mean: the weights' centroid
+// relative to x (cells), for a couple.
+template <class K>
+bool pointLoadStencil(const Grid& G, const Vec2& x, Real half_size, ContactStencil& st,
+                      Vec2* mean = nullptr) {
   constexpr int S = K::kSupport;
+  static_assert(S * S <= ContactStencil::kMaxNodes);
   Real xg, yg;
   Stencil1D sx, sy;
   stencils<K>(G, x.x(), x.y(), half_size, xg, yg, sx, sy);
   Real sum = 0;
-  Vec2 mean(0, 0);  // the weights' centroid relative to x, in cells
+  Vec2 centroid(0, 0);
+  st.count = 0;
   for (int j = 0; j < S; ++j) {
     const int row = (sy.base + j) * G.nx + sx.base;
     for (int i = 0; i < S; ++i) {
       if (!(G.mass[row + i] > 0)) continue;
       const Real w = sx.w[i] * sy.w[j];
       sum += w;
-      mean += w * Vec2((sx.base + i) - xg, (sy.base + j) - yg);
+      centroid += w * Vec2((sx.base + i) - xg, (sy.base + j) - yg);
+      const int k = st.count++;
+      st.node[k] = row + i;
+      st.w[k] = w;
+      st.rx[k] = st.ry[k] = 0;
     }
   }
-  if (!(sum > 0)) return false;
-  mean /= sum;
-  Real c = 0;  // the couple's force per unit w_I r_I^perp (r in cells)
-  if (couple) {
-    Real second = 0;
-    for (int j = 0; j < S; ++j) {
-      const int row = (sy.base + j) * G.nx + sx.base;
-      for (int i = 0; i < S; ++i) {
-        if (!(G.mass[row + i] > 0)) continue;
-        const Vec2 r = Vec2((sx.base + i) - xg, (sy.base + j) - yg) - mean;
-        second += sx.w[i] * sy.w[j] / sum * r.squaredNorm();
-      }
-    }
-    c = *couple * G.inv_h / std::max(second, sx.second_moment + sy.second_moment);
+  if (!(sum > 0)) {
+    st.count = 0;
+    return false;
   }
-  for (int j = 0; j < S; ++j) {
-    const int row = (sy.base + j) * G.nx + sx.base;
-    for (int i = 0; i < S; ++i) {
-      if (!(G.mass[row + i] > 0)) continue;
-      const Real w = sx.w[i] * sy.w[j] / sum;
-      const Vec2 r = Vec2((sx.base + i) - xg, (sy.base + j) - yg) - mean;
-      G.force_x[row + i] += w * (f.x() - c * r.y());
-      G.force_y[row + i] += w * (f.y() + c * r.x());
-    }
+  for (int k = 0; k < st.count; ++k) st.w[k] /= sum;
+  st.lever.setZero();
+  if (mean) *mean = centroid / sum;
+  return true;
+}
+
+// The point load acts at the weights' centroid xbar (x itself where every node around x has
+// mass). With a couple (N m/m, counter-clockwise) the nodes also get w_I c r_I^perp, r_I from
+// xbar: these sum to zero and their moment is the couple (as spreadParticleForce's offset), so
+// a contact force that reaches the material inside its outline keeps the lever it has on the
+// body at the contact point. Where few nodes around x carry mass (the ragged edge of a flow)
+// their second moment about xbar can be tiny and c huge on a node of little mass; the divisor
+// is therefore at least the whole stencil's, as if every node had mass, and such a load hands
+// on only part of its couple. (Moving f itself from xbar to x as well spun up torn-off bits of
+// the wooden-block flow: its partitioned wall, split as they flew, slowed the step to 11 ms.)
+// Returns false, adding nothing, when no node around x has mass.
+// half_size: GIMP's half width of the load's area, in cells (> 0).
+template <class K>
+bool spreadPointLoad(Grid& G, const Vec2& x, Real half_size, const Vec2& f,
+                     std::optional<Real> couple = std::nullopt) {
+  ContactStencil st;
+  Vec2 mean;
+  if (!pointLoadStencil<K>(G, x, half_size, st, &mean)) return false;
+  st.spread(G.force_x, G.force_y, f);
+  if (!couple) return true;
+  Real xg, yg;
+  Stencil1D sx, sy;
+  stencils<K>(G, x.x(), x.y(), half_size, xg, yg, sx, sy);
+  Real second = 0;
+  for (int k = 0; k < st.count; ++k) {
+    const int i = st.node[k] % G.nx, j = st.node[k] / G.nx;
+    second += st.w[k] * (Vec2(i - xg, j - yg) - mean).squaredNorm();
+  }
+  const Real c = *couple * G.inv_h / std::max(second, sx.second_moment + sy.second_moment);
+  for (int k = 0; k < st.count; ++k) {
+    const int i = st.node[k] % G.nx, j = st.node[k] / G.nx;
+    const Vec2 r = Vec2(i - xg, j - yg) - mean;
+    G.force_x[st.node[k]] += st.w[k] * (-c * r.y());
+    G.force_y[st.node[k]] += st.w[k] * (c * r.x());
   }
   return true;
 }

@@ -287,6 +287,7 @@ void Blocks::interiorPoints(int s, Real spacing, std::vector<Vec2>& points, Real
 
 void Blocks::beginCoupling(Real dt) {
   for (Coupling& c : coupling_) c = Coupling();
+  for (Coupling& c : block_contact_) c = Coupling();
   for (Body& b : bodies_) {
     b.trial_v = b.state.velocity;
     b.trial_w = b.state.angular_velocity;
@@ -295,6 +296,12 @@ void Blocks::beginCoupling(Real dt) {
     b.trial_v += dt * (gravity_ + b.force / b.mass.mass);
     b.trial_w += dt * b.torque / b.mass.inertia;
     holdTrial(b);
+  }
+  for (Body& b : bodies_) {
+    b.load_force = b.force;
+    b.load_torque = b.torque;
+    b.force.setZero();
+    b.torque = 0;
   }
 }
 
@@ -341,8 +348,16 @@ void Blocks::recordContactForce(int a, int b, const Vec2& f, const Vec2& point) 
 }
 
 void Blocks::applyForce(int s, const Vec2& f, const Vec2& point) {
+  pushForce(s, f, point);
+  recordForce(s, f, point);
+}
+
+void Blocks::pushForce(int s, const Vec2& f, const Vec2& point) {
+  addForce(owner(s), f, point);
+}
+
+void Blocks::recordForce(int s, const Vec2& f, const Vec2& point) {
   const int i = owner(s);
-  addForce(i, f, point);
   Coupling& c = coupling_[i];
   c.force += f;
   c.torque += cross(point - bodies_[i].state.position, f);

@@ -272,6 +272,15 @@ void Blocks::refresh(int i) {
 }
 
 int Blocks::step(Real dt, Real max_substep) {
+  for (Coupling& c : block_contact_) c = Coupling();
+  return advance(dt, max_substep, true, 1);
+}
+
+int Blocks::substep(Real h, Real max_substep, Real share) {
+  return advance(h, max_substep, false, share);  // beginCoupling cleared the records
+}
+
+int Blocks::advance(Real dt, Real max_substep, bool ends_step, Real share) {
   if (bodies_.empty()) return 0;
   // The blocks' own springs are stiffer than the material's: the blocks take several steps for
   // one MPM step (multi-rate explicit integration), each within the block-block bound.
@@ -281,11 +290,10 @@ int Blocks::step(Real dt, Real max_substep) {
   // the moving blocks' are held and applied.
   for (const int i : moving_) {
     Body& b = bodies_[i];
-    b.held_force = b.force;
-    b.held_torque = b.torque;
+    b.held_force = b.force + b.load_force;
+    b.held_torque = b.torque + b.load_torque;
   }
-  for (Coupling& c : block_contact_) c = Coupling();
-  substep_share_ = Real(1) / substeps;
+  substep_share_ = share / substeps;
   for (int s = 0; s < substeps; ++s) {
     for (const int i : moving_) {
       Body& b = bodies_[i];
@@ -323,6 +331,9 @@ int Blocks::step(Real dt, Real max_substep) {
   for (Body& b : bodies_) {
     b.force.setZero();
     b.torque = 0;
+    if (!ends_step) continue;
+    b.load_force.setZero();
+    b.load_torque = 0;
   }
   return substeps;
 }

@@ -109,6 +109,16 @@ class ContactBodies {
   // none), and a step of dt in substeps no longer than max_substep (returns their number).
   virtual Real stableStep(Real kappa2) const = 0;
   virtual int step(Real dt, Real max_substep) = 0;
+
+  // Multi-rate coupling (ContactIntegration::kSubcycled): the material's step is cut into
+  // substeps and the springs' forces change in each. pushForce acts on the body for the coming
+  // substep only and is not recorded; recordForce only records (the step's mean, for outputs);
+  // applyForce is both. substep advances by h like step, with the forces pushed since the last
+  // substep and the external loads given before the material's step (they act in every
+  // substep of it); share: h over the material's step, for the bodies' own records.
+  virtual void pushForce(int s, const Vec2& force, const Vec2& x) = 0;
+  virtual void recordForce(int s, const Vec2& force, const Vec2& x) = 0;
+  virtual int substep(Real h, Real max_substep, Real share) = 0;
 };
 
 }  // namespace mpm_sdem

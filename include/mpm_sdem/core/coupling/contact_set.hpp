@@ -52,6 +52,13 @@ class ContactSet final : public ContactBodies {
   }
   Real stableStep(Real kappa2) const override;
   int step(Real dt, Real max_substep) override;
+  void pushForce(int s, const Vec2& force, const Vec2& x) override {
+    at(s).pushForce(local(s), force, x);
+  }
+  void recordForce(int s, const Vec2& force, const Vec2& x) override {
+    at(s).recordForce(local(s), force, x);
+  }
+  int substep(Real h, Real max_substep, Real share) override;
 
  private:
   int member(int s) const {

@@ -4,6 +4,8 @@
 // count of active contacts. World calls the stages in this order each step:
 //   [bodies.beginCoupling] -> beforeStep -> [P2G, internal force] -> addGridForces
 //   -> [velocity update] -> correctGridVelocity -> [G2P] -> afterMaterialStep -> [bodies.step]
+// A scheme that subcycles its springs (subcycles()) moves the bodies itself, in substeps inside
+// correctGridVelocity, and World skips [bodies.step].
 #pragma once
 
 #include <limits>
@@ -44,11 +46,14 @@ enum class SpringBasis {
 
 // How an IMP's normal spring-dashpot acts over a step.
 enum class ContactIntegration {
-  kExplicit,  // seed 000 sec. 4.2: the force at the start of the step, held over it; the
-              // springs bound the step (eq. 51, second term)
-  kExact,     // the impulse of the spring-dashpot over the step in closed form for the point
-              // and block as a free pair (clippedSpringImpulse), starting within the step if
-              // they meet; the normal springs no longer bound the step, the tangential do
+  kExplicit,   // seed 000 sec. 4.2: the force at the start of the step, held over it; the
+               // springs bound the step (eq. 51, second term)
+  kExact,      // the impulse of the spring-dashpot over the step in closed form for the point
+               // and block as a free pair (clippedSpringImpulse), starting within the step if
+               // they meet; the normal springs no longer bound the step, the tangential do
+  kSubcycled,  // multi-rate: the material's step is set by the material alone, and the
+               // springs and the bodies take substeps within it, each substep's forces from
+               // the positions and velocities at its start (imp_coupling.hpp)
 };
 
 struct CouplingDef {
@@ -77,6 +82,10 @@ struct CouplingStep {
   Vec2 gravity;  // m/s^2
   Real dt;       // s, the step
   Real kick;     // s, the grid velocity update's span (dt, half of it on the first step)
+  // Subcycling schemes: the longest stable substep of the material-body springs (eq. 51,
+  // second term) and of the bodies' own contacts (ContactBodies::stableStep), s.
+  Real contact_substep = std::numeric_limits<Real>::infinity();
+  Real body_substep = std::numeric_limits<Real>::infinity();
   // The SPH particles' accelerations (m/s^2, indexed by particle; seed 001), or null in a world
   // without them. An SPH particle is moved by its own acceleration, not by the grid: a contact
   // force on it is added here, and an impulse changes its velocity (Particles::vx, vy) at once.
@@ -100,6 +109,9 @@ class Coupling {
   virtual bool hasSprings() const = 0;
   // True when correctGridVelocity changes nodal velocities (the walls are then applied again).
   virtual bool correctsVelocities() const { return false; }
+  // True when the springs take substeps inside the material's step (they do not bound it) and
+  // the scheme steps the bodies in them.
+  virtual bool subcycles() const { return false; }
   // A body was added or removed: the shapes are numbered afresh (rebuild what is indexed by
   // them; shape keys still name the ones that stayed).
   virtual void bodiesChanged() {}

@@ -155,6 +155,11 @@ class FemBodies final : public ContactBodies {
   void applyForce(int s, const Vec2& force, const Vec2& x) override;
   // Eq. 44: the trial velocities of the two nodes change by phi_J impulse / m_J.
   void applyImpulse(int s, const Vec2& impulse, const Vec2& x, Real dt) override;
+  void pushForce(int s, const Vec2& force, const Vec2& x) override;
+  void recordForce(int s, const Vec2& force, const Vec2& x) override;
+  // A step of h under the internal forces of beginCoupling and the forces pushed since the
+  // last substep (then cleared).
+  int substep(Real h, Real max_substep, Real share) override;
   // No substeps: the element step joins the world's step bound instead.
   Real stableStep(Real) const override { return std::numeric_limits<Real>::infinity(); }
   // v^{n+1/2} = trial + dt f_contact / m; the walls and obstacles; x^{n+1} = x^n + dt v^{n+1/2}.

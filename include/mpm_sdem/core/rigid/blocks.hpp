@@ -212,6 +212,9 @@ class Blocks final : public ContactBodies {
   // (penalty model) and one Box2D step. The forces added before the call (the material's) act
   // unchanged through all substeps. Returns the number of substeps.
   int step(Real dt, Real max_substep = std::numeric_limits<Real>::infinity()) override;
+  void pushForce(int s, const Vec2& force, const Vec2& x) override;
+  void recordForce(int s, const Vec2& force, const Vec2& x) override;
+  int substep(Real h, Real max_substep, Real share) override;
 
   // A load on one block in the last step (for outputs): what the material did to it
   // (coupling), or what the other blocks did (blockContact).
@@ -244,6 +247,9 @@ class Blocks final : public ContactBodies {
   void refresh();       // state and world vertices from Box2D (box2d_bodies.cpp)
   void refresh(int i);  // block i's alone
   void holdDrives();    // sets the held velocity components of driven blocks in Box2D
+  // step() and substep(): dt in substeps with the forces given so far; the loads of the step
+  // are cleared when it ends. share: dt over the whole step (1 for step()), for the records.
+  int advance(Real dt, Real max_substep, bool ends_step, Real share);
 
   // What every step reads and writes, one entry per block (hot); the definitions, names
   // included, stay in defs_ (cold).
@@ -262,6 +268,10 @@ class Blocks final : public ContactBodies {
     Real torque = 0;
     Vec2 held_force{0, 0};  // the material's, held through the substeps
     Real held_torque = 0;
+    // The external loads of the step under way (beginCoupling moves them here from force), for
+    // every substep of a multi-rate step; zero between steps, so not in a checkpoint.
+    Vec2 load_force{0, 0};
+    Real load_torque = 0;
     Vec2 trial_v{0, 0};  // during the exchange with the material (beginCoupling)
     Real trial_w = 0;
     int first_shape = 0, shape_count = 0;
@@ -314,7 +324,7 @@ class Blocks final : public ContactBodies {
   std::vector<int> free_slots_;
   Real max_zeta_ = 0;
   std::uint64_t layout_version_ = 0;
-  Real substep_share_ = 1;  // 1 / substeps of the step under way
+  Real substep_share_ = 1;  // one substep's share of the (material) step under way
   Vec2 gravity_{0, 0};
   BlockContactDef contact_;
   Real scale_ = 1;
