@@ -46,9 +46,10 @@ class ContactSearch {
   template <class F>
   void forEachContact(const Particles& P, const ContactBodies& B, F&& f);
   // The same with the points at where(group, particle) instead, and f(group, c, shape, d):
-  // group numbers the calls from 0 (the same numbering while the pairs are not rebuilt).
-  template <class X, class F>
-  void forEachContactAt(const ContactBodies& B, X&& where, F&& f);
+  // group numbers the calls from 0 (the same numbering while the pairs are not rebuilt). A
+  // group for which skip(group) is true is passed over before any distance is computed.
+  template <class X, class F, class Skip>
+  void forEachContactAt(const ContactBodies& B, X&& where, F&& f, Skip&& skip);
   // Rebuild at the next update (the bodies or the points changed).
   void invalidate() { built_ = false; }
 
@@ -81,14 +82,21 @@ template <class F>
 void ContactSearch::forEachContact(const Particles& P, const ContactBodies& B, F&& f) {
   forEachContactAt(
       B, [&P](int, int p) { return Vec2(P.x[p], P.y[p]); },
-      [&f](int, ContactPair& c, int shape, const CoreDistance& d) { f(c, shape, d); });
+      [&f](int, ContactPair& c, int shape, const CoreDistance& d) { f(c, shape, d); },
+      [](int) { return false; });
 }
 
-template <class X, class F>
-void ContactSearch::forEachContactAt(const ContactBodies& B, X&& where, F&& f) {
+template <class X, class F, class Skip>
+void ContactSearch::forEachContactAt(const ContactBodies& B, X&& where, F&& f, Skip&& skip) {
   int group = 0;
   for (std::size_t g = 0; g < pairs_.size(); ++group) {
     ContactPair& c = pairs_[g];
+    if (skip(group)) {
+      for (++g; g < pairs_.size() && pairs_[g].body == c.body && pairs_[g].particle == c.particle;
+           ++g) {
+      }
+      continue;
+    }
     const Vec2 x = where(group, c.particle);
     int shape = c.shape;
     CoreDistance d = B.closest(shape, x);

@@ -138,6 +138,13 @@ void ImpCoupling::beginSubcycle(CouplingStep& s) {
         g.ramp = g.stencil.gather(
             [&G](int i) { return Vec2(G.vel_x[i] - G.vel0_x[i], G.vel_y[i] - G.vel0_y[i]); });
       }
+      // A pair that cannot close its gap within the step takes no part in the substeps (most
+      // of the Verlet list): the gap against twice the relative speed the step starts with
+      // and gains from the held forces.
+      const Real gap = d.distance - s.bodies.rounding(b) - materialReach(P, p, def_.contact_radius);
+      const Real speed = g.velocity.norm() + g.ramp.norm() + s.bodies.velocityAt(b, d.point).norm();
+      g.apart = gap > 2 * s.dt * speed;
+      if (g.apart) c.history.setZero();  // as a substep that saw it apart would
       substepping_.push_back(g);
     });
   });
@@ -165,21 +172,25 @@ void ImpCoupling::correctGridVelocity(CouplingStep& s) {
   for (int k = 0; k < n; ++k) {
     // Eq. 43 at the substep's start, the reactions on the bodies (eq. 49-50), the impulses on
     // the grid around each point.
-    search_.forEachContactAt(B, where, [&](int g, ContactPair& c, int b, const CoreDistance& d) {
-      Substepping& sub = substepping_[g];
-      const Vec2 x = where(g, c.particle);
-      Vec2 point, force;
-      if (!springForce(c, b, d, x, sub.velocity, sub.sph, P, B, h, G.h, point, force)) return;
-      B.pushForce(b, -force, point);
-      c.point = point;
-      sub.impulse += h * force;
-      if (!sub.sph) sub.stencil.spread(G.force_x, G.force_y, h * force);
-    });
+    search_.forEachContactAt(
+        B, where,
+        [&](int g, ContactPair& c, int b, const CoreDistance& d) {
+          Substepping& sub = substepping_[g];
+          const Vec2 x = where(g, c.particle);
+          Vec2 point, force;
+          if (!springForce(c, b, d, x, sub.velocity, sub.sph, P, B, h, G.h, point, force)) return;
+          B.pushForce(b, -force, point);
+          c.point = point;
+          sub.impulse += h * force;
+          if (!sub.sph) sub.stencil.spread(G.force_x, G.force_y, h * force);
+        },
+        [this](int g) { return substepping_[g].apart; });
     B.substep(h, s.body_substep, h / s.dt);
     // The points move with their grid over the substep: the held part of the step's velocity
     // change, and what the springs gave.
     const Real ramp = Real(k + 1) / n;
     for (Substepping& sub : substepping_) {
+      if (sub.apart) continue;
       const int p = search_.pairs()[sub.pair].particle;
       sub.velocity = sub.sph ? Vec2(Vec2(P.vx[p], P.vy[p]) + sub.impulse / P.mass[p])
                              : Vec2(sub.start + ramp * sub.ramp + sub.stencil.gather(gained));

@@ -76,6 +76,7 @@ class ImpCoupling final : public Coupling {
     Vec2 impulse{0, 0};              // on the point so far (N s/m)
     detail::ContactStencil stencil;  // how its force reaches the grid
     bool sph = false;                // an SPH particle: moved by its own mass
+    bool apart = false;              // too far from the body to touch within the step
   };
   void beginSubcycle(CouplingStep& s);
   ContactSearch search_;
