@@ -269,7 +269,8 @@ class Blocks final : public ContactBodies {
     Vec2 held_force{0, 0};  // the material's, held through the substeps
     Real held_torque = 0;
     // The external loads of the step under way (beginCoupling moves them here from force), for
-    // every substep of a multi-rate step; zero between steps, so not in a checkpoint.
+    // every substep of a multi-rate step; each step sets them afresh, so they are not in a
+    // checkpoint.
     Vec2 load_force{0, 0};
     Real load_torque = 0;
     Vec2 trial_v{0, 0};  // during the exchange with the material (beginCoupling)
