@@ -42,7 +42,10 @@ TEST(Node, PublishesCloudBlocksAndTf) {
   ASSERT_TRUE(
       waitFor([&] { return n.tf.canTransform("world", "mpm_sdem/box", ros::Time(0)); }, 10));
   // The box rests on the bed: the material carries its weight (0.04 m square at 500 kg/m^3,
-  // rounding included: 0.8 kg/m, 7.85 N/m), which only IMP contacts can supply.
+  // rounding included: 0.8 kg/m, 7.85 N/m), which only IMP contacts can supply. It drops 8.5 mm
+  // and rings on the soft bed first: the force swings by up to 30% before 0.3 s and stays within
+  // 1.5% of the weight after 0.5 s (the runner on node_bed.yaml), so read it once it rests.
+  ASSERT_TRUE(waitFor([&] { return n.stats.get().sim_time > 0.6; }, 20));
   ASSERT_TRUE(n.block("box", box));
   EXPECT_GT(box.contact_count, 0u);
   EXPECT_NEAR(box.coupling_force.y, 0.8 * 9.81, 0.1 * 0.8 * 9.81);
