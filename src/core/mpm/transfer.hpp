@@ -137,7 +137,7 @@ void particleToGrid(const Particles& P, Grid& G, const Tiles& T) {
 // The consistent mass matrix M_IJ = sum_p m_p S_Ip S_Jp applied to a grid velocity v:
 // q = S M_p S^T v, the momentum the points send back to the nodes once they take v's PIC
 // interpolation. A grid velocity v solving M v = sum_p S_Ip m_p v_p makes that round trip an
-// identity (SolverDef::mass_iterations). q must be zero on the active nodes.
+// identity (MassMatrix::kFull). q must be zero on the active nodes.
 template <class K>
 void consistentMassProduct(const Particles& P, const Grid& G, const Tiles& T, const Real* vx,
                            const Real* vy, Real* qx, Real* qy) {
