@@ -64,25 +64,6 @@ std::string sizeProblem(const DomainDef& domain, Real cell_size,
   return limits::memoryProblem((cells.x() + pad) * (cells.y() + pad), points);
 }
 
-Problem massMatrixProblem(const WorldDef& def) {
-  if (def.solver.mass_matrix == MassMatrix::kLumped) return {};
-  const std::string key = "solver.mass_matrix";
-  if (def.solver.transfer == TransferScheme::kApic)
-    return {key,
-            "full needs transfer: pic or flip (APIC's affine term is not a grid field's "
-            "interpolation, so its round trip is no identity)"};
-  if (def.sph.enabled())
-    return {key,
-            "full cannot meet SPH particles (they lend the grid an affine velocity); use "
-            "lumped with sph"};
-  for (const MaterialDef& m : def.materials)
-    if (m.model != MaterialModel::kLinearElastic)
-      return {key, "full is for linear elastic materials only: material '" + m.name +
-                       "' is not (the wooden-block collapse in Drucker-Prager sand gained energy "
-                       "with it); use lumped"};
-  return {};
-}
-
 World::~World() = default;
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
@@ -145,7 +126,6 @@ World::World(const WorldDef& def) : def_(def) {
   }
   if (!(largest_spring_scale_ > 0)) largest_spring_scale_ = 1;
 
-  if (const Problem p = massMatrixProblem(def); !p.empty()) throw std::invalid_argument(p.text());
   if (def.sph.enabled()) initSph();
   if (!def.blocks.empty())
     blocks_ = std::make_unique<Blocks>(def.blocks, def.block_contact, def.solver.gravity);
@@ -705,7 +685,6 @@ void World::gridVelocity(Real kick, bool after_force, bool damp) {
       }
     });
     applyWalls(G.vel0_x, G.vel0_y);
-    if (def_.solver.mass_matrix == MassMatrix::kFull) fullMassVelocity();
     return;
   }
   const Real gx = def_.solver.gravity.x(), gy = def_.solver.gravity.y();
@@ -724,94 +703,6 @@ void World::gridVelocity(Real kick, bool after_force, bool damp) {
     }
   });
   applyWalls(G.vel_x, G.vel_y);
-}
-
-void World::fullMassVelocity() {
-  // Preconditioned conjugate gradients on M v = p from the lumped velocity, the walls' projection
-  // on each preconditioned residual. Started from the last step's velocity instead, the solve
-  // would carry that velocity's part in M's near-null space (fields the points do not see but
-  // whose gradient they do) from step to step: the shear mode of test_transfer_loss blew up.
-  Grid& G = grid_;
-  const std::size_t n = G.mass.size();
-  auto& S = mass_scratch_;
-  S.resize(8);
-  for (auto& a : S) a.resize(n);
-  Real *rx = S[0].data(), *ry = S[1].data(), *zx = S[2].data(), *zy = S[3].data();
-  Real *dx = S[4].data(), *dy = S[5].data(), *qx = S[6].data(), *qy = S[7].data();
-  const Real* m = G.mass.data();
-  auto product = [&](const Real* vx, const Real* vy) {
-    forActiveNodes(tiles_.active, [&](int first, int end) {
-      std::fill(qx + first, qx + end, Real(0));
-      std::fill(qy + first, qy + end, Real(0));
-    });
-    detail::withKernel(def_.solver.kernel, [&](auto kernel) {
-      detail::consistentMassProduct<decltype(kernel)>(particles_, G, tiles_, vx, vy, qx, qy);
-    });
-  };
-  auto dot = [&](const Real* ax, const Real* ay, const Real* bx, const Real* by) {
-    tiles_.nodeRuns(G, tiles_.active, node_runs_);
-    Real sum = 0;
-    for (const auto& run : node_runs_)
-      for (int i = run.first; i < run.end; ++i) sum += ax[i] * bx[i] + ay[i] * by[i];
-    return sum;
-  };
-  auto precondition = [&]() {
-    forActiveNodes(tiles_.active, [&](int first, int end) {
-      for (int i = first; i < end; ++i) {
-        zx[i] = m[i] > 0 ? rx[i] / m[i] : Real(0);
-        zy[i] = m[i] > 0 ? ry[i] / m[i] : Real(0);
-      }
-    });
-    applyWalls(S[2], S[3]);
-  };
-  Real b2 = 0;
-  {
-    tiles_.nodeRuns(G, tiles_.active, node_runs_);
-    for (const auto& run : node_runs_)
-      for (int i = run.first; i < run.end; ++i)
-        if (m[i] > 0) b2 += (G.mom_x[i] * G.mom_x[i] + G.mom_y[i] * G.mom_y[i]) / m[i];
-  }
-  product(G.vel0_x.data(), G.vel0_y.data());
-  forActiveNodes(tiles_.active, [&](int first, int end) {
-    for (int i = first; i < end; ++i) {
-      rx[i] = G.mom_x[i] - qx[i];
-      ry[i] = G.mom_y[i] - qy[i];
-    }
-  });
-  precondition();
-  forActiveNodes(tiles_.active, [&](int first, int end) {
-    std::copy(zx + first, zx + end, dx + first);
-    std::copy(zy + first, zy + end, dy + first);
-  });
-  Real rz = dot(rx, ry, zx, zy);
-  int k = 0;
-  const Real stop = kFullMassTolerance * kFullMassTolerance * b2;
-  for (; k < kFullMassMaxSweeps && rz > stop; ++k) {
-    product(dx, dy);
-    const Real curvature = dot(dx, dy, qx, qy);
-    if (!(curvature > 0)) break;
-    const Real alpha = rz / curvature;
-    forActiveNodes(tiles_.active, [&](int first, int end) {
-      for (int i = first; i < end; ++i) {
-        G.vel0_x[i] += alpha * dx[i];
-        G.vel0_y[i] += alpha * dy[i];
-        rx[i] -= alpha * qx[i];
-        ry[i] -= alpha * qy[i];
-      }
-    });
-    precondition();
-    const Real rz_new = dot(rx, ry, zx, zy);
-    const Real beta = rz_new / rz;
-    rz = rz_new;
-    forActiveNodes(tiles_.active, [&](int first, int end) {
-      for (int i = first; i < end; ++i) {
-        dx[i] = zx[i] + beta * dx[i];
-        dy[i] = zy[i] + beta * dy[i];
-      }
-    });
-  }
-  mass_sweeps_ += k;
-  applyWalls(G.vel0_x, G.vel0_y);
 }
 
 void World::dampVelocityChange(Real kick) {

@@ -151,9 +151,8 @@ void parseGrid(const Context& ctx, const MapReader& top, Scene& s) {
 
 void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
   if (!top.has("solver")) return;
-  MapReader r(
-      ctx, top.node("solver"), "solver",
-      {"kernel", "transfer", "pic_fraction", "stress_update", "gravity", "damping", "mass_matrix"});
+  MapReader r(ctx, top.node("solver"), "solver",
+              {"kernel", "transfer", "pic_fraction", "stress_update", "gravity", "damping"});
   SolverDef& sol = s.world.solver;
   sol.kernel = r.choice<KernelType>("kernel",
                                     {{"quadratic_bspline", KernelType::kQuadraticBSpline},
@@ -172,9 +171,6 @@ void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
     r.require(sol.pic_fraction >= 0 && sol.pic_fraction <= 1, "pic_fraction",
               "must be in [0, 1] (0 = FLIP, 1 = PIC), got " + num(sol.pic_fraction));
   }
-  sol.mass_matrix = r.choice<MassMatrix>(
-      "mass_matrix", {{"lumped", MassMatrix::kLumped}, {"full", MassMatrix::kFull}},
-      sol.mass_matrix);
   sol.stress_update = r.choice<StressUpdate>(
       "stress_update", {{"usf", StressUpdate::kUsf}, {"usl", StressUpdate::kUsl}},
       sol.stress_update);
@@ -841,8 +837,6 @@ Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& s
   parseBlocks(ctx, top, s);
   parseFemBodies(ctx, top, s);
   parseSph(ctx, top, s);
-  if (const Problem p = massMatrixProblem(s.world); !p.empty())
-    ctx.fail(top.node("solver")["mass_matrix"], p.key, p.message);
 
   if (top.has("output")) {
     MapReader o(ctx, top.node("output"), "output", {"interval", "particles", "gauges"});

@@ -34,19 +34,6 @@ enum class TransferScheme { kPic, kFlip, kApic };
 // Update stress first (seed 000 sec. 2.2) or last.
 enum class StressUpdate { kUsf, kUsl };
 
-// Lumped: v_I = p_I / m_I (seed 000 eq. 20). Full: v solves M v = p with the consistent mass
-// M_IJ = sum_p m_p S_Ip S_Jp (Burgess, Sulsky & Brackbill 1992; Love & Sulsky 2006), by
-// conjugate gradients preconditioned with the lumped mass to kFullMassTolerance. With PIC the
-// round trip grid -> points -> grid is then an identity, so a transfer loses energy only as the
-// points move across the cells: the loss per simulated second falls as the step shrinks, where
-// lumped PIC and APIC lose a fixed part of the unresolved motion at every transfer (README,
-// "Transfers whose loss does not grow with the step count"). massMatrixProblem says where.
-enum class MassMatrix { kLumped, kFull };
-// The full mass matrix's solve stops at |r|_{M_L^-1} <= kFullMassTolerance |p|_{M_L^-1} or after
-// kFullMassMaxSweeps sweeps (each one a gather and a scatter over the points).
-inline constexpr Real kFullMassTolerance = 1e-6;
-inline constexpr int kFullMassMaxSweeps = 200;
-
 struct SolverDef {
   KernelType kernel = KernelType::kQuadraticBSpline;
   TransferScheme transfer = TransferScheme::kApic;
@@ -57,8 +44,6 @@ struct SolverDef {
   // by damping * |F| against the node's velocity. It removes kinetic energy without changing
   // the static equilibrium; for settling quasi-static states only (0 = off).
   Real damping = 0;
-  // The mass matrix that turns the points' momentum into grid velocities (MassMatrix).
-  MassMatrix mass_matrix = MassMatrix::kLumped;
 };
 
 struct TimeStepDef {
@@ -75,12 +60,6 @@ struct DomainDef {
   Vec2 min{0, 0}, max{1, 1};  // m; each extent an integer number of cells
   WallDef left, right, bottom, top;
 };
-
-struct WorldDef;
-// What the full mass matrix cannot meet (empty when nothing): APIC, whose affine term is not a
-// grid field's interpolation; SPH particles, which lend the grid an affine velocity; and any
-// material but linear elastic, the only one it is measured stable with (README, issue 40).
-Problem massMatrixProblem(const WorldDef& def);
 
 struct WorldDef {
   DomainDef domain;
@@ -196,8 +175,6 @@ class World {
   Memory memory() const;
   Time time() const { return time_; }
   long stepCount() const { return steps_; }
-  // Conjugate-gradient sweeps of the full mass matrix since the start (0 when lumped).
-  long massSweeps() const { return mass_sweeps_; }
   const Profile& profile() const { return profile_; }
   void resetProfile() { profile_ = Profile(); }
 
@@ -219,8 +196,6 @@ class World {
   // Local damping on the whole of a step's velocity change, for a coupling that changes the
   // velocities after the update (its impulses are part of the force the damping must see).
   void dampVelocityChange(Real kick);
-  // MassMatrix::kFull: vel0 from the full mass matrix (conjugate gradients from p / m).
-  void fullMassVelocity();
   void stressAndInternalForce(Real dt);
   void gridToParticle(Real dt, StepInfo& info);
   void constitutiveUpdate(Real dt);
@@ -255,9 +230,7 @@ class World {
   Particles particles_;
   Grid grid_;
   Tiles tiles_;
-  std::vector<Tiles::NodeRun> node_runs_;        // scratch of forActiveNodes
-  std::vector<std::vector<Real>> mass_scratch_;  // fullMassVelocity's
-  long mass_sweeps_ = 0;                         // fullMassVelocity's, since the start
+  std::vector<Tiles::NodeRun> node_runs_;  // scratch of forActiveNodes
   Profile profile_;
   std::unique_ptr<Blocks> blocks_;
   std::unique_ptr<FemBodies> fem_;

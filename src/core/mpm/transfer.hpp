@@ -134,39 +134,6 @@ void particleToGrid(const Particles& P, Grid& G, const Tiles& T) {
       [&](int p) { deposit(p, Band{}); });
 }
 
-// The consistent mass matrix M_IJ = sum_p m_p S_Ip S_Jp applied to a grid velocity v:
-// q = S M_p S^T v, the momentum the points send back to the nodes once they take v's PIC
-// interpolation. A grid velocity v solving M v = sum_p S_Ip m_p v_p makes that round trip an
-// identity (MassMatrix::kFull). q must be zero on the active nodes.
-template <class K>
-void consistentMassProduct(const Particles& P, const Grid& G, const Tiles& T, const Real* vx,
-                           const Real* vy, Real* qx, Real* qy) {
-  constexpr int S = K::kSupport;
-  const int nx = G.nx;
-  forEachParticleByColour(
-      T, [&](int p) __attribute__((always_inline)) {
-        Real yg;
-        Window sx;
-        Stencil1D sy;
-        sweepStencils<K>(G, P, p, yg, sx, sy);
-        Row4 ux = {}, uy = {};
-        for (int j = 0; j < S; ++j) {
-          const int row = (sy.base + j) * nx + sx.first;
-          const Row4 w = sx.w * sy.w[j];
-          ux += w * loadRow(vx + row);
-          uy += w * loadRow(vy + row);
-        }
-        const Row4 u = sums(ux, uy, Row4{}, Row4{});
-        const Real mux = P.mass[p] * u[0], muy = P.mass[p] * u[1];
-        for (int j = 0; j < S; ++j) {
-          const int row = (sy.base + j) * nx + sx.first;
-          const Row4 w = sx.w * sy.w[j];
-          storeRow(qx + row, loadRow(qx + row) + w * mux);
-          storeRow(qy + row, loadRow(qy + row) + w * muy);
-        }
-      });
-}
-
 // The stress and volume of one point over dt with its velocity gradient L_p: Jaumann-rate
 // elasticity (eq. 21-25), the Drucker-Prager return for granular points only (eq. 31-35), and
 // V^{n+1} = det(I + dt L) V^n; a fluid's stress from its new J and L (fluidStress).
