@@ -21,7 +21,7 @@ Diagnostics measure(const World& world) {
   const auto& params = world.materialParams();
   const Vec2 g = world.def().solver.gravity;
   const Vec2 base = world.def().domain.min;
-  const bool apic = world.def().solver.transfer == TransferScheme::kApic;
+  const bool apic = carriesAffine(world.def().solver.transfer);
   Diagnostics d;
   Real mx = 0, my = 0;
   for (std::size_t p = 0; p < P.size(); ++p) {

@@ -654,7 +654,7 @@ void World::clearGrid() {
 
 void World::particleToGrid(bool momentum, bool force) {
   StageTimer timer(profile_, Stage::kP2G);
-  const bool apic = def_.solver.transfer == TransferScheme::kApic;
+  const bool apic = carriesAffine(def_.solver.transfer);
   detail::withKernel(def_.solver.kernel, [&](auto k) {
     using K = decltype(k);
     const Particles& P = particles_;
@@ -773,6 +773,9 @@ void World::gridToParticle(Real dt, StepInfo& info) {
         break;
       case TransferScheme::kApic:
         run(std::integral_constant<TransferScheme, TransferScheme::kApic>{});
+        break;
+      case TransferScheme::kAsflip:
+        run(std::integral_constant<TransferScheme, TransferScheme::kAsflip>{});
         break;
     }
   });

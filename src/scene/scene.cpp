@@ -162,7 +162,8 @@ void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
   sol.transfer = r.choice<TransferScheme>("transfer",
                                           {{"apic", TransferScheme::kApic},
                                            {"pic", TransferScheme::kPic},
-                                           {"flip", TransferScheme::kFlip}},
+                                           {"flip", TransferScheme::kFlip},
+                                           {"asflip", TransferScheme::kAsflip}},
                                           sol.transfer);
   if (r.has("pic_fraction")) {
     r.require(sol.transfer == TransferScheme::kFlip, "pic_fraction",

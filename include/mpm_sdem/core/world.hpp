@@ -29,8 +29,14 @@ namespace detail {
 struct SphState;
 }  // namespace detail
 
-// Grid-to-particle velocity transfer (seed 000 eq. 26-31).
-enum class TransferScheme { kPic, kFlip, kApic };
+// Grid-to-particle velocity transfer (seed 000 eq. 26-31). kAsflip: APIC's affine matrix with
+// FLIP's velocity increment (Fei et al. 2021's ASFLIP, its blend at 1 and the points moved by
+// the grid's velocity): no share of the velocity is lost per transfer.
+enum class TransferScheme { kPic, kFlip, kApic, kAsflip };
+// Whether the points carry APIC's affine matrix B to and from the grid.
+constexpr bool carriesAffine(TransferScheme t) {
+  return t == TransferScheme::kApic || t == TransferScheme::kAsflip;
+}
 // Update stress first (seed 000 sec. 2.2) or last.
 enum class StressUpdate { kUsf, kUsl };
 

@@ -222,7 +222,7 @@ void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
 }
 
 struct G2PSettings {
-  Real pic_fraction;
+  Real pic_fraction;  // kFlip: alpha of eq. 28
   Real dt;
   Vec2 lo, hi;  // domain box: points are kept inside it
 };
@@ -253,7 +253,7 @@ inline Real localDamping(Real f, Real v, Real damping) {
   P.y[p] = y;
 }
 
-// G2P: PIC velocity (eq. 26), FLIP blend (eq. 28) or APIC affine matrix (eq. 31), then
+// G2P: PIC velocity (eq. 26), FLIP blend (eq. 28), APIC affine matrix (eq. 31) or both, then
 // x_p += dt sum_I S_Ip v_I (the PIC velocity moves the point in every scheme). kGradient (USL):
 // also L_p from the post-kick velocity.
 // Without SPH particles every point in storage order; with them (T given), the material points
@@ -284,10 +284,11 @@ void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& cla
       const Row4 gvx = loadRow(G.vel_x.data() + row), gvy = loadRow(G.vel_y.data() + row);
       v_x += w * gvx;
       v_y += w * gvy;
-      if (kScheme == TransferScheme::kFlip) {
+      if (kScheme == TransferScheme::kFlip || kScheme == TransferScheme::kAsflip) {
         dv_x += w * (gvx - loadRow(G.vel0_x.data() + row));
         dv_y += w * (gvy - loadRow(G.vel0_y.data() + row));
-      } else if (kScheme == TransferScheme::kApic) {
+      }
+      if (carriesAffine(kScheme)) {
         b_xx += w * gvx * rx;
         b_xy += w * gvx * ry;
         b_yx += w * gvy * rx;
@@ -310,11 +311,17 @@ void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& cla
       const Real a = s.pic_fraction;
       P.vx[p] = a * vx + (1 - a) * (P.vx[p] + dvx);
       P.vy[p] = a * vy + (1 - a) * (P.vy[p] + dvy);
+    } else if (kScheme == TransferScheme::kAsflip) {
+      // FLIP's increment (eq. 28 with alpha = 0): the point keeps its own departure from the
+      // grid's field, v_p - v^n(x_p), which APIC drops at every transfer (a share lost per
+      // step, so a loss that grows as the step shrinks); B below is APIC's, from the grid.
+      P.vx[p] += dvx;
+      P.vy[p] += dvy;
     } else {
       P.vx[p] = vx;
       P.vy[p] = vy;
     }
-    if (kScheme == TransferScheme::kApic) {
+    if (carriesAffine(kScheme)) {
       P.bxx[p] = bxx;
       P.bxy[p] = bxy;
       P.byx[p] = byx;
