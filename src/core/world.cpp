@@ -75,6 +75,8 @@ World::World(const WorldDef& def) : def_(def) {
   grid_.init(def.domain.min, cellCount(size.x(), def.cell_size, "width"),
              cellCount(size.y(), def.cell_size, "height"), def.cell_size);
   tiles_.init(grid_);
+  tiles_.periodic_x = periodicX();
+  if (const std::string p = periodicProblem(def); !p.empty()) throw std::invalid_argument(p);
   for (const MaterialDef& m : def.materials) {
     params_.push_back(makeMaterialParams(m));
     if (m.model == MaterialModel::kFluid && m.viscosity > 0)
@@ -468,12 +470,16 @@ StepInfo World::step(Real dt) {
     // particles lend the grid their affine velocity (transfer.hpp) and their stress.
     if (sph_) sphStress(stress_lag_);
     particleToGrid(true, false);
+    foldPeriodic({&grid_.mass, &grid_.mom_x, &grid_.mom_y});
     gridVelocity(0, false);
     stressAndInternalForce(stress_lag_);
+    sidewallLoad();
     if (sph_) sphForces();  // before any point moves: the pairs are read at x^n
     spreadPointLoads();
     stage(&Coupling::addGridForces);
+    foldPeriodic({&grid_.force_x, &grid_.force_y, &sidewall_load_});
     gridVelocity(kick, true, !corrected);
+    sidewallFriction(kick);
     stage(&Coupling::correctGridVelocity);
     if (corrected) correctedWalls(kick);
     gridToParticle(dt, info);
@@ -481,10 +487,14 @@ StepInfo World::step(Real dt) {
     stress_lag_ = dt;
   } else {
     particleToGrid(true, true);
+    sidewallLoad();
     spreadPointLoads();
     stage(&Coupling::addGridForces);
+    foldPeriodic(
+        {&grid_.mass, &grid_.mom_x, &grid_.mom_y, &grid_.force_x, &grid_.force_y, &sidewall_load_});
     gridVelocity(0, false);
     gridVelocity(kick, true, !corrected);
+    sidewallFriction(kick);
     stage(&Coupling::correctGridVelocity);
     if (corrected) correctedWalls(kick);
     gridToParticle(dt, info);
@@ -743,6 +753,69 @@ void World::applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const {
   }
 }
 
+std::string periodicProblem(const WorldDef& def) {
+  const bool left = def.domain.left.type == WallType::kPeriodic;
+  const bool right = def.domain.right.type == WallType::kPeriodic;
+  if (left != right) return "domain.walls: left and right must both be periodic, or neither";
+  if (def.domain.bottom.type == WallType::kPeriodic || def.domain.top.type == WallType::kPeriodic)
+    return "domain.walls: only left and right can be periodic";
+  if (!left) return "";
+  const Real cells = (def.domain.max.x() - def.domain.min.x()) / def.cell_size;
+  if (cells < 2 * Grid::kPad + 1 - 1e-9)
+    return "domain.walls: a periodic domain needs at least " + std::to_string(2 * Grid::kPad + 1) +
+           " cells across, so that no node has two images";
+  if (!def.blocks.empty() || !def.fem_bodies.empty() || def.sph.enabled())
+    return "domain.walls: periodic sides are for material alone: no blocks, FEM bodies or SPH";
+  return "";
+}
+
+void World::foldPeriodic(std::initializer_list<std::vector<Real>*> fields) {
+  if (!periodicX()) return;
+  StageTimer timer(profile_, Stage::kGridUpdate);
+  const int nx = grid_.nx, cells = grid_.cells_x, pairs = nx - cells;
+  for (std::vector<Real>* a : fields) {
+    if (a->empty()) continue;  // a field this scene does not use
+    for (int j = 0; j < grid_.ny; ++j) {
+      Real* row = a->data() + static_cast<std::size_t>(j) * nx;
+      for (int i = 0; i < pairs; ++i) row[i] = row[i + cells] = row[i] + row[i + cells];
+    }
+  }
+}
+
+void World::sidewallLoad() {
+  const SidewallsDef& w = def_.domain.sidewalls;
+  if (!(w.width > 0)) return;
+  StageTimer timer(profile_, Stage::kStress);
+  sidewall_load_.resize(grid_.nodeCount());
+  forActiveNodes(tiles_.active, [this](int first, int end) {
+    std::fill(sidewall_load_.data() + first, sidewall_load_.data() + end, Real(0));
+  });
+  detail::withKernel(def_.solver.kernel, [&](auto k) {
+    detail::sidewallLoad<decltype(k)>(particles_, grid_, tiles_, 2 * w.friction / w.width,
+                                      sidewall_load_.data());
+  });
+}
+
+void World::sidewallFriction(Real kick) {
+  if (!(def_.domain.sidewalls.width > 0) || kick == 0) return;
+  StageTimer timer(profile_, Stage::kGridUpdate);
+  Grid& G = grid_;
+  forActiveNodes(tiles_.active, [&](int first, int end) {
+    const Real *m = G.mass.data(), *load = sidewall_load_.data();
+    Real *vx = G.vel_x.data(), *vy = G.vel_y.data();
+    for (int i = first; i < end; ++i) {
+      // Coulomb friction on the node's velocity after the kick: it takes off at most
+      // kick load / m of speed, and stops the node rather than reversing it, so that it can
+      // hold material at rest (a static pile leaning on its walls).
+      const Real speed = std::hypot(vx[i], vy[i]);
+      if (!(m[i] > 0) || speed == 0) continue;
+      const Real scale = std::fmax(0, 1 - kick * load[i] / (m[i] * speed));
+      vx[i] *= scale;
+      vy[i] *= scale;
+    }
+  });
+}
+
 void World::stressAndInternalForce(Real dt) {
   StageTimer timer(profile_, Stage::kStress);
   detail::withKernel(def_.solver.kernel, [&](auto k) {
@@ -752,7 +825,8 @@ void World::stressAndInternalForce(Real dt) {
 
 void World::gridToParticle(Real dt, StepInfo& info) {
   StageTimer timer(profile_, Stage::kG2P);
-  const detail::G2PSettings s{def_.solver.pic_fraction, dt, def_.domain.min, def_.domain.max};
+  const detail::G2PSettings s{def_.solver.pic_fraction, dt, def_.domain.min, def_.domain.max,
+                              periodicX()};
   const bool usl = def_.solver.stress_update == StressUpdate::kUsl;
   detail::withKernel(def_.solver.kernel, [&](auto k) {
     using K = decltype(k);

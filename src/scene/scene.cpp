@@ -97,7 +97,8 @@ WallDef parseWall(const Context& ctx, const MapReader& walls, const char* side) 
     return walls.choiceOf<WallType>(t, p,
                                     {{"sticky", WallType::kSticky},
                                      {"slip", WallType::kSlip},
-                                     {"friction", WallType::kFriction}});
+                                     {"friction", WallType::kFriction},
+                                     {"periodic", WallType::kPeriodic}});
   };
   if (n.IsScalar()) {
     w.type = type(n, path);
@@ -115,7 +116,7 @@ WallDef parseWall(const Context& ctx, const MapReader& walls, const char* side) 
 }
 
 void parseDomain(const Context& ctx, const MapReader& top, Scene& s) {
-  MapReader d(ctx, top.node("domain"), "domain", {"min", "max", "walls"});
+  MapReader d(ctx, top.node("domain"), "domain", {"min", "max", "walls", "sidewalls"});
   DomainDef& dom = s.world.domain;
   dom.min = d.vec2("min", limits::kCoordinate);
   dom.max = d.vec2("max", limits::kCoordinate);
@@ -127,6 +128,14 @@ void parseDomain(const Context& ctx, const MapReader& top, Scene& s) {
     dom.right = parseWall(ctx, w, "right");
     dom.bottom = parseWall(ctx, w, "bottom");
     dom.top = parseWall(ctx, w, "top");
+  }
+  if (d.has("sidewalls")) {
+    MapReader sw(ctx, d.node("sidewalls"), d.path("sidewalls"), {"width", "friction"});
+    dom.sidewalls.width = sw.number("width", "m");
+    sw.require(dom.sidewalls.width > 0 && dom.sidewalls.width <= 100, "width",
+               "must be in (0, 100] m (the channel's width between its side walls), got " +
+                   num(dom.sidewalls.width));
+    dom.sidewalls.friction = sw.number("friction", limits::kFriction);
   }
 }
 
@@ -214,14 +223,17 @@ void parseTime(const Context& ctx, const MapReader& top, Scene& s) {
 
 MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::string& path) {
   MapReader r(ctx, n, path,
-              {"name", "model", "density", "youngs_modulus", "poisson_ratio", "bulk_modulus",
-               "shear_modulus", "friction_angle", "dilation_angle", "cohesion", "tensile_strength",
-               "separation_volume_ratio", "sound_speed", "tait_exponent", "viscosity"});
+              {"name",           "model",         "density",          "youngs_modulus",
+               "poisson_ratio",  "bulk_modulus",  "shear_modulus",    "friction_angle",
+               "dilation_angle", "cohesion",      "tensile_strength", "separation_volume_ratio",
+               "sound_speed",    "tait_exponent", "viscosity",        "mu_s",
+               "mu_2",           "i_0",           "grain_diameter",   "solid_fraction"});
   MaterialDef m;
   m.name = r.name("name");
   m.model = r.choiceOf<MaterialModel>(r.node("model"), r.path("model"),
                                       {{"linear_elastic", MaterialModel::kLinearElastic},
                                        {"drucker_prager", MaterialModel::kDruckerPrager},
+                                       {"granular", MaterialModel::kGranular},
                                        {"fluid", MaterialModel::kFluid}});
   m.density = r.number("density", limits::kDensity);
   const bool fluid = m.model == MaterialModel::kFluid;
@@ -286,6 +298,29 @@ MaterialDef parseMaterial(const Context& ctx, const YAML::Node& n, const std::st
       if (fluid && std::string(k) == "tensile_strength") continue;
       r.require(!r.has(k), k, "applies only to model: drucker_prager");
     }
+  }
+  const char* granular_keys[] = {"mu_s", "mu_2", "i_0", "grain_diameter", "solid_fraction"};
+  if (m.model == MaterialModel::kGranular) {
+    // Glass beads (Jop, Forterre & Pouliquen 2006): mu_s = tan 20.9 deg = 0.382, mu_2 = tan
+    // 32.76 deg = 0.643, I_0 = 0.279, d = 0.53 mm, phi = 0.6.
+    m.mu_s = r.number("mu_s", "(dimensionless)");
+    r.require(m.mu_s >= 0 && m.mu_s <= 2, "mu_s",
+              "must be in [0, 2] (tan of the static friction angle), got " + num(m.mu_s));
+    m.mu_2 = r.number("mu_2", "(dimensionless)");
+    r.require(m.mu_2 >= m.mu_s && m.mu_2 <= 4, "mu_2",
+              "must be in [mu_s, 4] (the friction at large inertial number), got " + num(m.mu_2));
+    m.inertial_i0 = r.number("i_0", "(dimensionless)");
+    r.require(m.inertial_i0 > 0 && m.inertial_i0 <= 10, "i_0",
+              "must be in (0, 10] (0.279 for glass beads), got " + num(m.inertial_i0));
+    m.grain_diameter = r.number("grain_diameter", "m");
+    r.require(m.grain_diameter > 0 && m.grain_diameter <= 1, "grain_diameter",
+              "must be in (0, 1] m, got " + num(m.grain_diameter));
+    m.solid_fraction = r.number("solid_fraction", "(dimensionless)", 0.6);
+    r.require(m.solid_fraction > 0 && m.solid_fraction < 1, "solid_fraction",
+              "must be in (0, 1) (the grains' share of the volume at the critical packing), got " +
+                  num(m.solid_fraction));
+  } else {
+    for (const char* k : granular_keys) r.require(!r.has(k), k, "applies only to model: granular");
   }
   return m;
 }
@@ -838,6 +873,8 @@ Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& s
   parseBlocks(ctx, top, s);
   parseFemBodies(ctx, top, s);
   parseSph(ctx, top, s);
+  if (const std::string p = periodicProblem(s.world); !p.empty())
+    ctx.fail(top.node("domain")["walls"], "domain.walls", p.substr(p.find(": ") + 2));
 
   if (top.has("output")) {
     MapReader o(ctx, top.node("output"), "output", {"interval", "particles", "gauges"});

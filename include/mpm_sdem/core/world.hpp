@@ -1,6 +1,7 @@
 // The MPM world: definitions in, a step pipeline, state out. No ROS, YAML or OpenCV here.
 #pragma once
 
+#include <initializer_list>
 #include <limits>
 #include <memory>
 #include <string>
@@ -62,9 +63,18 @@ struct TimeStepDef {
   Real contact_factor = 0.1;
 };
 
+// The flume's side walls, parallel to the simulation plane, of a quasi-2D flow (issue 41; Jop,
+// Forterre & Pouliquen 2005): a body force of 2 mu_w p / W per unit volume against the material's
+// velocity, p the points' pressure (none in tension). width 0: none (a plane-strain slice).
+struct SidewallsDef {
+  Real width = 0;     // W, the channel's width between the walls (m)
+  Real friction = 0;  // mu_w, Coulomb coefficient of the material on the walls
+};
+
 struct DomainDef {
   Vec2 min{0, 0}, max{1, 1};  // m; each extent an integer number of cells
   WallDef left, right, bottom, top;
+  SidewallsDef sidewalls;
 };
 
 struct WorldDef {
@@ -80,6 +90,10 @@ struct WorldDef {
   CouplingDef coupling;  // contact between material and blocks (scheme and its settings)
   SphDef sph;            // the SPH region or bodies (seed 001); none by default
 };
+
+// Whether the domain's periodic sides are well posed (left and right together, at least five
+// cells across, material alone): "" or why not. Checked by the scene parser and by World.
+std::string periodicProblem(const WorldDef& def);
 
 // Whether a world of this domain, cell and bodies fits in memory (limits::memoryProblem, with
 // the bodies' points counted on their bounding boxes): "" or why not. Checked before anything
@@ -203,6 +217,13 @@ class World {
   // velocities after the update (its impulses are part of the force the damping must see).
   void dampVelocityChange(Real kick);
   void stressAndInternalForce(Real dt);
+  // The side walls' friction (SidewallsDef): what the points' pressure lets the walls resist on
+  // each node (after the stress), then that resistance on the nodes' velocities after the kick.
+  void sidewallLoad();
+  void sidewallFriction(Real kick);
+  // Periodic in x: nodes i and i + cells_x are one node, so each gets the sum of both.
+  void foldPeriodic(std::initializer_list<std::vector<Real>*> fields);
+  bool periodicX() const { return def_.domain.left.type == WallType::kPeriodic; }
   void gridToParticle(Real dt, StepInfo& info);
   void constitutiveUpdate(Real dt);
   void applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const;
@@ -237,6 +258,8 @@ class World {
   Grid grid_;
   Tiles tiles_;
   std::vector<Tiles::NodeRun> node_runs_;  // scratch of forActiveNodes
+  // Per node: the side walls' largest friction force (N/m), when the domain has side walls.
+  std::vector<Real> sidewall_load_;
   Profile profile_;
   std::unique_ptr<Blocks> blocks_;
   std::unique_ptr<FemBodies> fem_;

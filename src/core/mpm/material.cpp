@@ -30,6 +30,13 @@ MaterialParams makeMaterialParams(const MaterialDef& def) {
     p.viscosity = def.viscosity;
     p.tension = def.tensile_strength;
   }
+  if (def.model == MaterialModel::kGranular) {
+    p.mu_s = def.mu_s;
+    p.mu_span = def.mu_2 - def.mu_s;
+    p.i0 = def.inertial_i0;
+    p.inertial_scale = def.grain_diameter * std::sqrt(def.density / def.solid_fraction);
+    p.separation = 1;  // looser than the critical packing: separated
+  }
   if (def.model == MaterialModel::kDruckerPrager) {
     const Real t = std::tan(def.friction_angle);
     p.q_phi = coneSlope(def.friction_angle);

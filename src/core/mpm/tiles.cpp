@@ -97,6 +97,12 @@ void Tiles::activate() {
       for (int i = std::max(a - 1, 0); i <= std::min(a + 1, last_x); ++i) reach_[i + j * nx] = 1;
     }
   }
+  if (periodic_x) {
+    for (int b = 0; b < ny; ++b) {
+      auto* row = reach_.data() + b * nx;
+      if (std::find(row, row + nx, 1) != row + nx) std::fill(row, row + nx, 1);
+    }
+  }
   for (int t = 0; t < tiles; ++t)
     if (reach_[t]) active.push_back(t);
   retired.clear();

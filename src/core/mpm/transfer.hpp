@@ -135,8 +135,9 @@ void particleToGrid(const Particles& P, Grid& G, const Tiles& T) {
 }
 
 // The stress and volume of one point over dt with its velocity gradient L_p: Jaumann-rate
-// elasticity (eq. 21-25), the Drucker-Prager return for granular points only (eq. 31-35), and
-// V^{n+1} = det(I + dt L) V^n; a fluid's stress from its new J and L (fluidStress).
+// elasticity (eq. 21-25), V^{n+1} = det(I + dt L) V^n, then the Drucker-Prager return (eq.
+// 31-35) or the mu(I) one with the new volume (granularReturn); a fluid's stress from its new J
+// and L (fluidStress).
 [[gnu::always_inline]] inline void updatePointStress(const MaterialParams& m, Particles& P, long p,
                                                      Real dt) {
   const VelocityGradient L{P.lxx[p], P.lxy[p], P.lyx[p], P.lyy[p]};
@@ -151,12 +152,13 @@ void particleToGrid(const Particles& P, Grid& G, const Tiles& T) {
   }
   Stress s{P.sxx[p], P.syy[p], P.sxy[p], P.szz[p]};
   s = jaumannElasticUpdate(m, s, L, dt);
+  P.J[p] *= (1 + dt * L.xx) * (1 + dt * L.yy) - dt * dt * L.xy * L.yx;
   if (m.model == MaterialModel::kDruckerPrager) druckerPragerReturn(m, s);
+  if (m.model == MaterialModel::kGranular) granularReturn(m, s, P.J[p], dt);
   P.sxx[p] = s.xx;
   P.syy[p] = s.yy;
   P.sxy[p] = s.xy;
   P.szz[p] = s.zz;
-  P.J[p] *= (1 + dt * L.xx) * (1 + dt * L.yy) - dt * dt * L.xy * L.yx;
   if (P.J[p] > m.separation) P.sxx[p] = P.syy[p] = P.sxy[p] = P.szz[p] = 0;
 }
 
@@ -221,10 +223,31 @@ void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
       band);
 }
 
+// The side walls' friction capacity on the nodes (issue 41, SidewallsDef): each point resists
+// with 2 mu_w p_p V_p / W (coefficient = 2 mu_w / W; p_p its pressure, none in tension), spread
+// like a body force, load_I = sum_p S_Ip coefficient p_p V_p (N per metre of thickness).
+template <class K>
+void sidewallLoad(const Particles& P, const Grid& G, const Tiles& T, Real coefficient, Real* load) {
+  constexpr int S = K::kSupport;
+  forEachParticleByColour(T, [&](int p) {
+    const Real pressure = -(P.sxx[p] + P.syy[p] + P.szz[p]) / 3;
+    if (!(pressure > 0)) return;
+    const Real f = coefficient * pressure * P.volume0[p] * P.J[p];
+    Real xg, yg;
+    Stencil1D sx, sy;
+    stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
+    for (int j = 0; j < S; ++j) {
+      const int row = (sy.base + j) * G.nx + sx.base;
+      for (int i = 0; i < S; ++i) load[row + i] += sx.w[i] * sy.w[j] * f;
+    }
+  });
+}
+
 struct G2PSettings {
   Real pic_fraction;  // kFlip: alpha of eq. 28
   Real dt;
-  Vec2 lo, hi;  // domain box: points are kept inside it
+  Vec2 lo, hi;              // domain box: points are kept inside it
+  bool periodic_x = false;  // a point leaving by the left or right side enters by the other
 };
 
 // Local non-viscous (Cundall) damping of one force component f against the velocity v:
@@ -243,6 +266,10 @@ inline Real localDamping(Real f, Real v, Real damping) {
   if (!std::isfinite(x) || !std::isfinite(y)) {
     bad = 1;
     return;
+  }
+  if (s.periodic_x) {  // a step moves a point less than a cell, far less than the domain
+    const Real width = s.hi.x() - s.lo.x();
+    x = x < s.lo.x() ? x + width : x >= s.hi.x() ? x - width : x;
   }
   if (x < s.lo.x() || x > s.hi.x() || y < s.lo.y() || y > s.hi.y()) {
     ++clamped;

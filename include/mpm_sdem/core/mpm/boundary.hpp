@@ -7,7 +7,9 @@
 
 namespace mpm_sdem {
 
-enum class WallType { kSticky, kSlip, kFriction };
+// kPeriodic: the left and right sides together (a point leaving one enters by the other; nodes
+// one domain width apart are one node), for a uniform flow in x such as a periodic chute.
+enum class WallType { kSticky, kSlip, kFriction, kPeriodic };
 
 struct WallDef {
   WallType type = WallType::kSlip;
@@ -19,6 +21,7 @@ struct WallDef {
 // Coulomb wall, the tangential speed is reduced by friction * |normal velocity removed| without
 // reversing (the impulse form of Coulomb friction on a grid node).
 inline void applyWall(const WallDef& wall, Real n_x, Real n_y, Real& v_x, Real& v_y) {
+  if (wall.type == WallType::kPeriodic) return;
   if (wall.type == WallType::kSticky) {
     v_x = 0;
     v_y = 0;

@@ -15,6 +15,12 @@ enum class MaterialModel {
   // Weakly compressible fluid (seed 002 sec. 4.3-4.4 model water this way): pressure from the
   // volume ratio by Tait's equation, Newtonian viscosity, and a tension cut-off.
   kFluid,
+  // Dense granular flow (issue 41): the mu(I) rheology of Jop, Forterre & Pouliquen 2006 with
+  // the dense and separated states of Dunatunga & Kamrin 2015. The scene's density is the
+  // critical (random close) packing: a point looser than it (J > 1) has separated and carries
+  // no stress; packed (J <= 1) its pressure is K ln(1 / J) and its shear stress at most
+  // mu(I) p. Elasticity is only the dense state's stiffness.
+  kGranular,
 };
 
 // What a scene declares for a material. Elasticity is given as bulk and shear moduli; the scene
@@ -36,6 +42,14 @@ struct MaterialDef {
   // phase of a cohesionless granular continuum, Dunatunga and Kamrin 2015). Keeps a free-falling
   // stream from bounding the step by the stiffness of a density it no longer has. 0: off.
   Real separation_volume_ratio = 0;
+  // Granular only (mu(I), Jop et al. 2006): mu = mu_s + (mu_2 - mu_s) / (I_0 / I + 1) with the
+  // inertial number I = gamma_dot d / sqrt(p / rho_s), rho_s = density / solid_fraction the
+  // grains' own density.
+  Real mu_s = 0;            // static friction coefficient (dimensionless)
+  Real mu_2 = 0;            // limiting friction coefficient at large I, >= mu_s
+  Real inertial_i0 = 0;     // I_0 (dimensionless)
+  Real grain_diameter = 0;  // d (m)
+  Real solid_fraction = 0;  // phi of the critical packing (dimensionless)
   // Fluid only. Pressure p = (K / gamma) (J^-gamma - 1) with K = rho0 c0^2 in bulk_modulus
   // (Tait's equation; gamma = 7 for water), never below -tensile_strength (the tension the fluid
   // sustains before it cavitates: seed 002 keeps water's surface smooth with 6 kPa); deviatoric
@@ -69,6 +83,9 @@ struct MaterialParams {
   Real modulus_over_density = 0;  // (K + 4G/3) / rho0: squared P-wave speed at J = 1
   Real separation = std::numeric_limits<Real>::infinity();  // J above which: no stress
   Real tait_gamma = 7, viscosity = 0;                       // fluid only
+  // Granular only: mu_s, mu_2 - mu_s, I_0, and d sqrt(rho_s) (so that I = gamma_dot
+  // inertial_scale / sqrt(p)).
+  Real mu_s = 0, mu_span = 0, i0 = 0, inertial_scale = 0;
 };
 
 // Squared wave speed of a point of volume ratio J (m^2/s^2), the CFL term of seed 000 eq. 51:

@@ -33,6 +33,9 @@ struct Tiles {
   std::vector<int> active;                 // node tiles within reach of a particle, ascending
   std::vector<int> previous;               // active tiles of the previous binning
   std::vector<int> retired;                // tiles in previous but no longer active
+  // Periodic in x (WallType::kPeriodic): a row of tiles any point reaches is active whole, so
+  // that both copies of a node on the periodic sides are.
+  bool periodic_x = false;
 
   void init(const Grid& g);
   // Bytes of the per-particle arrays (sort keys and order).

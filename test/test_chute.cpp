@@ -1,0 +1,192 @@
+// Issue 41: granular flows with the mu(I) material.
+//  - Steady uniform chute flow (periodic in x, rough base, gravity tilted by theta): the Bagnold
+//    profile u(z) = (2/3) (I_theta / d) sqrt(phi g cos theta) [h^1.5 - (h - z)^1.5] with
+//    I_theta = I_0 (tan theta - mu_s) / (mu_2 - tan theta) (Jop, Forterre & Pouliquen 2006).
+//  - The side walls' friction (domain.sidewalls): the layer loses momentum at
+//    2 mu_w / W sum_p p_p V_p, and stops without reversing.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "helpers.hpp"
+
+using namespace mpm_sdem;
+
+namespace {
+
+constexpr Real kG = 9.81, kDensity = 1500, kPhi = 0.6, kD = 4e-3, kI0 = 0.279;
+const Real kMuS = std::tan(20.9 * M_PI / 180), kMu2 = std::tan(32.76 * M_PI / 180);
+
+MaterialDef glassBeads() {
+  MaterialDef m = test::elastic(kDensity, 1.5e6, 0.25);  // K = 1 MPa, G = 0.6 MPa
+  m.name = "beads";
+  m.model = MaterialModel::kGranular;
+  m.mu_s = kMuS;
+  m.mu_2 = kMu2;
+  m.inertial_i0 = kI0;
+  m.grain_diameter = kD;
+  m.solid_fraction = kPhi;
+  return m;
+}
+
+// A layer h deep on a rough (sticky) base, periodic in x (10 cells wide), gravity at theta.
+WorldDef chute(Real theta, Real h, Real cell) {
+  WorldDef def = test::box(Vec2(0, 0), Vec2(10 * cell, 1.6 * h), cell);
+  def.domain.left.type = def.domain.right.type = WallType::kPeriodic;
+  def.domain.bottom.type = WallType::kSticky;
+  def.solver.gravity = kG * Vec2(std::sin(theta), -std::cos(theta));
+  // ASFLIP (issue 40): APIC's loss per transfer acts as a viscosity that this flow of 23,000
+  // steps per second feels (APIC: 24% and 8.2% of the surface speed off at 5 and 2.5 mm).
+  def.solver.transfer = TransferScheme::kAsflip;
+  def.materials.push_back(glassBeads());
+  def.bodies.push_back(test::rectangle(Vec2(0, 0), Vec2(10 * cell, h), 2));
+  return def;
+}
+
+Real bagnold(Real theta, Real h, Real z) {
+  const Real t = std::tan(theta);
+  const Real i = kI0 * (t - kMuS) / (kMu2 - t);
+  return 2.0 / 3 * i / kD * std::sqrt(kPhi * kG * std::cos(theta)) *
+         (std::pow(h, 1.5) - std::pow(h - z, 1.5));
+}
+
+struct ChuteProfile {
+  Real worst = 0;    // max over the layers |u - u_B| / u_B(h)
+  Real surface = 0;  // u at the top layer over u_B there
+};
+
+// Runs the chute to t_end and compares the points' mean speed per layer of one cell with the
+// Bagnold profile at the layer's mean height (the layer's final depth, h minus its compaction,
+// taken from the points: the top of the top layer).
+ChuteProfile runChute(Real theta, Real h, Real cell, Real t_end) {
+  World w(chute(theta, h, cell));
+  while (w.time() < t_end - 1e-12) w.step(stepTowards(w.chooseTimeStep().dt, t_end, w.time()));
+  const Particles& P = w.particles();
+  Real top = 0;
+  for (std::size_t p = 0; p < P.size(); ++p) top = std::max(top, P.y[p]);
+  const Real depth = top + cell / 4;  // points sit a quarter cell inside the outline
+  const int layers = static_cast<int>(std::round(h / cell));
+  std::vector<Real> sum(layers, 0), height(layers, 0), count(layers, 0);
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const int k = std::clamp(static_cast<int>(P.y[p] / depth * layers), 0, layers - 1);
+    sum[k] += P.vx[p];
+    height[k] += P.y[p];
+    count[k] += 1;
+  }
+  ChuteProfile out;
+  const Real scale = bagnold(theta, depth, depth);
+  for (int k = 0; k < layers; ++k) {
+    const Real u = sum[k] / count[k], z = height[k] / count[k];
+    const Real ub = bagnold(theta, depth, z);
+    std::printf("  z %.4f m: u %.4f m/s, Bagnold %.4f m/s\n", z, u, ub);
+    out.worst = std::max(out.worst, std::abs(u - ub) / scale);
+    if (k == layers - 1) out.surface = u / ub;
+  }
+  std::printf("theta %.1f deg, cell %.4g m: worst %.4f of the surface speed, top layer %.4f\n",
+              theta * 180 / M_PI, cell, out.worst, out.surface);
+  return out;
+}
+
+}  // namespace
+
+// Glass beads of 4 mm (the continuum solution does not care; larger grains make the flow settle
+// within 4 s: 0.39 m/s at the surface) 5 cm deep at 24 deg, from rest: the mean speed per layer
+// against Bagnold's at 5 and 2.5 mm cells. Measured: 3.6% and 1.8% of the surface speed, the
+// profile shifted up by a slip of about half a cell's shear at the base (first order). The
+// issue's bound, 2%, at the finer cell, and the error must shrink. (The report adds angles and
+// cells: README, Granular flows.)
+TEST(Chute, SteadyFlowFollowsBagnoldsProfile) {
+  const Real theta = 24 * M_PI / 180, h = 0.05;
+  const ChuteProfile coarse = runChute(theta, h, 0.005, 4.0);
+  const ChuteProfile fine = runChute(theta, h, 0.0025, 4.0);
+  EXPECT_LT(fine.worst, 0.02);
+  EXPECT_LT(fine.worst, coarse.worst);
+}
+
+// A layer 5 cm deep sliding at 0.5 m/s on a slip floor (periodic in x) between side walls 20 cm
+// apart with mu_w = 0.3: the walls take 2 mu_w / W sum_p p_p V_p of its momentum per second
+// (each node's share of it, which sums to that by the partition of unity), within 1% over the
+// sliding (the stress the load is read from lags the kick by a step); then the layer stops when
+// that rate has taken its momentum, and stays stopped.
+TEST(Sidewalls, TakeTheLayersMomentumAndStopItWithoutReversing) {
+  const Real cell = 0.005, h = 0.05, v0 = 0.5;
+  WorldDef def = test::box(Vec2(0, 0), Vec2(10 * cell, 1.6 * h), cell);
+  def.domain.left.type = def.domain.right.type = WallType::kPeriodic;
+  def.domain.sidewalls = {0.2, 0.3};
+  def.solver.gravity = Vec2(0, -kG);
+  def.solver.transfer = TransferScheme::kAsflip;
+  def.materials.push_back(glassBeads());
+  def.bodies.push_back(test::rectangle(Vec2(0, 0), Vec2(10 * cell, h), 2));
+  def.bodies[0].velocity = Vec2(v0, 0);
+  World w(def);
+  const Real p0 = measure(w).momentum.x();
+  auto wallForce = [&] {
+    const Particles& P = w.particles();
+    Real f = 0;
+    for (std::size_t p = 0; p < P.size(); ++p)
+      f += std::fmax(0, -(P.sxx[p] + P.syy[p] + P.szz[p]) / 3) * P.volume0[p] * P.J[p];
+    return 2 * 0.3 / 0.2 * f;
+  };
+  Real impulse = 0, lowest = p0, stopped_at = -1;
+  Real window_start = -1, window_impulse = 0;
+  while (w.time() < 1.5) {
+    const Real dt = w.chooseTimeStep().dt;
+    const Real f = wallForce();
+    const Real before = measure(w).momentum.x();
+    w.step(dt);
+    const Real after = measure(w).momentum.x();
+    lowest = std::min(lowest, after);
+    if (w.time() > 0.1 && w.time() < 0.4) {  // sliding, the stress settled under its weight
+      if (window_start < 0) window_start = before;
+      window_impulse += f * dt;
+      impulse = window_start - after;
+    }
+    if (stopped_at < 0 && after < 1e-6 * p0) stopped_at = w.time();
+  }
+  std::printf(
+      "momentum lost over 0.1-0.4 s %.5f N s/m, the walls' load's impulse %.5f; stopped at "
+      "%.3f s; lowest momentum %.3g of the start\n",
+      impulse, window_impulse, stopped_at, lowest / p0);
+  EXPECT_NEAR(impulse / window_impulse, 1, 0.01);
+  // Stops when the load's rate, constant while the depth is, has taken the start's momentum
+  // (measured 0.819 s against 0.817 s).
+  EXPECT_NEAR(stopped_at, p0 / (window_impulse / 0.3), 0.02 * stopped_at);
+  // The walls never push back; the layer's own shear strain, stored while its top and bottom
+  // were braked unequally, springs back by 1.8e-4 of the momentum (measured) and then rests.
+  EXPECT_GT(lowest, -1e-3 * p0);
+  EXPECT_LT(std::abs(measure(w).momentum.x()), 1e-6 * p0);
+}
+
+// Periodic sides (WallType::kPeriodic): a spinning elastic disk drifting at 1 m/s without
+// gravity crosses the seam of a 10 cm periodic domain twice; the same disk in a 40 cm domain
+// with plain walls never meets one. Both copies of a node on the seam hold the sum of what the
+// points give them, so the disk must not feel the seam: its kinetic and elastic energy end as in
+// the wide domain, to round-off (the sums are taken in another order: 1e-9).
+TEST(Periodic, ASpinningDiskCrossesTheSeamAsIfThereWereNone) {
+  auto run = [](bool periodic) {
+    const Real width = periodic ? 0.1 : 0.4;
+    WorldDef def = test::box(Vec2(0, 0), Vec2(width, 0.1), 0.01);
+    if (periodic) def.domain.left.type = def.domain.right.type = WallType::kPeriodic;
+    def.solver.gravity = Vec2(0, 0);
+    def.materials.push_back(test::elastic(kDensity, 1.5e6, 0.25));
+    def.bodies.push_back(test::disk(Vec2(0.05, 0.05), 0.03, 2));
+    World w(def);
+    Particles& P = w.particles();
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      P.vx[p] = 1 - 20 * (P.y[p] - 0.05);
+      P.vy[p] = 20 * (P.x[p] - 0.05);
+    }
+    test::runUntil(w, 0.2);  // 20 cm: twice around the periodic domain
+    const Diagnostics d = measure(w);
+    return std::array<Real, 2>{d.kinetic, d.elastic};
+  };
+  const auto periodic = run(true), wide = run(false);
+  std::printf("kinetic %.12g / %.12g, elastic %.12g / %.12g\n", periodic[0], wide[0], periodic[1],
+              wide[1]);
+  EXPECT_NEAR(periodic[0] / wide[0], 1, 1e-9);
+  EXPECT_NEAR(periodic[1] / wide[1], 1, 1e-9);
+}
