@@ -1566,4 +1566,72 @@ PowerLaw powerLaw(const std::vector<Real>& x, const std::vector<Real>& y,
   return {k, std::sqrt(scale * sw / det)};
 }
 
+namespace {
+constexpr Real kChuteDensity = 1500, kChutePhi = 0.6, kChuteI0 = 0.279;
+const Real kChuteMuS = std::tan(20.9 * M_PI / 180), kChuteMu2 = std::tan(32.76 * M_PI / 180);
+}  // namespace
+
+WorldDef chute(const Chute& c) {
+  const Real h = c.cell_size;
+  WorldDef def;
+  def.domain.min = Vec2(0, 0);
+  def.domain.max = Vec2(10 * h, std::ceil(1.6 * c.depth / h) * h);
+  def.domain.left.type = def.domain.right.type = WallType::kPeriodic;
+  def.domain.bottom.type = WallType::kSticky;
+  def.cell_size = h;
+  def.solver.gravity = 9.81 * Vec2(std::sin(c.theta), -std::cos(c.theta));
+  def.solver.transfer = TransferScheme::kAsflip;
+  MaterialDef m;
+  m.name = "beads";
+  m.model = MaterialModel::kGranular;
+  m.density = kChuteDensity;
+  m.bulk_modulus = 1e6;
+  m.shear_modulus = 6e5;
+  m.mu_s = kChuteMuS;
+  m.mu_2 = kChuteMu2;
+  m.inertial_i0 = kChuteI0;
+  m.grain_diameter = c.grain;
+  m.solid_fraction = kChutePhi;
+  def.materials.push_back(m);
+  BodyDef b;
+  b.name = "layer";
+  b.shape.type = ShapeType::kRectangle;
+  b.shape.min = Vec2(0, 0);
+  b.shape.max = Vec2(10 * h, c.depth);
+  b.points_per_cell = 2;
+  def.bodies.push_back(b);
+  return def;
+}
+
+Real bagnold(const Chute& c, Real h, Real z) {
+  const Real t = std::tan(c.theta);
+  const Real i = kChuteI0 * (t - kChuteMuS) / (kChuteMu2 - t);
+  return Real(2) / 3 * i / c.grain * std::sqrt(kChutePhi * 9.81 * std::cos(c.theta)) *
+         (std::pow(h, Real(1.5)) - std::pow(h - z, Real(1.5)));
+}
+
+ChuteProfile chuteProfile(const World& w, const Chute& c) {
+  const Particles& P = w.particles();
+  Real top = 0;
+  for (std::size_t p = 0; p < P.size(); ++p) top = std::max(top, P.y[p]);
+  ChuteProfile out;
+  out.depth = top + c.cell_size / 4;  // points sit a quarter cell inside the outline
+  const int layers = static_cast<int>(std::round(c.depth / c.cell_size));
+  std::vector<Real> sum(layers, 0), height(layers, 0), count(layers, 0);
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const int k = std::clamp(static_cast<int>(P.y[p] / out.depth * layers), 0, layers - 1);
+    sum[k] += P.vx[p];
+    height[k] += P.y[p];
+    count[k] += 1;
+  }
+  const Real scale = bagnold(c, out.depth, out.depth);
+  for (int k = 0; k < layers; ++k) {
+    if (count[k] == 0) continue;
+    const Real u = sum[k] / count[k], ub = bagnold(c, out.depth, height[k] / count[k]);
+    out.worst = std::max(out.worst, std::abs(u - ub) / scale);
+    if (k == layers - 1) out.surface = u / ub;
+  }
+  return out;
+}
+
 }  // namespace mpm_sdem::cases

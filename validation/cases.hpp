@@ -421,4 +421,28 @@ struct PowerLaw {
 PowerLaw powerLaw(const std::vector<Real>& x, const std::vector<Real>& y,
                   const std::vector<Real>& y_error);
 
+// Issue 41: steady uniform chute flow of the mu(I) material (glass beads of Jop, Forterre &
+// Pouliquen 2006: mu_s = tan 20.9 deg, mu_2 = tan 32.76 deg, I_0 = 0.279, phi = 0.6, 1500 kg/m^3;
+// K = 1 MPa, G = 0.6 MPa) of grains d, depth h on a rough (sticky) base, periodic in x (10
+// cells wide), gravity tilted by theta, ASFLIP (APIC's loss per transfer acts as a viscosity
+// here: README, Granular flows), 2 x 2 points per cell.
+struct Chute {
+  Real theta = 24 * M_PI / 180;  // rad
+  Real depth = 0.05;             // h (m)
+  Real grain = 4e-3;             // d (m)
+  Real cell_size = 0.005;        // m
+};
+WorldDef chute(const Chute& c);
+// Bagnold's profile u(z) = (2/3) (I_theta / d) sqrt(phi g cos theta) [h^1.5 - (h - z)^1.5],
+// I_theta = I_0 (tan theta - mu_s) / (mu_2 - tan theta), for the layer depth h (m/s).
+Real bagnold(const Chute& c, Real h, Real z);
+// The points' mean speed per layer of one cell against Bagnold's at the layer's mean height, for
+// the layer's depth read from the points (the top point plus a quarter cell).
+struct ChuteProfile {
+  Real worst = 0;    // max over the layers of |u - u_B| / u_B(h)
+  Real surface = 0;  // the top layer's speed over Bagnold's there
+  Real depth = 0;    // h read from the points (m)
+};
+ChuteProfile chuteProfile(const World& w, const Chute& c);
+
 }  // namespace mpm_sdem::cases

@@ -1145,6 +1145,42 @@ void debrisFlow(const Options& o, Results& r) {
   std::fclose(table);
 }
 
+// Issue 41: steady uniform chute flow of the mu(I) material (cases::chute) at three angles
+// between the mu_s and mu_2 angles and three cells, from rest: the worst layer's speed against
+// Bagnold's profile (fraction of the surface speed), the top layer's ratio, and how steady the
+// flow is (the surface speed's change over the last second). Fast: 24 deg at 5 mm.
+void chuteFlow(const Options& o, Results& r) {
+  const Real t_end = 6;
+  for (const Real degrees : {22.0, 24.0, 27.0}) {
+    if (o.fast && degrees != 24.0) continue;
+    for (const Real h : {0.005, 0.0025, 0.00125}) {
+      if (o.fast && h != 0.005) continue;
+      cases::Chute c;
+      c.theta = degrees * M_PI / 180;
+      c.cell_size = h;
+      World w(cases::chute(c));
+      const auto t0 = std::chrono::steady_clock::now();
+      while (w.time() < t_end - 1 - 1e-12)
+        w.step(stepTowards(w.chooseTimeStep().dt, t_end - 1, w.time()));
+      const Real before = cases::chuteProfile(w, c).surface;
+      while (w.time() < t_end - 1e-12) w.step(stepTowards(w.chooseTimeStep().dt, t_end, w.time()));
+      const cases::ChuteProfile p = cases::chuteProfile(w, c);
+      const double wall = seconds(t0);
+      char settings[120];
+      std::snprintf(settings, sizeof settings, "%g deg, h %g mm, d 4 mm, depth 5 cm, ASFLIP",
+                    degrees, 1000 * h);
+      const long points = static_cast<long>(w.particles().size()), steps = w.stepCount();
+      const char* source = "Bagnold profile (Jop et al. 2006)";
+      r.add("chute", std::string("worst layer |u - u_B| / u_B(h), ") + settings, p.worst, 0, "-",
+            source, wall, settings, points, steps);
+      r.add("chute", std::string("top layer u / u_B, ") + settings, p.surface, 1, "-", source, wall,
+            settings, points, steps);
+      r.add("chute", std::string("top layer's change over the last second, ") + settings,
+            p.surface / before - 1, 0, "-", "steady flow", wall, settings, points, steps);
+    }
+  }
+}
+
 // Rotation under friction (issue 15): the thrown disk of cases::thrownDisk for every coupling
 // scheme and, with IMP, every transfer scheme; spin-up rate, rolling speed and the time rolling
 // starts against the rigid cylinder's 2 mu g / R, 2/3 v0 and v0 / (3 mu g).
@@ -1730,6 +1766,7 @@ int main(int argc, char** argv) {
       {"debris_timestep", debrisTimeStep},
       {"debris_flow", debrisFlow},
       {"rolling", rolling},
+      {"chute", chuteFlow},
       {"clusters", clusters},
       {"fem_cantilever", femCantilever},
       {"fem_incline", femIncline},
