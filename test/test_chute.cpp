@@ -3,7 +3,7 @@
 //    profile u(z) = (2/3) (I_theta / d) sqrt(phi g cos theta) [h^1.5 - (h - z)^1.5] with
 //    I_theta = I_0 (tan theta - mu_s) / (mu_2 - tan theta) (Jop, Forterre & Pouliquen 2006).
 //  - The side walls' friction (domain.sidewalls): the layer loses momentum at
-//    2 mu_w / W sum_p p_p V_p, and stops without reversing.
+//    2 mu_w / W sum_p p_p V_p, and stops when that has taken its momentum.
 #include <gtest/gtest.h>
 
 #include <algorithm>
