@@ -29,9 +29,19 @@ fi
 
 rm -rf "$work" && mkdir -p "$work"/{state,spool,munge}
 host="$(hostname -s)"
+# `scontrol shutdown` returns before the daemons have saved their state and exited; wait for their
+# pids to go (up to 20 s) so that removing the scratch folder does not race their last writes.
+wait_gone() {
+  local pid
+  pid="$($sudo cat "$1" 2>/dev/null)" || return 0
+  for _ in $(seq 200); do $sudo kill -0 "$pid" 2>/dev/null || return 0; sleep 0.1; done
+}
 cleanup() {
   SLURM_CONF="$work/slurm.conf" scontrol shutdown >/dev/null 2>&1 || true
+  wait_gone "$work/slurmctld.pid"
+  wait_gone "$work/slurmd.pid"
   [ -f "$work/munge/munged.pid" ] && $sudo kill "$(cat "$work/munge/munged.pid")" 2>/dev/null || true
+  wait_gone "$work/munge/munged.pid"
 }
 trap cleanup EXIT
 
@@ -100,7 +110,7 @@ strip() { awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "wall_s") w = i
                    { out = ""; for (i = 1; i <= NF; ++i) if (i != w) out = out $i ","; print out }' "$1"; }
 if diff <(strip "$work/local_out/results.csv") <(strip "$work/slurm_out/results.csv"); then
   echo "PASS: slurm and local results.csv agree ($(($(wc -l <"$work/slurm_out/results.csv") - 1)) runs)"
-  [ -n "${3:-}" ] || { cleanup; trap - EXIT; rm -rf "$work"; }  # a scratch folder of our own
+  [ -n "${3:-}" ] || { cleanup; trap - EXIT; $sudo rm -rf "$work"; }  # a scratch folder of our own
 else
   echo "FAIL: slurm and local results.csv differ"; exit 1
 fi
