@@ -1,5 +1,6 @@
-// Google Benchmark kernels: the P2G and G2P transfers and the constitutive update, per particle,
-// on the column scene (APIC, quadratic B-spline), and the whole step with material points or SPH
+// Google Benchmark kernels: the P2G and G2P transfers and the constitutive update (linear
+// elastic, Drucker-Prager, granular), per particle, on the column scene (APIC, quadratic
+// B-spline), the whole step per material, and the whole step with material points or SPH
 // particles; writing and restoring a checkpoint. Counters report particles per second.
 #include <benchmark/benchmark.h>
 
@@ -48,9 +49,15 @@ void BM_G2P(benchmark::State& state) {
                                                      benchmark::Counter::kIsIterationInvariantRate);
 }
 
+// Arg 1: the material, 0 linear elastic, 1 Drucker-Prager, 2 granular (mu(I), issue 41).
+MaterialModel benchModel(long index) {
+  constexpr MaterialModel kModels[] = {MaterialModel::kLinearElastic, MaterialModel::kDruckerPrager,
+                                       MaterialModel::kGranular};
+  return kModels[index];
+}
+
 void BM_Constitutive(benchmark::State& state) {
-  const auto model = state.range(1) ? MaterialModel::kDruckerPrager : MaterialModel::kLinearElastic;
-  World w = settledWorld(state.range(0), model);
+  World w = settledWorld(state.range(0), benchModel(state.range(1)));
   const MaterialParams m = w.materialParams()[0];
   Particles& P = w.particles();
   const long n = static_cast<long>(P.size());
@@ -59,6 +66,7 @@ void BM_Constitutive(benchmark::State& state) {
       Stress s{P.sxx[p], P.syy[p], P.sxy[p], P.szz[p]};
       s = jaumannElasticUpdate(m, s, {P.lxx[p], P.lxy[p], P.lyx[p], P.lyy[p]}, 1e-6);
       if (m.model == MaterialModel::kDruckerPrager) druckerPragerReturn(m, s);
+      if (m.model == MaterialModel::kGranular) granularReturn(m, s, P.J[p], 1e-6);
       P.sxx[p] = s.xx;
       P.syy[p] = s.yy;
       P.sxy[p] = s.xy;
@@ -107,6 +115,15 @@ void BM_Step(benchmark::State& state) {
       static_cast<double>(w.particles().size()), benchmark::Counter::kIsIterationInvariantRate);
 }
 
+// The whole step of the column scene (APIC) for each material (arg 1 as in BM_Constitutive):
+// what the granular material costs against Drucker-Prager per particle-step (issue 41).
+void BM_StepMaterial(benchmark::State& state) {
+  World w = settledWorld(state.range(0), benchModel(state.range(1)));
+  for (auto _ : state) w.step(w.chooseTimeStep().dt);
+  state.counters["particle-steps/s"] = benchmark::Counter(
+      static_cast<double>(w.particles().size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+
 // A checkpoint of the settled column: written (arg 1 = 0) or restored into a fresh world of the
 // same scene (arg 1 = 1). Counters: particles per second and bytes per particle.
 void BM_Checkpoint(benchmark::State& state) {
@@ -139,13 +156,20 @@ BENCHMARK(BM_Step)
     ->Args({100000, 0})
     ->Args({100000, 1})
     ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepMaterial)
+    ->Args({100000, 0})
+    ->Args({100000, 1})
+    ->Args({100000, 2})
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FemStep)->Arg(4)->Arg(16)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_P2G)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_G2P)->Arg(10000)->Arg(100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Constitutive)
     ->Args({10000, 0})
     ->Args({10000, 1})
+    ->Args({10000, 2})
     ->Args({100000, 0})
     ->Args({100000, 1})
+    ->Args({100000, 2})
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_MAIN();

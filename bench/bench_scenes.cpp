@@ -27,6 +27,13 @@ WorldDef columnWorld(long target_particles, MaterialModel model) {
   m.bulk_modulus = 1e6;
   m.shear_modulus = 0.5e6;
   m.friction_angle = 30 * M_PI / 180;
+  if (model == MaterialModel::kGranular) {  // mu(I) with mu_s at the same 30 degrees
+    m.mu_s = std::tan(m.friction_angle);
+    m.mu_2 = std::tan(40 * M_PI / 180);
+    m.inertial_i0 = 0.279;
+    m.grain_diameter = 1e-3;
+    m.solid_fraction = 0.6;
+  }
   def.materials.push_back(m);
   BodyDef b;
   b.name = "column";

@@ -25,7 +25,8 @@ constexpr Real kG = 9.81, kDensity = 1500;
 // speed per layer against Bagnold's at 5 and 2.5 mm cells. Measured: 3.6% and 1.8% of the
 // surface speed, the profile shifted up by a slip of about half a cell's shear at the base
 // (first order). The issue's bound, 2%, at the finer cell, and the error must shrink. (The
-// report's `chute` case adds angles and cells: README, Granular flows.)
+// report's `chute` case adds angles and cells: README, Granular flows.) The start is symmetric
+// and the rows of points stay alike; from a perturbed start see the disabled test below.
 TEST(Chute, SteadyFlowFollowsBagnoldsProfile) {
   cases::ChuteProfile error[2];
   for (int k = 0; k < 2; ++k) {
@@ -39,6 +40,23 @@ TEST(Chute, SteadyFlowFollowsBagnoldsProfile) {
   }
   EXPECT_LT(error[1].worst, 0.02);
   EXPECT_LT(error[1].worst, error[0].worst);
+}
+
+// The same flow from a start perturbed by up to 10 um (2.5 mm cells): it should hold Bagnold's
+// profile as the symmetric start does. It does not: after about 3 s the points crowd while
+// their J grows, the top separates and runs away (32% at 4 s, 121% at 6 s; README, Granular
+// flows). Open in issue 41; kept disabled so that the fix has its test waiting
+// (--gtest_also_run_disabled_tests runs it).
+TEST(Chute, DISABLED_PerturbedStartStaysOnBagnoldsProfile) {
+  cases::Chute c;
+  c.cell_size = 0.0025;
+  World w(cases::chute(c));
+  perturbPositions(w.particles(), 1e-5, 1);
+  test::runUntil(w, 6.0);
+  const cases::ChuteProfile error = cases::chuteProfile(w, c);
+  std::printf("perturbed: worst %.4f of the surface speed, top layer %.4f of Bagnold's\n",
+              error.worst, error.surface);
+  EXPECT_LT(error.worst, 0.02);
 }
 
 // A layer 5 cm deep sliding at 0.5 m/s on a slip floor (periodic in x) between side walls 20 cm
