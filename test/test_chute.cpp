@@ -43,10 +43,10 @@ TEST(Chute, SteadyFlowFollowsBagnoldsProfile) {
 }
 
 // The same flow from a start perturbed by up to 10 um (2.5 mm cells): it should hold Bagnold's
-// profile as the symmetric start does. It does not: after about 3 s the points crowd while
-// their J grows, the top separates and runs away (32% at 4 s, 121% at 6 s; README, Granular
-// flows). Open in issue 41; kept disabled so that the fix has its test waiting
-// (--gtest_also_run_disabled_tests runs it).
+// profile as the symmetric start does. It does not: the disturbance grows from the start, the
+// points crowd while their J grows, and the top runs away (1.6% at 2.5 s, 32% at 4 s, 121% at
+// 6 s; README, Granular flows). Open in issue 41; kept disabled so that the fix has its test
+// waiting (--gtest_also_run_disabled_tests runs it).
 TEST(Chute, DISABLED_PerturbedStartStaysOnBagnoldsProfile) {
   cases::Chute c;
   c.cell_size = 0.0025;
