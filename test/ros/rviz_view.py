@@ -4,9 +4,10 @@ shows the particles, not tiny in a corner (issue 20).
 
 Run by rviz_view.test, which starts the node on the default scene, paused. This test starts its
 own X server (Xvfb picks a free display) and rviz, polls screenshots until rviz has drawn the
-particles or the time limit passes, checks the last one and saves it (~screenshot). Xvfb and rviz
-are stopped whatever happens: in `finally`, on SIGTERM from rostest, and by the kernel if this
-process dies first (PR_SET_PDEATHSIG)."""
+particles or the time limit passes, checks the last one and saves it (~screenshot). An rviz that
+dies while it sets up (Ogre under Mesa's software renderer, now and then) is started again, twice
+at most, within the same limit. Xvfb and rviz are stopped whatever happens: in `finally`, on
+SIGTERM from rostest, and by the kernel if this process dies first (PR_SET_PDEATHSIG)."""
 
 import ctypes
 import os
@@ -127,8 +128,18 @@ class RvizView(unittest.TestCase):
             rviz = start(["rviz", "-d", config], env=env)
             started = time.monotonic()
             view = None
+            crashes = []
             while time.monotonic() - started < DRAW_TIMEOUT:
-                self.assertIsNone(rviz.poll(), "rviz exited with status %s" % rviz.poll())
+                if rviz.poll() is not None:
+                    # rviz's Ogre under Mesa's software renderer sometimes dies while it sets
+                    # up (SIGSEGV, status -11; ros-visualization/rviz#1680): a fault of the
+                    # virtual display, not of the config under test. Start it again, twice
+                    # at most, within the same time limit.
+                    crashes.append(rviz.poll())
+                    self.assertLess(len(crashes), 3, "rviz exited with status %s" % crashes)
+                    rospy.logwarn("rviz exited with status %s; starting it again", crashes[-1])
+                    rviz = start(["rviz", "-d", config], env=env)
+                    continue
                 view = View(ImageGrab.grab(xdisplay=display))
                 if view.particles >= MIN_PARTICLE_PIXELS:
                     break
