@@ -59,6 +59,33 @@ TEST(Chute, DISABLED_PerturbedStartStaysOnBagnoldsProfile) {
   EXPECT_LT(error.worst, 0.02);
 }
 
+// The same box with the beads swapped for a Newtonian film (weakly compressible fluid, eta such
+// that Nusselt's surface speed rho g sin(theta) h^2 / (2 eta) is Bagnold's, Re about 7): a film
+// in a periodic box shorter than its depth is stable (Kapitza's waves are long), so the points'
+// vertical speed, zero in the uniform film, must stay small; 1% of the surface speed is far above
+// what the start from rest leaves (the symmetric start: below 1e-4 m/s at 1.25 s) and far below
+// what grows today with ASFLIP (0.35 m/s at 2 s; APIC 0.011, README, Granular flows). This is
+// the sand's instability without the rheology; kept disabled until it is fixed.
+TEST(Chute, DISABLED_PerturbedNewtonianFilmStaysUniform) {
+  cases::Chute c;
+  c.theta = 27 * M_PI / 180;
+  c.cell_size = 0.0025;
+  WorldDef def = cases::chute(c);
+  MaterialDef& m = def.materials[0];
+  const Real surface = cases::bagnold(c, c.depth, c.depth);
+  m.model = MaterialModel::kFluid;
+  m.viscosity = m.density * kG * std::sin(c.theta) * c.depth * c.depth / (2 * surface);
+  m.tensile_strength = 100;
+  World w(def);
+  perturbPositions(w.particles(), 1e-5, 1);
+  test::runUntil(w, 2.0);
+  const Particles& P = w.particles();
+  Real vy = 0;
+  for (std::size_t p = 0; p < P.size(); ++p) vy = std::max(vy, std::abs(P.vy[p]));
+  std::printf("film: max |v_y| %.4f m/s, surface speed %.4f m/s\n", vy, surface);
+  EXPECT_LT(vy, 0.01 * surface);
+}
+
 // A layer 5 cm deep sliding at 0.5 m/s on a slip floor (periodic in x) between side walls 20 cm
 // apart with mu_w = 0.3: the walls take 2 mu_w / W sum_p p_p V_p of its momentum per second
 // (each node's share of it, which sums to that by the partition of unity), within 1% over the
