@@ -47,6 +47,11 @@ CASES = [
                  "granular bed against the spheropolygon of the same outline (depth, velocity "
                  "after, cost), and the incline's disk on an incline made of discs", True),
     ("compression", "Seed 000 sec. 7: granular matrix compression", True),
+    ("chute", "Issue 41: steady uniform chute flow of the mu(I) material (periodic, 4 mm glass "
+              "beads 5 cm deep) against Bagnold's profile, three angles and three cells", True),
+    ("column_collapse", "Issue 41: granular column collapse on a rough floor (glass beads, "
+                        "aspect 0.5 to 8, two cells) against the quasi-2D fits of Lube et al. "
+                        "2005", True),
     ("blade", "Issue 20: an excavator blade (vertical, kinematic, 5 cm/s) through a layer of sand "
               "against Reece's earth-moving equation with McKyes' N_gamma (smooth blade: exact; "
               "friction 0.3: planar wedge), three depths at three cell sizes", True),

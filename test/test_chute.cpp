@@ -4,6 +4,7 @@
 //    I_theta = I_0 (tan theta - mu_s) / (mu_2 - tan theta) (Jop, Forterre & Pouliquen 2006).
 //  - The side walls' friction (domain.sidewalls): the layer loses momentum at
 //    2 mu_w / W sum_p p_p V_p, and stops when that has taken its momentum.
+//  - Column collapse on a rough floor against the quasi-2D experiments' fits (disabled: open).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -84,6 +85,25 @@ TEST(Chute, DISABLED_PerturbedNewtonianFilmStaysUniform) {
   for (std::size_t p = 0; p < P.size(); ++p) vy = std::max(vy, std::abs(P.vy[p]));
   std::printf("film: max |v_y| %.4f m/s, surface speed %.4f m/s\n", vy, surface);
   EXPECT_LT(vy, 0.01 * surface);
+}
+
+// A column of aspect ratio 1 (10 cm, 5 mm cells) collapses on a rough floor: the experiments
+// (Lube et al. 2005, quasi-2D) find the run-out (L_inf - L0) / L0 = 1.2 a and the back wall's
+// height kept, H_inf = H0 (a < 1.15). The bounds, 20% and 10%, are looser than the experiments'
+// scatter about their fits and than the 2.5 mm run's difference from this one should be; the
+// material must also be at rest (every point below 1 cm/s) by 3 s, as the grains are within
+// about 1 s. It fails today: run-out 2.35, height 0.72, points still at 0.57 m/s (README,
+// Granular flows); kept disabled until the granular material is fixed.
+TEST(ColumnCollapse, DISABLED_AspectOneRunsOutAsTheExperiments) {
+  cases::GranularColumn c;
+  c.aspect = 1;
+  World w(cases::granularColumn(c));
+  const cases::ColumnDeposit d = cases::collapseColumn(w, c, 3.0);
+  std::printf("run-out %.3f, height %.3f of L0, fastest %.3f m/s at %.2f s\n",
+              (d.runout - c.length) / c.length, d.height / c.length, d.max_speed, d.time);
+  EXPECT_NEAR((d.runout - c.length) / c.length / cases::lubeRunout(1), 1, 0.2);
+  EXPECT_NEAR(d.height / c.length / cases::lubeHeight(1), 1, 0.1);
+  EXPECT_TRUE(d.at_rest);
 }
 
 // A layer 5 cm deep sliding at 0.5 m/s on a slip floor (periodic in x) between side walls 20 cm

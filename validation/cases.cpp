@@ -1634,4 +1634,74 @@ ChuteProfile chuteProfile(const World& w, const Chute& c) {
   return out;
 }
 
+WorldDef granularColumn(const GranularColumn& c) {
+  const Real h = c.cell_size, height = c.aspect * c.length;
+  // Room for 2.5 times the fit's run-out: 2 + 5 a^(2/3) column lengths.
+  const Real length = std::ceil(c.length * (2 + 5 * std::pow(c.aspect, Real(2) / 3)) / h) * h;
+  WorldDef def;
+  def.domain.min = Vec2(0, 0);
+  def.domain.max = Vec2(length, std::ceil(height / h + 2) * h);
+  def.domain.bottom.type = WallType::kSticky;  // the rough floor; the back wall is smooth
+  def.cell_size = h;
+  def.solver.gravity = Vec2(0, -9.81);
+  def.solver.transfer = TransferScheme::kAsflip;
+  Chute beads;
+  beads.grain = c.grain;
+  def.materials = chute(beads).materials;
+  BodyDef b;
+  b.name = "column";
+  b.shape.type = ShapeType::kRectangle;
+  b.shape.min = Vec2(0, 0);
+  b.shape.max = Vec2(c.length, height);
+  b.points_per_cell = 2;
+  def.bodies.push_back(b);
+  return def;
+}
+
+ColumnDeposit collapseColumn(World& w, const GranularColumn& c, Real t_max) {
+  ColumnDeposit out;
+  const Particles& P = w.particles();
+  auto fastest = [&] {
+    Real v2 = 0;
+    for (std::size_t p = 0; p < P.size(); ++p)
+      v2 = std::max(v2, P.vx[p] * P.vx[p] + P.vy[p] * P.vy[p]);
+    return std::sqrt(v2);
+  };
+  // The column needs about sqrt(2 H0 / g) to fall; look for rest only after that.
+  Real next_check = std::sqrt(2 * c.aspect * c.length / 9.81);
+  while (w.time() < t_max - 1e-12) {
+    w.step(stepTowards(w.chooseTimeStep().dt, t_max, w.time()));
+    if (w.time() >= next_check - 1e-12) {
+      next_check += 0.01;
+      if (fastest() < 0.01) {
+        out.at_rest = true;
+        break;
+      }
+    }
+  }
+  out.time = w.time();
+  out.max_speed = fastest();
+  const Real h = c.cell_size;
+  std::vector<char> filled(static_cast<std::size_t>(std::ceil(w.def().domain.max.x() / h)) + 1, 0);
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    filled[static_cast<std::size_t>(P.x[p] / h)] = 1;
+    out.farthest = std::max(out.farthest, P.x[p] + h / 4);
+    out.height = std::max(out.height, P.y[p] + h / 4);
+  }
+  std::size_t front = 0;
+  while (front < filled.size() && filled[front]) ++front;
+  out.runout = front * h;
+  return out;
+}
+
+Real lubeRunout(Real aspect) {
+  if (aspect <= 1.8) return Real(1.2) * aspect;
+  if (aspect >= 2.8) return Real(1.9) * std::pow(aspect, Real(2) / 3);
+  return std::numeric_limits<Real>::quiet_NaN();  // between the two fits' ranges
+}
+
+Real lubeHeight(Real aspect) {
+  return aspect < 1.15 ? aspect : std::pow(aspect, Real(0.4));
+}
+
 }  // namespace mpm_sdem::cases

@@ -445,4 +445,35 @@ struct ChuteProfile {
 };
 ChuteProfile chuteProfile(const World& w, const Chute& c);
 
+// Issue 41: granular column collapse on a rough floor against the quasi-2D experiments (Lube et
+// al. 2005, Phys. Rev. E 72; Lajeunesse et al. 2005, Phys. Fluids 17, whose fits are alike). A
+// column of the chute's glass beads (1 mm), length L0 = 10 cm along the channel and height a L0,
+// against a smooth back wall at x = 0, released at rest onto a sticky floor; plane strain (no
+// side walls), ASFLIP, 2 x 2 points per cell.
+struct GranularColumn {
+  Real aspect = 2;         // a = H0 / L0
+  Real length = 0.1;       // L0 (m)
+  Real cell_size = 0.005;  // m
+  Real grain = 1e-3;       // d (m)
+};
+WorldDef granularColumn(const GranularColumn& c);
+// The deposit at t_max, or once every point is slower than 1 cm/s: its run-out L_inf (the first
+// cell column from the back wall that holds no point: the deposit's front, stragglers beyond a
+// gap left out), its farthest point (plus a quarter cell: points sit that far inside the
+// outline), its height (the top point plus a quarter cell) and its fastest point.
+struct ColumnDeposit {
+  Real runout = 0;     // L_inf (m) from the back wall
+  Real farthest = 0;   // m
+  Real height = 0;     // H_inf (m)
+  Real time = 0;       // s
+  Real max_speed = 0;  // m/s
+  bool at_rest = false;
+};
+ColumnDeposit collapseColumn(World& w, const GranularColumn& c, Real t_max);
+// The experiments' fits for quasi-2D columns (Lube et al. 2005): (L_inf - L0) / L0 = 1.2 a for
+// a <= 1.8 and 1.9 a^(2/3) for a >= 2.8 (NaN between, where neither was fitted); H_inf / L0 = a
+// for a < 1.15, a^(2/5) above.
+Real lubeRunout(Real aspect);
+Real lubeHeight(Real aspect);
+
 }  // namespace mpm_sdem::cases

@@ -1181,6 +1181,41 @@ void chuteFlow(const Options& o, Results& r) {
   }
 }
 
+// Issue 41: granular column collapse on a rough floor (cases::granularColumn), aspect ratios 0.5
+// to 8 at two cells, 3 s from release: the run-out (L_inf - L0) / L0 and the height H_inf / L0
+// against the quasi-2D experiments' fits (Lube et al. 2005), with the farthest point (the thin
+// front) and the fastest point at the end. Fast: a = 1 at 1 cm.
+void columnCollapse(const Options& o, Results& r) {
+  const Real t_end = 3;
+  for (const Real a : {0.5, 1.0, 3.0, 8.0}) {
+    if (o.fast && a != 1.0) continue;
+    for (const Real h : o.fast ? std::vector<Real>{0.01} : std::vector<Real>{0.005, 0.0025}) {
+      cases::GranularColumn c;
+      c.aspect = a;
+      c.cell_size = h;
+      World w(cases::granularColumn(c));
+      const auto t0 = std::chrono::steady_clock::now();
+      const cases::ColumnDeposit d = cases::collapseColumn(w, c, t_end);
+      const double wall = seconds(t0);
+      char settings[120];
+      std::snprintf(settings, sizeof settings, "a %g, L0 10 cm, h %g mm, 1 mm beads, ASFLIP", a,
+                    1000 * h);
+      const long points = static_cast<long>(w.particles().size()), steps = w.stepCount();
+      const char* source = "Lube et al. 2005 (quasi-2D fits)";
+      const std::string tag = std::string(", ") + settings;
+      r.add("column_collapse", "(L_inf - L0) / L0" + tag, (d.runout - c.length) / c.length,
+            cases::lubeRunout(a), "-", source, wall, settings, points, steps);
+      r.add("column_collapse", "farthest point (L - L0) / L0" + tag,
+            (d.farthest - c.length) / c.length, cases::lubeRunout(a), "-", source, wall, settings,
+            points, steps);
+      r.add("column_collapse", "H_inf / L0" + tag, d.height / c.length, cases::lubeHeight(a), "-",
+            source, wall, settings, points, steps);
+      r.add("column_collapse", "fastest point at the end" + tag, d.max_speed, 0, "m/s",
+            "at rest (below 0.01 m/s)", wall, settings, points, steps);
+    }
+  }
+}
+
 // Rotation under friction (issue 15): the thrown disk of cases::thrownDisk for every coupling
 // scheme and, with IMP, every transfer scheme; spin-up rate, rolling speed and the time rolling
 // starts against the rigid cylinder's 2 mu g / R, 2/3 v0 and v0 / (3 mu g).
@@ -1767,6 +1802,7 @@ int main(int argc, char** argv) {
       {"debris_flow", debrisFlow},
       {"rolling", rolling},
       {"chute", chuteFlow},
+      {"column_collapse", columnCollapse},
       {"clusters", clusters},
       {"fem_cantilever", femCantilever},
       {"fem_incline", femIncline},
