@@ -35,6 +35,10 @@ CASES = [
     ("debris_seed003", "Seed 000 sec. 6 / seed 003: the wooden-block scene as seed 003 models it"
                        " (the material's base fixed, wood adhesion 30 Pa, 60 Pa with the floor)"
                        " under refinement (IMP)", True),
+    ("debris_granular", "Issues 40 and 41: the wooden-block scene in the granular sand with the "
+                        "flume's side walls, ASFLIP and subcycled springs, ensembles of 3 from 1 "
+                        "cm to 2.5 mm: resting positions, landings and turns against seed 003",
+     True),
     ("debris_timestep", "Seed 000 sec. 6 / seed 003: the wooden-block scene against the time step"
                         " (kappa_2 of eq. 51) at 5 mm cells", True),
     ("debris_flow", "Seed 000 sec. 6 / seed 003: the flow alone before it meets the blocks (0.2 s)"

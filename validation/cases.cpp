@@ -1645,6 +1645,7 @@ WorldDef granularColumn(const GranularColumn& c) {
   def.cell_size = h;
   def.solver.gravity = Vec2(0, -9.81);
   def.solver.transfer = TransferScheme::kAsflip;
+  def.solver.asflip_relaxation_time = 0.03;  // as config/scenes/debris_impact_granular.yaml
   Chute beads;
   beads.grain = c.grain;
   def.materials = chute(beads).materials;

@@ -449,7 +449,7 @@ ChuteProfile chuteProfile(const World& w, const Chute& c);
 // al. 2005, Phys. Rev. E 72; Lajeunesse et al. 2005, Phys. Fluids 17, whose fits are alike). A
 // column of the chute's glass beads (1 mm), length L0 = 10 cm along the channel and height a L0,
 // against a smooth back wall at x = 0, released at rest onto a sticky floor; plane strain (no
-// side walls), ASFLIP, 2 x 2 points per cell.
+// side walls), ASFLIP with a relaxation time of 0.03 s, 2 x 2 points per cell.
 struct GranularColumn {
   Real aspect = 2;         // a = H0 / L0
   Real length = 0.1;       // L0 (m)

@@ -699,6 +699,9 @@ struct DebrisRun {
   Real first_impact = -1;     // s: the material first pushes on a block with 1% of its weight
   Real first_motion = -1;     // s: block 1 or 2 first moves faster than 1 cm/s
   Real landing2 = -1, landing1 = -1;  // s: the block's lowest point first within 1 mm of the floor
+  // |rotation| (deg) of block 2 at 0.40 s and block 1 at 0.45 s (seed 003 sec. 4.3: 90 and 180
+  // deg by then) and of both at the end.
+  Real turn2_040 = 0, turn1_045 = 0, turn2_end = 0, turn1_end = 0;
   double wall = 0;
   long steps = 0, points = 0;
 };
@@ -758,7 +761,11 @@ DebrisRun runDebris(const WorldDef& def, Real end, FILE* series, FILE* snapshots
       run.first_motion = t;
     if (run.landing2 < 0 && lowest(b2) < 0.001) run.landing2 = t;
     if (run.landing1 < 0 && lowest(b1) < 0.001) run.landing1 = t;
+    if (t <= 0.40 + 1e-9) run.turn2_040 = std::abs(B.state(b2).angle) * 180 / M_PI;
+    if (t <= 0.45 + 1e-9) run.turn1_045 = std::abs(B.state(b1).angle) * 180 / M_PI;
   }
+  run.turn2_end = std::abs(B.state(b2).angle) * 180 / M_PI;
+  run.turn1_end = std::abs(B.state(b1).angle) * 180 / M_PI;
   run.wall = seconds(t0);
   // Left face of a 2 x 1.8 cm block at its pose.
   auto left = [&](int b) {
@@ -971,6 +978,66 @@ void debrisEnsemble(const Options& o, Results& r) {
       r.add("debris_ensemble", "block 1 left face, standard deviation" + tag, s1, 0, "cm", source,
             wall, settings, points, steps);
     }
+  }
+  std::fclose(table);
+}
+
+// Issues 40 and 41: the wooden blocks in the granular sand with the flume's side walls, ASFLIP
+// and subcycled springs (config/scenes/debris_impact_granular.yaml) under refinement, as
+// ensembles (members perturbed by 1e-4 of a cell): resting left faces against the experiment and
+// the motion against seed 003's description of it (sec. 4.3: block 2 turned 90 deg by 0.40 s,
+// block 1 turned over, 180 deg, by 0.45 s; first ground contacts at 0.36-0.39 s).
+void debrisGranular(const Options& o, Results& r) {
+  const Scene scene =
+      loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/debris_impact_granular.yaml");
+  const std::vector<Real> sizes =
+      o.fast ? std::vector<Real>{0.01} : std::vector<Real>{0.01, 0.005, 0.01 / 3, 0.0025};
+  const int members = o.fast ? 2 : 3;
+  FILE* table = std::fopen((o.out + "/debris_granular.csv").c_str(), "w");
+  std::fprintf(table,
+               "cell_size_m,member,points,steps,wall_s,block2_left_cm,block1_left_cm,block2_lands_"
+               "s,block1_lands_s,block2_turn_040_deg,block1_turn_045_deg,block2_turn_end_deg,"
+               "block1_turn_end_deg\n");
+  for (Real h : sizes) {
+    WorldDef def = scene.world;
+    def.cell_size = h;
+    def.coupling.contact_radius = 0;  // the default at this cell size
+    std::vector<DebrisRun> runs;
+    double wall = 0;
+    for (int m = 0; m < members; ++m) {
+      runs.push_back(
+          runDebris(def, scene.end_time, nullptr, nullptr, 1e-4 * h, static_cast<unsigned>(m + 1)));
+      const DebrisRun& run = runs.back();
+      std::fprintf(table, "%g,%d,%ld,%ld,%.4g,%.4f,%.4f,%.4f,%.4f,%.2f,%.2f,%.2f,%.2f\n", h, m,
+                   run.points, run.steps, run.wall, 100 * run.left2, 100 * run.left1, run.landing2,
+                   run.landing1, run.turn2_040, run.turn1_045, run.turn2_end, run.turn1_end);
+      std::fflush(table);
+      wall += run.wall;
+    }
+    char settings[160];
+    std::snprintf(settings, sizeof settings,
+                  "debris_impact_granular.yaml, h %.3g cm, %d members, %ld points, %ld steps each",
+                  100 * h, members, runs[0].points, runs[0].steps);
+    const std::string tag = ", h " + std::to_string(100 * h).substr(0, 4) + " cm";
+    auto add = [&](const std::string& q, Real DebrisRun::*field, Real scale, Real reference,
+                   const char* unit, const char* source) {
+      Real mean = 0, var = 0;
+      for (const DebrisRun& run : runs) mean += scale * (run.*field) / members;
+      for (const DebrisRun& run : runs)
+        var += (scale * (run.*field) - mean) * (scale * (run.*field) - mean) / (members - 1);
+      r.add("debris_granular", q + ", mean" + tag, mean, reference, unit, source, wall, settings,
+            runs[0].points, runs[0].steps);
+      r.add("debris_granular", q + ", standard deviation" + tag, std::sqrt(var), 0, unit, source,
+            wall, settings, runs[0].points, runs[0].steps);
+    };
+    add("block 2 left face", &DebrisRun::left2, 100, 34.6, "cm", "seed 003 (experiment)");
+    add("block 1 left face", &DebrisRun::left1, 100, 40.1, "cm", "seed 003 (experiment)");
+    add("block 2 lands", &DebrisRun::landing2, 1, 0.365, "s", "seed 003 sec. 4.3 (0.36-0.37)");
+    add("block 1 lands", &DebrisRun::landing1, 1, 0.385, "s", "seed 003 sec. 4.3 (0.38-0.39)");
+    add("block 2 turned at 0.40 s", &DebrisRun::turn2_040, 1, 90, "deg", "seed 003 sec. 4.3");
+    add("block 1 turned at 0.45 s", &DebrisRun::turn1_045, 1, 180, "deg", "seed 003 sec. 4.3");
+    add("block 2 turned at the end", &DebrisRun::turn2_end, 1, 90, "deg", "seed 003 sec. 4.3");
+    add("block 1 turned at the end", &DebrisRun::turn1_end, 1, 180, "deg", "seed 003 sec. 4.3");
   }
   std::fclose(table);
 }
@@ -1803,6 +1870,7 @@ int main(int argc, char** argv) {
       {"rolling", rolling},
       {"chute", chuteFlow},
       {"column_collapse", columnCollapse},
+      {"debris_granular", debrisGranular},
       {"clusters", clusters},
       {"fem_cantilever", femCantilever},
       {"fem_incline", femIncline},

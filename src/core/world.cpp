@@ -825,8 +825,12 @@ void World::stressAndInternalForce(Real dt) {
 
 void World::gridToParticle(Real dt, StepInfo& info) {
   StageTimer timer(profile_, Stage::kG2P);
-  const detail::G2PSettings s{def_.solver.pic_fraction, dt, def_.domain.min, def_.domain.max,
-                              periodicX()};
+  const detail::G2PSettings s{def_.solver.pic_fraction,
+                              dt,
+                              def_.domain.min,
+                              def_.domain.max,
+                              periodicX(),
+                              detail::asflipKeep(dt, def_.solver.asflip_relaxation_time)};
   const bool usl = def_.solver.stress_update == StressUpdate::kUsl;
   detail::withKernel(def_.solver.kernel, [&](auto k) {
     using K = decltype(k);

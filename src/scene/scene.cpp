@@ -161,7 +161,8 @@ void parseGrid(const Context& ctx, const MapReader& top, Scene& s) {
 void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
   if (!top.has("solver")) return;
   MapReader r(ctx, top.node("solver"), "solver",
-              {"kernel", "transfer", "pic_fraction", "stress_update", "gravity", "damping"});
+              {"kernel", "transfer", "pic_fraction", "asflip_relaxation_time", "stress_update",
+               "gravity", "damping"});
   SolverDef& sol = s.world.solver;
   sol.kernel = r.choice<KernelType>("kernel",
                                     {{"quadratic_bspline", KernelType::kQuadraticBSpline},
@@ -180,6 +181,15 @@ void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
     sol.pic_fraction = r.number("pic_fraction", "(dimensionless)");
     r.require(sol.pic_fraction >= 0 && sol.pic_fraction <= 1, "pic_fraction",
               "must be in [0, 1] (0 = FLIP, 1 = PIC), got " + num(sol.pic_fraction));
+  }
+  if (r.has("asflip_relaxation_time")) {
+    r.require(sol.transfer == TransferScheme::kAsflip, "asflip_relaxation_time",
+              "applies only to transfer: asflip");
+    sol.asflip_relaxation_time = r.number("asflip_relaxation_time", "s");
+    r.require(
+        sol.asflip_relaxation_time >= 0 && sol.asflip_relaxation_time <= 1e3,
+        "asflip_relaxation_time",
+        "must be in [0, 1000] s (0 = never: pure ASFLIP), got " + num(sol.asflip_relaxation_time));
   }
   sol.stress_update = r.choice<StressUpdate>(
       "stress_update", {{"usf", StressUpdate::kUsf}, {"usl", StressUpdate::kUsl}},

@@ -45,6 +45,11 @@ struct SolverDef {
   KernelType kernel = KernelType::kQuadraticBSpline;
   TransferScheme transfer = TransferScheme::kApic;
   Real pic_fraction = 0.01;  // alpha of eq. 28 (1 = PIC, 0 = FLIP); kFlip only
+  // kAsflip only: the time over which a point's departure from the grid's velocity field decays
+  // (s), blended by exp(-dt / time) per step so that the loss does not depend on the step and
+  // momentum stays exact (one factor for every point). 0: never (pure ASFLIP). A granular
+  // deposit needs it: nothing else takes the agitation of points that carry no stress.
+  Real asflip_relaxation_time = 0;
   StressUpdate stress_update = StressUpdate::kUsf;
   Vec2 gravity{0, -9.81};  // m/s^2
   // Local non-viscous (Cundall) damping factor in [0, 1): each nodal force component is reduced

@@ -248,7 +248,14 @@ struct G2PSettings {
   Real dt;
   Vec2 lo, hi;              // domain box: points are kept inside it
   bool periodic_x = false;  // a point leaving by the left or right side enters by the other
+  Real keep = 1;            // kAsflip: share of the departure kept this step (asflipKeep)
 };
+
+// The share of a point's departure from the grid's field that ASFLIP keeps over a step dt, for
+// SolverDef::asflip_relaxation_time (0: all of it).
+inline Real asflipKeep(Real dt, Real relaxation_time) {
+  return relaxation_time > 0 ? std::exp(-dt / relaxation_time) : Real(1);
+}
 
 // Local non-viscous (Cundall) damping of one force component f against the velocity v:
 // f - damping |f| sign(v) (SolverDef::damping); for a force per unit mass alike.
@@ -342,8 +349,15 @@ void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& cla
       // FLIP's increment (eq. 28 with alpha = 0): the point keeps its own departure from the
       // grid's field, v_p - v^n(x_p), which APIC drops at every transfer (a share lost per
       // step, so a loss that grows as the step shrinks); B below is APIC's, from the grid.
-      P.vx[p] += dvx;
-      P.vy[p] += dvy;
+      // With a relaxation time the departure decays by the same factor at every point:
+      // sum_p m_p (v_p - v^n(x_p)) = 0 (APIC's transfer keeps momentum), so momentum stays exact.
+      if (s.keep < 1) {
+        P.vx[p] = vx + s.keep * (P.vx[p] + dvx - vx);
+        P.vy[p] = vy + s.keep * (P.vy[p] + dvy - vy);
+      } else {
+        P.vx[p] += dvx;
+        P.vy[p] += dvy;
+      }
     } else {
       P.vx[p] = vx;
       P.vy[p] = vy;
