@@ -16,6 +16,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cases.hpp"
@@ -904,6 +905,19 @@ void debrisSweep(const Options& o, Results& r) {
   std::fclose(table);
 }
 
+// The cells of the wooden-block ensembles under refinement (1 cm to 2.5 mm; 1 cm when fast).
+std::vector<Real> ensembleCellSizes(bool fast) {
+  return fast ? std::vector<Real>{0.01} : std::vector<Real>{0.01, 0.005, 0.01 / 3, 0.0025};
+}
+
+// An ensemble's mean and sample standard deviation.
+std::pair<Real, Real> meanAndSpread(const std::vector<Real>& v) {
+  Real mean = 0, var = 0;
+  for (Real x : v) mean += x / v.size();
+  for (Real x : v) var += (x - mean) * (x - mean) / (v.size() > 1 ? v.size() - 1 : 1);
+  return {mean, std::sqrt(var)};
+}
+
 // Convergence of the wooden-block scene, stated as ensembles (issue 15): toppling blocks amplify
 // any difference, so one run per resolution shows nothing. At each cell size (2 x 2 points per
 // cell), `members` runs whose points start moved by up to 1e-4 of a cell (uniform, seeds 1..n),
@@ -913,8 +927,7 @@ void debrisSweep(const Options& o, Results& r) {
 // outline at y = 0 to 0.2 m).
 void debrisEnsemble(const Options& o, Results& r) {
   const Scene scene = loadScene(debrisScenePath(true));
-  const std::vector<Real> sizes =
-      o.fast ? std::vector<Real>{0.01} : std::vector<Real>{0.01, 0.005, 0.01 / 3, 0.0025};
+  const std::vector<Real> sizes = ensembleCellSizes(o.fast);
   const int members = o.fast ? 2 : 8;
   FILE* table = std::fopen((o.out + "/debris_ensemble.csv").c_str(), "w");
   std::fprintf(table,
@@ -954,12 +967,6 @@ void debrisEnsemble(const Options& o, Results& r) {
         points = run.points;
         steps = run.steps;
       }
-      auto meanAndSpread = [](const std::vector<Real>& v) {
-        Real mean = 0, var = 0;
-        for (Real x : v) mean += x / v.size();
-        for (Real x : v) var += (x - mean) * (x - mean) / (v.size() > 1 ? v.size() - 1 : 1);
-        return std::pair<Real, Real>(mean, std::sqrt(var));
-      };
       const auto [m2, s2] = meanAndSpread(l2);
       const auto [m1, s1] = meanAndSpread(l1);
       char settings[160];
@@ -990,8 +997,7 @@ void debrisEnsemble(const Options& o, Results& r) {
 void debrisGranular(const Options& o, Results& r) {
   const Scene scene =
       loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/debris_impact_granular.yaml");
-  const std::vector<Real> sizes =
-      o.fast ? std::vector<Real>{0.01} : std::vector<Real>{0.01, 0.005, 0.01 / 3, 0.0025};
+  const std::vector<Real> sizes = ensembleCellSizes(o.fast);
   const int members = o.fast ? 2 : 3;
   FILE* table = std::fopen((o.out + "/debris_granular.csv").c_str(), "w");
   std::fprintf(table,
@@ -1021,14 +1027,13 @@ void debrisGranular(const Options& o, Results& r) {
     const std::string tag = ", h " + std::to_string(100 * h).substr(0, 4) + " cm";
     auto add = [&](const std::string& q, Real DebrisRun::*field, Real scale, Real reference,
                    const char* unit, const char* source) {
-      Real mean = 0, var = 0;
-      for (const DebrisRun& run : runs) mean += scale * (run.*field) / members;
-      for (const DebrisRun& run : runs)
-        var += (scale * (run.*field) - mean) * (scale * (run.*field) - mean) / (members - 1);
+      std::vector<Real> values;
+      for (const DebrisRun& run : runs) values.push_back(scale * (run.*field));
+      const auto [mean, spread] = meanAndSpread(values);
       r.add("debris_granular", q + ", mean" + tag, mean, reference, unit, source, wall, settings,
             runs[0].points, runs[0].steps);
-      r.add("debris_granular", q + ", standard deviation" + tag, std::sqrt(var), 0, unit, source,
-            wall, settings, runs[0].points, runs[0].steps);
+      r.add("debris_granular", q + ", standard deviation" + tag, spread, 0, unit, source, wall,
+            settings, runs[0].points, runs[0].steps);
     };
     add("block 2 left face", &DebrisRun::left2, 100, 34.6, "cm", "seed 003 (experiment)");
     add("block 1 left face", &DebrisRun::left1, 100, 40.1, "cm", "seed 003 (experiment)");
