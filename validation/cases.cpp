@@ -1649,6 +1649,12 @@ WorldDef granularColumn(const GranularColumn& c) {
   Chute beads;
   beads.grain = c.grain;
   def.materials = chute(beads).materials;
+  if (c.friction_angle > 0) {
+    MaterialDef& m = def.materials[0];
+    const Real span = std::atan(m.mu_2) - std::atan(m.mu_s);
+    m.mu_s = std::tan(c.friction_angle);
+    m.mu_2 = std::tan(c.friction_angle + span);
+  }
   BodyDef b;
   b.name = "column";
   b.shape.type = ShapeType::kRectangle;

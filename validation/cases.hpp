@@ -455,6 +455,9 @@ struct GranularColumn {
   Real length = 0.1;       // L0 (m)
   Real cell_size = 0.005;  // m
   Real grain = 1e-3;       // d (m)
+  // The static friction angle (rad; 0: the glass beads' 20.9 deg), the beads' mu(I) shifted in
+  // angle: mu_2's angle stays 11.86 deg above it.
+  Real friction_angle = 0;
 };
 WorldDef granularColumn(const GranularColumn& c);
 // The deposit at t_max, or once every point is slower than 1 cm/s: its run-out L_inf (the first
