@@ -17,7 +17,7 @@ MPM_SDEM_PACKAGES=(
   python3-std-srvs libtf2-ros-dev python3-tf2-msgs librosbag-dev python3-rosbag python3-roslaunch
   python3-rostopic python3-rosservice python3-rosnode python3-rosparam rosout librostest-dev
   python3-rostest libgtest-dev libbox2d-dev libopencv-dev libeigen3-dev libyaml-cpp-dev
-  libbenchmark-dev libcgal-dev libcereal-dev zlib1g-dev libvtk9-dev
+  libbenchmark-dev libhwy-dev libcgal-dev libcereal-dev zlib1g-dev libvtk9-dev
   rviz xvfb python3-pil python3-numpy python3-matplotlib
   parallel
   clang libclang-rt-14-dev libomp-14-dev

@@ -14,6 +14,7 @@
 #include "mpm_sdem/core/mpm/tiles.hpp"
 #include "mpm_sdem/core/world.hpp"
 #include "node_rows.hpp"
+#include "stress_batch.hpp"
 
 namespace mpm_sdem::detail {
 
@@ -50,6 +51,16 @@ void forEachParticleByColour(const Tiles& T, Body&& body, Band&& band) {
       for (int q = T.start[t]; q < T.mpm_end[t]; ++q) body(T.order[q]);
       for (int q = T.mpm_end[t]; q < T.grid_end[t]; ++q) band(T.order[q]);
     }
+  }
+}
+// Run body(t) for every occupied tile t, colour by colour, the tiles of one colour shared among
+// the threads as in forEachParticleByColour.
+template <class Body>
+void forEachTileByColour(const Tiles& T, Body&& body) {
+  for (const std::vector<int>& tiles : T.colour) {
+    const long count = static_cast<long>(tiles.size());
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < count; ++k) body(tiles[k]);
   }
 }
 template <class Body>
@@ -178,12 +189,26 @@ void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
   const Real* vy0 = G.vel0_y.data();
   Real* gfx = G.force_x.data();
   Real* gfy = G.force_y.data();
-  auto spreadStress = [&](int p, const Window& sx, const Stencil1D& sy) {
+  // A point's weights, all its internal force needs (held while the point waits in a batch).
+  struct Weights {
+    int first, base;
+    Row4 wx, dwx;
+    Real wy[S], dwy[S];
+  };
+  auto weights = [](const Window& sx, const Stencil1D& sy) {
+    Weights k{sx.first, sy.base, sx.w, sx.dw, {}, {}};
+    for (int j = 0; j < S; ++j) {
+      k.wy[j] = sy.w[j];
+      k.dwy[j] = sy.dw[j];
+    }
+    return k;
+  };
+  auto spreadStress = [&](int p, const Weights& k) {
     const Real vol = P.volume0[p] * P.J[p] * inv_h;
     const Real sxx = vol * P.sxx[p], syy = vol * P.syy[p], sxy = vol * P.sxy[p];
     for (int j = 0; j < S; ++j) {
-      const int row = (sy.base + j) * nx + sx.first;
-      const Row4 gx = sx.dw * sy.w[j], gy = sx.w * sy.dw[j];
+      const int row = (k.base + j) * nx + k.first;
+      const Row4 gx = k.dwx * k.wy[j], gy = k.wx * k.dwy[j];
       storeRow(gfx + row, loadRow(gfx + row) - (sxx * gx + sxy * gy));
       storeRow(gfy + row, loadRow(gfy + row) - (sxy * gx + syy * gy));
     }
@@ -193,34 +218,77 @@ void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
     Window sx;
     Stencil1D sy;
     sweepStencils<K>(G, P, p, yg, sx, sy);
-    spreadStress(p, sx, sy);
+    spreadStress(p, weights(sx, sy));
   };
-  forEachParticleByColour(
-      T,
-      [&](int p) __attribute__((always_inline)) {  // inlined as deposit in particleToGrid
-        Real yg;
-        Window sx;
-        Stencil1D sy;
-        sweepStencils<K>(G, P, p, yg, sx, sy);
-        Row4 lxx = {}, lxy = {}, lyx = {}, lyy = {};
-        for (int j = 0; j < S; ++j) {
-          const int row = (sy.base + j) * nx + sx.first;
-          const Row4 gx = sx.dw * sy.w[j], gy = sx.w * sy.dw[j];
-          const Row4 vx = loadRow(vx0 + row), vy = loadRow(vy0 + row);
-          lxx += vx * gx;
-          lxy += vx * gy;
-          lyx += vy * gx;
-          lyy += vy * gy;
-        }
-        const Row4 l = sums(lxx, lxy, lyx, lyy) * inv_h;
-        P.lxx[p] = l[0];
-        P.lxy[p] = l[1];
-        P.lyx[p] = l[2];
-        P.lyy[p] = l[3];
-        if (dt != 0) updatePointStress(materials[P.material[p]], P, p, dt);
-        spreadStress(p, sx, sy);
-      },
-      band);
+  // A point's L_p, then its stress now (a fluid, or the first step) or, batched with the points
+  // of its material, once the batch is full: the batch's points keep their stencils until then.
+  forEachTileByColour(T, [&](int t) {
+    StressBatch batch;
+    int waiting[StressBatch::kSize];  // the batch's points
+    Weights held[StressBatch::kSize];
+    int batch_material = -1;
+    auto flush = [&] {
+      if (batch.count == 0) return;
+      updateStressBatch(materials[batch_material], batch, dt);
+      for (int k = 0; k < batch.count; ++k) {
+        const int p = waiting[k];
+        P.sxx[p] = batch.sxx[k];
+        P.syy[p] = batch.syy[k];
+        P.sxy[p] = batch.sxy[k];
+        P.szz[p] = batch.szz[k];
+        P.J[p] = batch.J[k];
+        spreadStress(p, held[k]);
+      }
+      batch.count = 0;
+    };
+    for (int q = T.start[t]; q < T.mpm_end[t]; ++q) {
+      const int p = T.order[q];
+      Real yg;
+      Window sx;
+      Stencil1D sy;
+      sweepStencils<K>(G, P, p, yg, sx, sy);
+      Row4 lxx = {}, lxy = {}, lyx = {}, lyy = {};
+      for (int j = 0; j < S; ++j) {
+        const int row = (sy.base + j) * nx + sx.first;
+        const Row4 gx = sx.dw * sy.w[j], gy = sx.w * sy.dw[j];
+        const Row4 vx = loadRow(vx0 + row), vy = loadRow(vy0 + row);
+        lxx += vx * gx;
+        lxy += vx * gy;
+        lyx += vy * gx;
+        lyy += vy * gy;
+      }
+      const Row4 l = sums(lxx, lxy, lyx, lyy) * inv_h;
+      P.lxx[p] = l[0];
+      P.lxy[p] = l[1];
+      P.lyx[p] = l[2];
+      P.lyy[p] = l[3];
+      const int material = P.material[p];
+      if (dt == 0 || !batchesStress(materials[material])) {
+        if (dt != 0) updatePointStress(materials[material], P, p, dt);
+        spreadStress(p, weights(sx, sy));
+        continue;
+      }
+      if (material != batch_material) {
+        flush();
+        batch_material = material;
+      }
+      const int k = batch.count++;
+      batch.lxx[k] = l[0];
+      batch.lxy[k] = l[1];
+      batch.lyx[k] = l[2];
+      batch.lyy[k] = l[3];
+      batch.sxx[k] = P.sxx[p];
+      batch.syy[k] = P.syy[p];
+      batch.sxy[k] = P.sxy[p];
+      batch.szz[k] = P.szz[p];
+      batch.J[k] = P.J[p];
+      waiting[k] = p;
+      held[k] = weights(sx, sy);
+      if (batch.count == StressBatch::kSize) flush();
+    }
+    flush();
+    for (int q = T.mpm_end[t]; q < T.grid_end[t]; ++q) band(T.order[q]);
+  });
 }
 
 // The side walls' friction capacity on the nodes (issue 41, SidewallsDef): each point resists
