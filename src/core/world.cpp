@@ -862,10 +862,7 @@ void World::gridToParticle(Real dt, StepInfo& info) {
 void World::constitutiveUpdate(Real dt) {
   StageTimer timer(profile_, Stage::kConstitutive);
   if (dt == 0) return;
-  Particles& P = particles_;
-  const long n = static_cast<long>(P.size());
-#pragma omp parallel for schedule(static)
-  for (long p = 0; p < n; ++p) detail::updatePointStress(params_[P.material[p]], P, p, dt);
+  detail::updateStresses(particles_, params_, dt);
 }
 
 }  // namespace mpm_sdem

@@ -6,7 +6,6 @@
 #define HWY_TARGET_INCLUDE "mpm/stress_batch.cpp"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 
-#include "hwy/contrib/math/math-inl.h"
 #include "hwy/highway.h"
 #include "mpm/stress_batch.hpp"
 
@@ -64,28 +63,6 @@ HWY_INLINE void druckerPrager(D d, const MaterialParams& m, Lanes& s) {
        hn::IfThenElse(elastic, s.xy, r.xy), hn::IfThenElse(elastic, s.zz, r.zz)};
 }
 
-// granularReturn, lane by lane: the closed-form mu(I) root, no stress where J >= 1.
-HWY_INLINE void granular(D d, const MaterialParams& m, Lanes& s, V J, Real dt) {
-  const V p = hn::Neg(hn::Set(d, m.bulk) * hn::Log(d, J));
-  const V sm = mean(d, s), tau = shear(d, s, sm);
-  const V a = tau - hn::Set(d, m.mu_s) * p;
-  const V c = dt > 0 ? hn::Set(d, m.i0 * m.shear * dt) * hn::Sqrt(p) / hn::Set(d, m.inertial_scale)
-                     : hn::Zero(d);
-  const V b = c - a + hn::Set(d, m.mu_span) * p;
-  const V root = hn::Sqrt(b * b + hn::Set(d, 4) * a * c);
-  const V x = hn::IfThenElse(b > hn::Zero(d), hn::Set(d, 2) * a * c / (b + root),
-                             hn::Set(d, 0.5) * (root - b));
-  const auto flowing = a > hn::Zero(d);  // then tau > mu_s p >= 0
-  const V scale = hn::IfThenElse(flowing, (tau - x) / hn::IfThenElse(flowing, tau, hn::Set(d, 1)),
-                                 hn::Set(d, 1));
-  s = rescaled(s, sm, scale, hn::Neg(p));
-  const auto separated = hn::Not(J < hn::Set(d, 1));
-  s.xx = hn::IfThenZeroElse(separated, s.xx);
-  s.yy = hn::IfThenZeroElse(separated, s.yy);
-  s.zz = hn::IfThenZeroElse(separated, s.zz);
-  s.xy = hn::IfThenZeroElse(separated, s.xy);
-}
-
 void UpdateStressBatch(const MaterialParams& m, StressBatch& b, Real dt) {
   const D d;
   const V half = hn::Set(d, 0.5), two = hn::Set(d, 2), one = hn::Set(d, 1), vdt = hn::Set(d, dt);
@@ -108,7 +85,6 @@ void UpdateStressBatch(const MaterialParams& m, StressBatch& b, Real dt) {
         hn::Load(d, b.J + i) * ((one + vdt * lxx) * (one + vdt * lyy) - vdt * vdt * lxy * lyx);
     hn::Store(J, d, b.J + i);
     if (m.model == MaterialModel::kDruckerPrager) druckerPrager(d, m, s);
-    if (m.model == MaterialModel::kGranular) granular(d, m, s, J, dt);
     const auto loose = J > separation;
     hn::Store(hn::IfThenZeroElse(loose, s.xx), d, b.sxx + i);
     hn::Store(hn::IfThenZeroElse(loose, s.yy), d, b.syy + i);

@@ -21,18 +21,20 @@ struct StressBatch {
   int count = 0;
 };
 
-// Whether a material's update runs in batches: the plastic returns, whose square roots,
-// logarithm, divisions and branches the lanes share. Gathering a batch costs about as many
-// instructions as the linear elastic update itself, which stays point by point, as does a
-// fluid's Tait pressure (bench/README.md, issue 42).
+// Whether a material's update runs in batches: Drucker-Prager's return, whose square root,
+// division and branches the lanes share. Measured and left point by point (bench/README.md,
+// issue 42): the linear elastic update, which costs about as much as gathering a batch; the
+// granular return (a settled column: 261 M points/s alone, 150 M batched, Highway's logarithm
+// against libm's and both branches in every lane; a collapsing one: the same time per step); a
+// fluid's Tait pressure.
 inline bool batchesStress(const MaterialParams& m) {
-  return m.model == MaterialModel::kDruckerPrager || m.model == MaterialModel::kGranular;
+  return m.model == MaterialModel::kDruckerPrager;
 }
 
 // The stress and volume of the batch's points over dt, as updatePointStress does one point:
 // Jaumann-rate elasticity (seed 000 eq. 21-25), J *= det(I + dt L), then the Drucker-Prager
-// return (eq. 31-35) or the granular one (granularReturn), and no stress beyond the separation
-// volume ratio.
+// return (eq. 31-35) for that material, and no stress beyond the separation volume ratio. Linear
+// elastic or Drucker-Prager only.
 void updateStressBatch(const MaterialParams& m, StressBatch& b, Real dt);
 
 }  // namespace mpm_sdem::detail

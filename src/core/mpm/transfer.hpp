@@ -2,6 +2,7 @@
 // trip counts and no calls. Internal header of the core library.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <type_traits>
@@ -173,6 +174,80 @@ void particleToGrid(const Particles& P, Grid& G, const Tiles& T) {
   if (P.J[p] > m.separation) P.sxx[p] = P.syy[p] = P.sxy[p] = P.szz[p] = 0;
 }
 
+// Points waiting to have their stress updated together (updateStressBatch, issue 42): add(p)
+// copies a point's L_p, stress and J in (flushing first if p's material differs from the
+// waiting points'); flush(done) updates the waiting points, writes each back to P and then calls
+// done(k, p) with its slot k. Only for materials that batchesStress.
+class StressBatcher {
+ public:
+  StressBatcher(Particles& P, const std::vector<MaterialParams>& materials, Real dt)
+      : P_(P), materials_(materials), dt_(dt) {}
+  bool full() const { return batch_.count == StressBatch::kSize; }
+  template <class Done>
+  int add(int p, Done&& done) {
+    if (P_.material[p] != material_) {
+      flush(done);
+      material_ = P_.material[p];
+    }
+    const int k = batch_.count++;
+    batch_.lxx[k] = P_.lxx[p];
+    batch_.lxy[k] = P_.lxy[p];
+    batch_.lyx[k] = P_.lyx[p];
+    batch_.lyy[k] = P_.lyy[p];
+    batch_.sxx[k] = P_.sxx[p];
+    batch_.syy[k] = P_.syy[p];
+    batch_.sxy[k] = P_.sxy[p];
+    batch_.szz[k] = P_.szz[p];
+    batch_.J[k] = P_.J[p];
+    points_[k] = p;
+    return k;
+  }
+  template <class Done>
+  void flush(Done&& done) {
+    if (batch_.count == 0) return;
+    updateStressBatch(materials_[material_], batch_, dt_);
+    for (int k = 0; k < batch_.count; ++k) {
+      const int p = points_[k];
+      P_.sxx[p] = batch_.sxx[k];
+      P_.syy[p] = batch_.syy[k];
+      P_.sxy[p] = batch_.sxy[k];
+      P_.szz[p] = batch_.szz[k];
+      P_.J[p] = batch_.J[k];
+      done(k, p);
+    }
+    batch_.count = 0;
+  }
+
+ private:
+  Particles& P_;
+  const std::vector<MaterialParams>& materials_;
+  Real dt_;
+  StressBatch batch_;
+  int points_[StressBatch::kSize];
+  int material_ = -1;
+};
+
+// USL's stress update (after G2P), every point in storage order: a batching material's points
+// in batches, the others one by one.
+inline void updateStresses(Particles& P, const std::vector<MaterialParams>& materials, Real dt) {
+  const long n = static_cast<long>(P.size()), chunk = 8 * StressBatch::kSize;
+  auto nothing = [](int, int) {};
+#pragma omp parallel for schedule(static)
+  for (long c = 0; c < n; c += chunk) {
+    StressBatcher batcher(P, materials, dt);
+    for (long p = c; p < std::min(n, c + chunk); ++p) {
+      const MaterialParams& m = materials[P.material[p]];
+      if (!batchesStress(m)) {
+        updatePointStress(m, P, p, dt);
+        continue;
+      }
+      batcher.add(static_cast<int>(p), nothing);
+      if (batcher.full()) batcher.flush(nothing);
+    }
+    batcher.flush(nothing);
+  }
+}
+
 // The middle of a USF step (seed 000 sec. 2.2) in one sweep per point, coloured like P2G: the
 // velocity gradient L_p = sum_I v_I (grad S_Ip)^T from the pre-kick grid velocity (eq. 21-22),
 // the stress update over dt with it (skipped when dt = 0, the first step), then the internal
@@ -221,26 +296,11 @@ void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
     spreadStress(p, weights(sx, sy));
   };
   // A point's L_p, then its stress now (a fluid, or the first step) or, batched with the points
-  // of its material, once the batch is full: the batch's points keep their stencils until then.
+  // of its material, once the batch is full: the batch's points keep their weights until then.
   forEachTileByColour(T, [&](int t) {
-    StressBatch batch;
-    int waiting[StressBatch::kSize];  // the batch's points
+    StressBatcher batcher(P, materials, dt);
     Weights held[StressBatch::kSize];
-    int batch_material = -1;
-    auto flush = [&] {
-      if (batch.count == 0) return;
-      updateStressBatch(materials[batch_material], batch, dt);
-      for (int k = 0; k < batch.count; ++k) {
-        const int p = waiting[k];
-        P.sxx[p] = batch.sxx[k];
-        P.syy[p] = batch.syy[k];
-        P.sxy[p] = batch.sxy[k];
-        P.szz[p] = batch.szz[k];
-        P.J[p] = batch.J[k];
-        spreadStress(p, held[k]);
-      }
-      batch.count = 0;
-    };
+    auto spread = [&](int k, int p) { spreadStress(p, held[k]); };
     for (int q = T.start[t]; q < T.mpm_end[t]; ++q) {
       const int p = T.order[q];
       Real yg;
@@ -262,31 +322,16 @@ void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
       P.lxy[p] = l[1];
       P.lyx[p] = l[2];
       P.lyy[p] = l[3];
-      const int material = P.material[p];
-      if (dt == 0 || !batchesStress(materials[material])) {
-        if (dt != 0) updatePointStress(materials[material], P, p, dt);
+      const MaterialParams& m = materials[P.material[p]];
+      if (dt == 0 || !batchesStress(m)) {
+        if (dt != 0) updatePointStress(m, P, p, dt);
         spreadStress(p, weights(sx, sy));
         continue;
       }
-      if (material != batch_material) {
-        flush();
-        batch_material = material;
-      }
-      const int k = batch.count++;
-      batch.lxx[k] = l[0];
-      batch.lxy[k] = l[1];
-      batch.lyx[k] = l[2];
-      batch.lyy[k] = l[3];
-      batch.sxx[k] = P.sxx[p];
-      batch.syy[k] = P.syy[p];
-      batch.sxy[k] = P.sxy[p];
-      batch.szz[k] = P.szz[p];
-      batch.J[k] = P.J[p];
-      waiting[k] = p;
-      held[k] = weights(sx, sy);
-      if (batch.count == StressBatch::kSize) flush();
+      held[batcher.add(p, spread)] = weights(sx, sy);
+      if (batcher.full()) batcher.flush(spread);
     }
-    flush();
+    batcher.flush(spread);
     for (int q = T.mpm_end[t]; q < T.grid_end[t]; ++q) band(T.order[q]);
   });
 }
