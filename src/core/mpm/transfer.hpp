@@ -38,24 +38,8 @@ template <class K>
   K::stencil(yg, P.half_size[p], sy);
 }
 
-// Run body(p) for every particle of the grid sums, tile colour by tile colour; the tiles of one
-// colour are shared among the threads (see Tiles: no two of them write the same node). With
-// band(p), the SPH particles of the transition band go to band instead (they are updated by the
-// SPH sums, and only lend the grid their mass, momentum and stress).
-template <class Body, class Band>
-void forEachParticleByColour(const Tiles& T, Body&& body, Band&& band) {
-  for (const std::vector<int>& tiles : T.colour) {
-    const long count = static_cast<long>(tiles.size());
-#pragma omp parallel for schedule(static)
-    for (long k = 0; k < count; ++k) {
-      const int t = tiles[k];
-      for (int q = T.start[t]; q < T.mpm_end[t]; ++q) body(T.order[q]);
-      for (int q = T.mpm_end[t]; q < T.grid_end[t]; ++q) band(T.order[q]);
-    }
-  }
-}
-// Run body(t) for every occupied tile t, colour by colour, the tiles of one colour shared among
-// the threads as in forEachParticleByColour.
+// Run body(t) for every occupied tile t, colour by colour; the tiles of one colour are shared
+// among the threads (see Tiles: no two of them write the same node).
 template <class Body>
 void forEachTileByColour(const Tiles& T, Body&& body) {
   for (const std::vector<int>& tiles : T.colour) {
@@ -63,6 +47,16 @@ void forEachTileByColour(const Tiles& T, Body&& body) {
 #pragma omp parallel for schedule(static)
     for (long k = 0; k < count; ++k) body(tiles[k]);
   }
+}
+// Run body(p) for every particle of the grid sums, tile by tile as forEachTileByColour. With
+// band(p), the SPH particles of the transition band go to band instead (they are updated by the
+// SPH sums, and only lend the grid their mass, momentum and stress).
+template <class Body, class Band>
+void forEachParticleByColour(const Tiles& T, Body&& body, Band&& band) {
+  forEachTileByColour(T, [&](int t) {
+    for (int q = T.start[t]; q < T.mpm_end[t]; ++q) body(T.order[q]);
+    for (int q = T.mpm_end[t]; q < T.grid_end[t]; ++q) band(T.order[q]);
+  });
 }
 template <class Body>
 void forEachParticleByColour(const Tiles& T, Body&& body) {
