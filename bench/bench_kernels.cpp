@@ -28,7 +28,8 @@ void BM_P2G(benchmark::State& state) {
   tiles.init(g);
   tiles.bin(w.particles(), g);
   for (auto _ : state) {
-    detail::particleToGrid<QuadraticBSpline, true, true, true>(w.particles(), g, tiles);
+    detail::particleToGrid(KernelType::kQuadraticBSpline, {true, true, true}, w.particles(), g,
+                           tiles);
     benchmark::DoNotOptimize(g.mass.data());
   }
   state.counters["particles/s"] = benchmark::Counter(static_cast<double>(w.particles().size()),
@@ -42,8 +43,8 @@ void BM_G2P(benchmark::State& state) {
   for (auto _ : state) {
     long clamped = 0;
     bool finite = true;
-    detail::gridToParticle<QuadraticBSpline, TransferScheme::kApic, false>(w.particles(), w.grid(),
-                                                                           s, clamped, finite);
+    detail::gridToParticle(KernelType::kQuadraticBSpline, TransferScheme::kApic, false,
+                           w.particles(), w.grid(), s, clamped, finite);
     benchmark::DoNotOptimize(w.particles().vx.data());
   }
   state.counters["particles/s"] = benchmark::Counter(static_cast<double>(backup.size()),

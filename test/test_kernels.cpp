@@ -100,7 +100,7 @@ void checkWindow(Real lp) {
   for (const Real x : xs) {
     Stencil1D s;
     K::stencil(x, lp, s);
-    const detail::Window win = detail::window<K>(x, lp);
+    const detail::HWY_NAMESPACE::Window win = detail::HWY_NAMESPACE::window<K>(x, lp);
     ASSERT_EQ(win.first, static_cast<int>(std::floor(x)) - 1) << "x=" << x;
     ASSERT_GE(s.base, win.first) << "x=" << x;
     ASSERT_LE(s.base + K::kSupport, win.first + 4) << "x=" << x;

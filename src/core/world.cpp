@@ -664,20 +664,9 @@ void World::clearGrid() {
 
 void World::particleToGrid(bool momentum, bool force) {
   StageTimer timer(profile_, Stage::kP2G);
-  const bool apic = carriesAffine(def_.solver.transfer);
-  detail::withKernel(def_.solver.kernel, [&](auto k) {
-    using K = decltype(k);
-    const Particles& P = particles_;
-    if (momentum && force) {
-      apic ? detail::particleToGrid<K, true, true, true>(P, grid_, tiles_)
-           : detail::particleToGrid<K, false, true, true>(P, grid_, tiles_);
-    } else if (momentum) {
-      apic ? detail::particleToGrid<K, true, true, false>(P, grid_, tiles_)
-           : detail::particleToGrid<K, false, true, false>(P, grid_, tiles_);
-    } else {
-      detail::particleToGrid<K, false, false, true>(P, grid_, tiles_);
-    }
-  });
+  detail::particleToGrid(def_.solver.kernel,
+                         {momentum, force, momentum && carriesAffine(def_.solver.transfer)},
+                         particles_, grid_, tiles_);
 }
 
 void World::gridVelocity(Real kick, bool after_force, bool damp) {
@@ -818,9 +807,7 @@ void World::sidewallFriction(Real kick) {
 
 void World::stressAndInternalForce(Real dt) {
   StageTimer timer(profile_, Stage::kStress);
-  detail::withKernel(def_.solver.kernel, [&](auto k) {
-    detail::stressAndInternalForce<decltype(k)>(particles_, grid_, tiles_, params_, dt);
-  });
+  detail::stressAndInternalForce(def_.solver.kernel, particles_, grid_, tiles_, params_, dt);
 }
 
 void World::gridToParticle(Real dt, StepInfo& info) {
@@ -832,31 +819,9 @@ void World::gridToParticle(Real dt, StepInfo& info) {
                               periodicX(),
                               detail::asflipKeep(dt, def_.solver.asflip_relaxation_time)};
   const bool usl = def_.solver.stress_update == StressUpdate::kUsl;
-  detail::withKernel(def_.solver.kernel, [&](auto k) {
-    using K = decltype(k);
-    const Tiles* material_points = sph_ ? &tiles_ : nullptr;  // only those, with SPH
-    auto run = [&](auto scheme) {
-      constexpr TransferScheme kScheme = decltype(scheme)::value;
-      usl ? detail::gridToParticle<K, kScheme, true>(particles_, grid_, s, info.clamped,
-                                                     info.finite, material_points)
-          : detail::gridToParticle<K, kScheme, false>(particles_, grid_, s, info.clamped,
-                                                      info.finite, material_points);
-    };
-    switch (def_.solver.transfer) {
-      case TransferScheme::kPic:
-        run(std::integral_constant<TransferScheme, TransferScheme::kPic>{});
-        break;
-      case TransferScheme::kFlip:
-        run(std::integral_constant<TransferScheme, TransferScheme::kFlip>{});
-        break;
-      case TransferScheme::kApic:
-        run(std::integral_constant<TransferScheme, TransferScheme::kApic>{});
-        break;
-      case TransferScheme::kAsflip:
-        run(std::integral_constant<TransferScheme, TransferScheme::kAsflip>{});
-        break;
-    }
-  });
+  const Tiles* material_points = sph_ ? &tiles_ : nullptr;  // only those, with SPH
+  detail::gridToParticle(def_.solver.kernel, def_.solver.transfer, usl, particles_, grid_, s,
+                         info.clamped, info.finite, material_points);
 }
 
 void World::constitutiveUpdate(Real dt) {

@@ -1,24 +1,34 @@
 // Four consecutive nodes of a grid row as one SIMD value, for the particle-grid sweeps
-// (transfer.hpp). A point in cell c (c = floor(x / h)) touches nodes c-1 .. c+2 along an axis
+// (sweeps.cpp). A point in cell c (c = floor(x / h)) touches nodes c-1 .. c+2 along an axis
 // with every kernel (3 of them with the quadratic B-spline and GIMP, 4 with the cubic), so one
 // window of four nodes starting at c-1 holds its stencil along x: a row of the stencil is one
 // vector load, multiply-add and store instead of three or four scalar ones. The window never
 // reaches past c+2, so the tiles' colouring (tiles.hpp) keeps two threads off each other's
 // nodes, also in the lanes that only add zero. Internal header of the core library.
 //
-// GCC's and Clang's vector extension: plain arithmetic on a fixed-size vector, lowered to AVX
-// (or AVX-512's 256-bit form) where the build has it and to pairs of SSE2 operations otherwise,
-// with no library and no intrinsics.
-#pragma once
+// GCC's and Clang's vector extension: plain arithmetic on a fixed-size vector, lowered to the
+// instructions of the target it is compiled for (AVX-512's 256-bit form, AVX2, pairs of SSE2
+// operations), with no library and no intrinsics. Like a Highway "-inl.h" header it is compiled
+// once per SIMD target (sweeps.cpp includes it under hwy/foreach_target.h): the sweeps call
+// these functions with vector arguments, which Clang allows only within one target. Elsewhere
+// it holds the build's own target, in detail::HWY_NAMESPACE.
+#if defined(MPM_SDEM_NODE_ROWS_HPP_) == defined(HWY_TARGET_TOGGLE)  // per target, as Highway's
+#ifdef MPM_SDEM_NODE_ROWS_HPP_
+#undef MPM_SDEM_NODE_ROWS_HPP_
+#else
+#define MPM_SDEM_NODE_ROWS_HPP_
+#endif
 
 #include <cmath>
 #include <cstring>
 #include <type_traits>
 
+#include "hwy/highway.h"
 #include "mpm_sdem/core/mpm/kernels.hpp"
 #include "mpm_sdem/core/types.hpp"
 
-namespace mpm_sdem::detail {
+HWY_BEFORE_NAMESPACE();
+namespace mpm_sdem::detail::HWY_NAMESPACE {
 
 using Row4 = Real __attribute__((vector_size(4 * sizeof(Real))));
 // The same vector at a node's alignment, for loads and stores at any node (declared as a typedef
@@ -90,4 +100,7 @@ template <class K>
   return out;
 }
 
-}  // namespace mpm_sdem::detail
+}  // namespace mpm_sdem::detail::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#endif  // MPM_SDEM_NODE_ROWS_HPP_
