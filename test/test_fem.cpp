@@ -184,7 +184,11 @@ TEST(FemCorotational, AFreeSpinningBodyKeepsItsEnergyThroughAFullTurn) {
 // (mu = 0.4); the seed reports under 6% at every R. Sliding must be within 2%. Rolling, the disk
 // of 5 cells' radius is itself slow on a rigid incline at this cell (4.3% with this scheme; its
 // own deformation and the contact's reach, test_rolling): the plate may not make that worse by
-// more than half a percent, and within 4% of eq. 55. Measured: 3.7% at R = 1, 2.8% at R = 8.
+// more than half a percent, and must stay within the seed's 6% of eq. 55. Measured: 3.7% at
+// R = 1 and 2.8% at R = 8 with -march=native, 4.05% and 2.76% in the portable build (the
+// rigid incline 4.33% in both): the plate at R = 1 lands on either side of the rigid incline's
+// figure with the build's rounding, so a bound below that figure (4%, before issue 42) tested
+// the rounding, not the plate.
 TEST(FemIncline, DiskSlidesAndRollsOnAnFemPlateAtEveryElementSize) {
   const Real h = 0.01;
   const Real rigid = inclineAcceleration(0.4, h, CouplingScheme::kParticleSurface);
@@ -198,7 +202,7 @@ TEST(FemIncline, DiskSlidesAndRollsOnAnFemPlateAtEveryElementSize) {
       } else {
         const Real a0 = inclineAnalytic(mu);
         EXPECT_LT(std::abs(a / a0 - 1), std::abs(rigid / a0 - 1) + 0.005) << "R = " << R;
-        EXPECT_NEAR(a / a0, 1, 0.04) << "R = " << R;
+        EXPECT_NEAR(a / a0, 1, 0.06) << "R = " << R;  // the seed's bound
       }
     }
   }

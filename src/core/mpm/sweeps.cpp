@@ -1,8 +1,8 @@
 // The point sweeps of sweeps.hpp for every SIMD target Highway compiles here, and the run-time
-// choice among them (hwy/foreach_target.h re-includes this file once per target). The sweeps'
-// vectors are GCC's (node_rows.hpp: a row of four nodes): inside HWY_BEFORE_NAMESPACE the
-// compiler lowers them, and the functions of transfer.hpp and constitutive.hpp they inline, to
-// the target's instructions (AVX-512, AVX2, SSE4); outside it, to the build's baseline. The
+// choice among them (hwy/foreach_target.h re-includes this file, and node_rows.hpp with it, once
+// per target). The sweeps' vectors are GCC's (node_rows.hpp: a row of four nodes): inside
+// HWY_BEFORE_NAMESPACE the compiler lowers them, and the functions of transfer.hpp and
+// constitutive.hpp they inline, to the target's instructions (AVX-512, AVX2, SSE4, SSE2). The
 // colour loops (forEachTileByColour) stay baseline code and call each tile's work.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "mpm/sweeps.cpp"
