@@ -64,7 +64,7 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
   if (!pnh.getParam("scene", p.scene) || p.scene.empty()) {
     error =
         "parameter ~scene (the scene file path) is required, e.g. _scene:=$(rospack find "
-        "mpm_sdem)/config/scenes/debris_impact.yaml";
+        "mpm_sdem)/config/scenes/debris_impact_granular.yaml";
     return false;
   }
   std::string end = "pause", color;
