@@ -604,6 +604,21 @@ MaterialDef tableThreeSand(const char* name) {
 
 }  // namespace
 
+MaterialDef matchedGranular(const MaterialDef& dp, Real grain_diameter) {
+  MaterialDef g;
+  g.name = dp.name;
+  g.model = MaterialModel::kGranular;
+  g.density = dp.density;
+  g.bulk_modulus = dp.bulk_modulus;
+  g.shear_modulus = dp.shear_modulus;
+  g.mu_s = std::sin(flowingFrictionAngle(dp.friction_angle));
+  g.mu_2 = g.mu_s + 0.261;
+  g.inertial_i0 = 0.279;
+  g.grain_diameter = grain_diameter;
+  g.solid_fraction = 0.6;
+  return g;
+}
+
 WorldDef silo(Real neck, Real h, int ppc) {
   const Real a = 0.005, t = 0.02;  // rounding and plate thickness (m)
   WorldDef def;

@@ -322,6 +322,15 @@ struct Compression {
 };
 Compression compressMatrix(World& w, int plate, Real speed, Real max_settlement);
 
+// Issue 41: the granular (mu(I)) sand that flows where a Drucker-Prager sand without dilation
+// does, at low inertial numbers. Both yield at sqrt(J2) = slope x pressure: the DP cone's slope
+// q_phi (seed 000 eq. 35, inscribed to Mohr-Coulomb in plane strain) becomes mu_s, so both flow
+// at the in-plane friction angle flowingFrictionAngle(phi) = asin(q_phi). The rate dependence is
+// the glass beads' (Jop, Forterre & Pouliquen 2006: mu_2 - mu_s = 0.261, I_0 = 0.279, critical
+// solid fraction 0.6); the density and the dense state's moduli are the DP sand's; cohesion,
+// dilation and separation do not carry over (the granular state separates at J = 1). Only for
+// a sand without dilation: a dilating cone flows at no single angle to match.
+MaterialDef matchedGranular(const MaterialDef& drucker_prager, Real grain_diameter);
 // A single-wheel test rig (terramechanics' soil bin) in plane strain, as config/scenes/wheel.yaml
 // sets it up: a rigid wheel (a disk block named "wheel" with a drive holding its angular
 // velocity and horizontal speed, free to sink) on a bed of sand (the body named "bed").

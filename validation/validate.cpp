@@ -1644,7 +1644,10 @@ void waterGate(const Options& o, Results& r) {
 // pull exceeds Coulomb's W tan(phi) for a cohesionless soil (Bekker's maximum thrust; a smooth
 // wheel of friction 0.6 > tan 30 deg does not slip on its rim first). The rows give DP/W and
 // T/(W R) against that bound and the sinkage; the 5 mm runs show the resolution's effect.
-void wheel(const Options& o, Results& r) {
+// The wheel rig's sweep (slip x load x cell) with the scene's Drucker-Prager sand or, for issue
+// 41, the granular sand that flows where it does (cases::matchedGranular).
+void wheelSweep(const Options& o, Results& r, bool granular) {
+  const char* name = granular ? "wheel_granular" : "wheel";
   struct Run {
     Real slip, load, h;
   };
@@ -1659,12 +1662,14 @@ void wheel(const Options& o, Results& r) {
       for (Real slip : {0.0, 0.4, 0.7}) runs.push_back({slip, load, 0.005});
   }
   const std::string path = std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/wheel.yaml";
-  FILE* sweep = std::fopen((o.out + "/wheel_sweep.csv").c_str(), "w");
+  FILE* sweep = std::fopen((o.out + "/" + name + "_sweep.csv").c_str(), "w");
   std::fprintf(sweep, "cell_m,load_n_m,slip,pull_n_m,pull_sd_n_m,torque_nm_m,sinkage_m\n");
   for (const Run& run : runs) {
     Scene scene = loadScene(path, {"grid.cell_size=" + std::to_string(run.h)});
     cases::setWheelRig(scene.world, run.slip, run.load);
     const Real bound = std::tan(scene.world.materials[0].friction_angle);  // radians here
+    // Grains of 1 mm: a sand's, well below the wheel's contact length.
+    if (granular) scene.world.materials[0] = cases::matchedGranular(scene.world.materials[0], 1e-3);
     World w(scene.world);
     const auto start = std::chrono::steady_clock::now();
     const cases::WheelRun m = cases::runWheel(w, t_end);
@@ -1678,15 +1683,22 @@ void wheel(const Options& o, Results& r) {
                   m.pull_spread, w.particles().size());
     const std::string src = "Coulomb bound tan(phi) (Bekker 1969): never reached";
     const long points = static_cast<long>(w.particles().size());
-    r.add("wheel", std::string("drawbar pull / load") + at, m.pull / run.load, bound, "-", src,
-          wall, settings, points, w.stepCount());
-    r.add("wheel", std::string("gross thrust T / (W R)") + at, m.torque / (run.load * m.radius),
-          bound, "-", src, wall, settings, points, w.stepCount());
-    r.add("wheel", std::string("sinkage") + at, m.sinkage, 0, "m",
+    r.add(name, std::string("drawbar pull / load") + at, m.pull / run.load, bound, "-", src, wall,
+          settings, points, w.stepCount());
+    r.add(name, std::string("gross thrust T / (W R)") + at, m.torque / (run.load * m.radius), bound,
+          "-", src, wall, settings, points, w.stepCount());
+    r.add(name, std::string("sinkage") + at, m.sinkage, 0, "m",
           "rises with load and slip (Bekker; Wong and Reece)", wall, settings, points,
           w.stepCount());
   }
   std::fclose(sweep);
+}
+
+void wheel(const Options& o, Results& r) {
+  wheelSweep(o, r, false);
+}
+void wheelGranular(const Options& o, Results& r) {
+  wheelSweep(o, r, true);
 }
 
 // Issue 20: the excavator blade (cases::excavatorBlade) against Reece's fundamental earth-moving
@@ -1911,6 +1923,7 @@ int main(int argc, char** argv) {
       {"silo_convergence", siloConvergence},
       {"compression", compression},
       {"wheel", wheel},
+      {"wheel_granular", wheelGranular},
       {"blade", blade},
       {"stability", stability}};
   std::string names;
