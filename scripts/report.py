@@ -59,6 +59,10 @@ CASES = [
     ("blade", "Issue 20: an excavator blade (vertical, kinematic, 5 cm/s) through a layer of sand "
               "against Reece's earth-moving equation with McKyes' N_gamma (smooth blade: exact; "
               "friction 0.3: planar wedge), three depths at three cell sizes", True),
+    ("blade_granular", "Issue 41: the blade of `blade` in the granular (mu(I)) sand at the same "
+                       "in-plane flowing angle, at the Drucker-Prager stiffness (E 1 MPa) and a "
+                       "soft dense state (50 kPa): forces against Reece, exponent in d, steps and "
+                       "wall time per simulated second", True),
     ("fem_cantilever", "Seed 002 sec. 2.3: an FEM cantilever (plane-strain linear triangles, "
                        "corotational) under its own weight against Euler-Bernoulli, three meshes",
      True),

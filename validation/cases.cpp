@@ -1332,6 +1332,35 @@ namespace {
 constexpr Real kBladeSand = 1500;  // kg/m^3
 }  // namespace
 
+MaterialDef bladeSand(const Blade& c) {
+  MaterialDef m;
+  m.name = "sand";
+  m.density = kBladeSand;
+  const Real E = c.young_modulus, nu = c.poisson_ratio;
+  m.bulk_modulus = E / (3 * (1 - 2 * nu));
+  m.shear_modulus = E / (2 * (1 + nu));
+  if (c.sand == Blade::Sand::kDruckerPrager) {
+    m.model = MaterialModel::kDruckerPrager;
+    m.friction_angle = c.friction_angle * M_PI / 180;
+    return m;
+  }
+  m.model = MaterialModel::kGranular;
+  // sin of the Drucker-Prager sand's flowing angle, so that both flow at the same in-plane
+  // angle (bladeFrictionAngle); the rate term's span and I_0 are Jop et al.'s glass beads'.
+  m.mu_s = std::sin(flowingFrictionAngle(c.friction_angle * M_PI / 180));
+  m.mu_2 = m.mu_s + 0.261;
+  m.inertial_i0 = 0.279;
+  m.grain_diameter = 0.001;
+  m.solid_fraction = 0.6;
+  return m;
+}
+
+Real bladeFrictionAngle(const Blade& c) {
+  const MaterialDef m = bladeSand(c);
+  return m.model == MaterialModel::kGranular ? std::asin(m.mu_s)
+                                             : flowingFrictionAngle(m.friction_angle);
+}
+
 WorldDef excavatorBlade(const Blade& c) {
   const Real h = c.cell_size, H = c.bed, d = c.depth;
   const Real alpha = c.rake * M_PI / 180;
@@ -1344,15 +1373,7 @@ WorldDef excavatorBlade(const Blade& c) {
   def.domain.bottom.type = WallType::kSticky;
   def.cell_size = h;
   def.solver.damping = c.damping;
-  MaterialDef m;
-  m.name = "sand";
-  m.model = MaterialModel::kDruckerPrager;
-  m.density = kBladeSand;
-  const Real E = 1e6, nu = 0.3;
-  m.bulk_modulus = E / (3 * (1 - 2 * nu));
-  m.shear_modulus = E / (2 * (1 + nu));
-  m.friction_angle = c.friction_angle * M_PI / 180;
-  def.materials.push_back(m);
+  def.materials.push_back(bladeSand(c));
   // The blade: a parallelogram core, its lower edge horizontal at a above the cut (the rounded
   // outline's lowest line at H - d), its front edge along u = (-cos alpha, sin alpha) and a
   // normal thickness t - 2a; the outline is that grown by a.
@@ -1431,6 +1452,14 @@ BladePush pushBlade(World& w, const Blade& c, Real travel) {
       P.syy[p] = -m.density * g * z;
       P.sxx[p] = P.szz[p] = k0 * P.syy[p];
       P.sxy[p] = 0;
+      if (m.model == MaterialModel::kGranular) {
+        // The granular pressure is K ln(1 / J), a function of the volume ratio: the point is
+        // given the J of that stress (sigma_m = K ln J), its unstressed volume V0 = V / J so that
+        // its volume V0 J stays the lattice's.
+        const Real J = std::exp((P.sxx[p] + P.syy[p] + P.szz[p]) / (3 * m.bulk_modulus));
+        P.J[p] = J;
+        P.volume0[p] /= J;
+      }
     }
   }
   const Real x0 = B.state(0).position.x(), sample = travel / 200;
@@ -1441,9 +1470,11 @@ BladePush pushBlade(World& w, const Blade& c, Real travel) {
     // as much as the passive pressure at the edge of a 4 cm cut).
     const Real ease = w.time() < c.ramp ? (1 - std::cos(M_PI * w.time() / c.ramp)) / 2 : 1;
     w.setBlockVelocity(B.id(0), Vec2(c.speed * ease, 0), 0);
-    const Real dt = w.chooseTimeStep().dt;
+    const TimeStepChoice choice = w.chooseTimeStep();
+    const Real dt = choice.dt;
     w.step(dt);
     ++out.steps;
+    if (choice.limit == StepLimit::kContact) ++out.contact_steps;
     // The force the material put on the blade in this step, weighted by the step.
     sum_h += -B.coupling()[0].force.x() * dt;
     sum_v += B.coupling()[0].force.y() * dt;
@@ -1494,15 +1525,14 @@ Reece reece(Real alpha, Real phi, Real delta) {
 }
 
 Real reeceHorizontal(const Blade& c) {
-  const Real phi = flowingFrictionAngle(c.friction_angle * M_PI / 180);
+  const Real phi = bladeFrictionAngle(c);
   const Reece r = reece(c.rake * M_PI / 180, phi, std::atan(c.friction));
   return kBladeSand * 9.81 * c.depth * c.depth * r.horizontal;
 }
 
 Real wedgeRise(const Blade& c) {
   const Real alpha = c.rake * M_PI / 180;
-  const Reece r =
-      reece(alpha, flowingFrictionAngle(c.friction_angle * M_PI / 180), std::atan(c.friction));
+  const Reece r = reece(alpha, bladeFrictionAngle(c), std::atan(c.friction));
   return std::sin(alpha) * std::sin(r.beta) / std::sin(alpha + r.beta);
 }
 

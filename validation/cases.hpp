@@ -368,10 +368,34 @@ struct Blade {
   Real thickness = 0.01;     // m: the blade's, across its faces, rounding included
   Real rounding = 0.002;     // m
   Real damping = 0;          // SolverDef::damping
+  // Issue 41: the sand's model. Drucker-Prager (phi = friction_angle, as above) or the mu(I)
+  // granular material of bladeSand, whose mu_s gives the same in-plane flowing angle.
+  enum class Sand { kDruckerPrager, kGranular };
+  Sand sand = Sand::kDruckerPrager;
+  Real young_modulus = 1e6;  // Pa: E (the granular material's: its dense state's stiffness)
+  Real poisson_ratio = 0.3;  // nu
   // pushBlade only:
   bool geostatic = true;  // start from the layer's weight as its stress
   Real ramp = 0.05;       // s over which the blade's speed is eased in
 };
+// The blade's sand (rho = 1500 kg/m^3, E and nu from the Blade). Drucker-Prager: phi =
+// friction_angle, no dilation or cohesion. Granular (mu(I), Jop, Forterre & Pouliquen 2006):
+// mu_s = sin of the Drucker-Prager sand's flowing in-plane angle (bladeFrictionAngle, 33.0 deg
+// for phi = 35 deg: mu_s = 0.545), mu_2 - mu_s = 0.261 and I_0 = 0.279 (glass beads' span),
+// grains 1 mm, solid fraction 0.6.
+MaterialDef bladeSand(const Blade& c);
+// The in-plane friction angle at which bladeSand flows in plane strain (rad): the one source of
+// Reece's phi for either model. Drucker-Prager without dilation: asin(q_phi)
+// (flowingFrictionAngle). Granular: granularReturn keeps sqrt(J2) <= mu p with p = -sigma_m and
+// returns radially in the deviatoric plane, so its plastic strain rate is along the deviator s
+// (out-of-plane component s_zz included). In steady plane-strain flow the stress no longer
+// changes, the elastic rate vanishes and D_zz = 0 leaves no plastic D_zz: s_zz = 0, sigma_zz =
+// (sigma_xx + sigma_yy) / 2. Then p = -(sigma_xx + sigma_yy) / 2 is the centre of Mohr's circle
+// of the in-plane stresses and sqrt(J2) = sqrt(((sigma_xx - sigma_yy) / 2)^2 + sigma_xy^2) its
+// radius R, so the yield condition R <= mu p is Mohr-Coulomb's R <= p sin(phi) with phi =
+// asin(mu): asin(mu_s) for slow flow (I -> 0; the rate term adds (mu_2 - mu_s) / (I_0 / I + 1),
+// 0.01 at the blade's I ~ 0.01). The same argument gives the Drucker-Prager asin(q_phi).
+Real bladeFrictionAngle(const Blade& c);
 WorldDef excavatorBlade(const Blade& c);
 // Pushes excavatorBlade's blade (block 0) until it has travelled `travel` (m): the horizontal
 // and vertical forces of the material on it (N/m, the resistance positive against the motion,
@@ -379,6 +403,7 @@ WorldDef excavatorBlade(const Blade& c);
 struct BladePush {
   std::vector<Real> displacement, horizontal, vertical;  // m, N/m, N/m
   long steps = 0;
+  long contact_steps = 0;  // of which the coupling springs bounded (eq. 51's second term)
   std::size_t points = 0;
   Real seconds = 0;  // wall
 };
@@ -400,9 +425,9 @@ struct Reece {
 };
 Reece reece(Real alpha, Real phi, Real delta);
 // Reece's horizontal force for excavatorBlade's world (N/m): gamma d^2 N_gamma sin(alpha + delta)
-// with the material's in-plane friction angle (flowingFrictionAngle: the Drucker-Prager cone of
-// eq. 35 without dilation flows in plane strain at asin(q_phi), 33.0 deg for phi = 35 deg) and
-// delta = atan(friction).
+// with the material's in-plane friction angle (bladeFrictionAngle: the Drucker-Prager cone of
+// eq. 35 without dilation flows in plane strain at asin(q_phi), 33.0 deg for phi = 35 deg; the
+// granular sand at asin(mu_s), the same angle) and delta = atan(friction).
 Real reeceHorizontal(const Blade& c);
 // How fast the free surface over McKyes' wedge rises per metre the blade advances: the wedge
 // slides along the failure plane while the blade slides along its face, so it rises at
