@@ -11,6 +11,7 @@
 #include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/mpm/constitutive.hpp"
 #include "mpm_sdem/core/rigid/block_checks.hpp"
+#include "parallel.hpp"
 #include "sph/sph_step.hpp"
 
 namespace mpm_sdem {
@@ -380,13 +381,20 @@ TimeStepChoice World::stepBound(Real cfl, Real kappa2) const {
   const long n = static_cast<long>(P.size());
   Real fastest = 0;
   auto fastestWith = [&](auto modulusOverDensity) {
-#pragma omp parallel for simd schedule(static) reduction(max : fastest)
-    for (long p = 0; p < n; ++p) {
+    // The faster of s and the point's speed; a NaN speed is skipped, as fmax would.
+    auto faster = [&](Real s, long p) {
       const Real c2 = modulusOverDensity(p, P.J[p]);
       const Real v2 = P.vx[p] * P.vx[p] + P.vy[p] * P.vy[p];
-      const Real s = std::sqrt(c2 > 0 ? c2 : Real(0)) + std::sqrt(v2);
-      fastest = s > fastest ? s : fastest;  // a NaN speed is skipped, as fmax would
+      const Real speed = std::sqrt(c2 > 0 ? c2 : Real(0)) + std::sqrt(v2);
+      return speed > s ? speed : s;
+    };
+    if (detail::singleThread()) {
+#pragma omp simd reduction(max : fastest)
+      for (long p = 0; p < n; ++p) fastest = faster(fastest, p);
+      return;
     }
+#pragma omp parallel for simd schedule(static) reduction(max : fastest)
+    for (long p = 0; p < n; ++p) fastest = faster(fastest, p);
   };
   if (params_.size() == 1 && params_[0].model != MaterialModel::kFluid) {
     // One solid material: no lookup and no pow, so the loop vectorises.
@@ -642,9 +650,8 @@ void World::sphMove(Real dt, Real kick, StepInfo& info) {
 template <class F>
 void World::forActiveNodes(const std::vector<int>& tiles, F&& f) {
   tiles_.nodeRuns(grid_, tiles, node_runs_);
-  const long count = static_cast<long>(node_runs_.size());
-#pragma omp parallel for schedule(static)
-  for (long k = 0; k < count; ++k) f(node_runs_[k].first, node_runs_[k].end);
+  detail::parallelFor(static_cast<long>(node_runs_.size()),
+                      [&](long k) { f(node_runs_[k].first, node_runs_[k].end); });
 }
 
 void World::clearGrid() {

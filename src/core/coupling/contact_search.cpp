@@ -4,6 +4,8 @@
 #include <cmath>
 #include <tuple>
 
+#include "parallel.hpp"
+
 namespace mpm_sdem {
 
 void ContactSearch::init(const Vec2& lo, const Vec2& hi, Real cell_size, Real reach,
@@ -29,12 +31,18 @@ bool ContactSearch::needsRebuild(const Particles& P, const ContactBodies& B) con
     if (moved * moved > limit2) return true;
   }
   const long n = static_cast<long>(P.size());
+  auto far = [&](long p) {
+    const Real dx = P.x[p] - x_built_[p], dy = P.y[p] - y_built_[p];
+    return dx * dx + dy * dy > limit2;
+  };
+  if (detail::singleThread()) {
+    for (long p = 0; p < n; ++p)
+      if (far(p)) return true;
+    return false;
+  }
   int moved = 0;
 #pragma omp parallel for schedule(static) reduction(| : moved)
-  for (long p = 0; p < n; ++p) {
-    const Real dx = P.x[p] - x_built_[p], dy = P.y[p] - y_built_[p];
-    if (dx * dx + dy * dy > limit2) moved = 1;
-  }
+  for (long p = 0; p < n; ++p) moved |= far(p);
   return moved != 0;
 }
 

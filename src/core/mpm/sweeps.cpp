@@ -280,14 +280,20 @@ void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& cla
     }
     moveInside(P, p, s, vx, vy, clamped_here, bad_here);
   };
-  if (T) {
-    const long tiles = static_cast<long>(T->start.size()) - 1;
-#pragma omp parallel for schedule(static) reduction(+ : clamped_count) reduction(| : bad)
-    for (long t = 0; t < tiles; ++t)
-      for (int q = T->start[t]; q < T->mpm_end[t]; ++q) point(T->order[q], clamped_count, bad);
+  // The points of the grid sums, tile by tile in sorted order, or all in storage order.
+  const long count = T ? static_cast<long>(T->start.size()) - 1 : n;
+  auto item = [&](long k, long& clamped_here, int& bad_here) __attribute__((always_inline)) {
+    if (!T) {
+      point(k, clamped_here, bad_here);
+      return;
+    }
+    for (int q = T->start[k]; q < T->mpm_end[k]; ++q) point(T->order[q], clamped_here, bad_here);
+  };
+  if (singleThread()) {
+    for (long k = 0; k < count; ++k) item(k, clamped_count, bad);
   } else {
 #pragma omp parallel for schedule(static) reduction(+ : clamped_count) reduction(| : bad)
-    for (long p = 0; p < n; ++p) point(p, clamped_count, bad);
+    for (long k = 0; k < count; ++k) item(k, clamped_count, bad);
   }
   clamped += clamped_count;
   if (bad) finite = false;

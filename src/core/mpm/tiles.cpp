@@ -5,6 +5,8 @@
 
 #include <omp.h>
 
+#include "parallel.hpp"
+
 namespace mpm_sdem {
 
 void Tiles::init(const Grid& g) {
@@ -44,8 +46,7 @@ void Tiles::sort(const Particles& P, const Grid& g, bool by_kind) {
   // Counting sort in parallel: each thread counts its own contiguous range of points per tile,
   // then writes them after the lower threads' points of the same tile. The order is the serial
   // stable one whatever the thread count.
-#pragma omp parallel
-  {
+  auto sort = [&] {
     const int threads = omp_get_num_threads(), me = omp_get_thread_num();
     const long lo = n * me / threads, hi = n * (me + 1) / threads;
     int* count = counts_.data() + static_cast<std::size_t>(me) * tiles;
@@ -76,6 +77,13 @@ void Tiles::sort(const Particles& P, const Grid& g, bool by_kind) {
       start[tiles / kinds] = next;
     }
     for (long p = lo; p < hi; ++p) order[count[key_[p]]++] = static_cast<int>(p);
+  };
+  // Outside a parallel region (one thread) the barrier is nothing and the single block runs.
+  if (detail::singleThread()) {
+    sort();
+  } else {
+#pragma omp parallel
+    sort();
   }
   if (!by_kind) std::copy(start.begin() + 1, start.end(), mpm_end.begin());
   grid_end = mpm_end;

@@ -16,6 +16,7 @@
 #include "mpm_sdem/core/mpm/particles.hpp"
 #include "mpm_sdem/core/mpm/tiles.hpp"
 #include "mpm_sdem/core/world.hpp"
+#include "parallel.hpp"
 #include "stress_batch.hpp"
 #include "sweeps.hpp"
 
@@ -34,11 +35,8 @@ inline void stencils(const Grid& g, Real x, Real y, Real lp, Real& xg, Real& yg,
 // among the threads (see Tiles: no two of them write the same node).
 template <class Body>
 void forEachTileByColour(const Tiles& T, Body&& body) {
-  for (const std::vector<int>& tiles : T.colour) {
-    const long count = static_cast<long>(tiles.size());
-#pragma omp parallel for schedule(static)
-    for (long k = 0; k < count; ++k) body(tiles[k]);
-  }
+  for (const std::vector<int>& tiles : T.colour)
+    parallelFor(static_cast<long>(tiles.size()), [&](long k) { body(tiles[k]); });
 }
 // Run body(p) for every particle of the grid sums, tile by tile as forEachTileByColour. With
 // band(p), the SPH particles of the transition band go to band instead (they are updated by the
@@ -141,8 +139,8 @@ class StressBatcher {
 inline void updateStresses(Particles& P, const std::vector<MaterialParams>& materials, Real dt) {
   const long n = static_cast<long>(P.size()), chunk = 8 * StressBatch::kSize;
   auto nothing = [](int, int) {};
-#pragma omp parallel for schedule(static)
-  for (long c = 0; c < n; c += chunk) {
+  parallelFor((n + chunk - 1) / chunk, [&](long k) {
+    const long c = k * chunk;
     StressBatcher batcher(P, materials, dt);
     for (long p = c; p < std::min(n, c + chunk); ++p) {
       const MaterialParams& m = materials[P.material[p]];
@@ -154,7 +152,7 @@ inline void updateStresses(Particles& P, const std::vector<MaterialParams>& mate
       if (batcher.full()) batcher.flush(nothing);
     }
     batcher.flush(nothing);
-  }
+  });
 }
 
 // The side walls' friction capacity on the nodes (issue 41, SidewallsDef): each point resists
