@@ -1339,20 +1339,10 @@ MaterialDef bladeSand(const Blade& c) {
   const Real E = c.young_modulus, nu = c.poisson_ratio;
   m.bulk_modulus = E / (3 * (1 - 2 * nu));
   m.shear_modulus = E / (2 * (1 + nu));
-  if (c.sand == Blade::Sand::kDruckerPrager) {
-    m.model = MaterialModel::kDruckerPrager;
-    m.friction_angle = c.friction_angle * M_PI / 180;
-    return m;
-  }
-  m.model = MaterialModel::kGranular;
-  // sin of the Drucker-Prager sand's flowing angle, so that both flow at the same in-plane
-  // angle (bladeFrictionAngle); the rate term's span and I_0 are Jop et al.'s glass beads'.
-  m.mu_s = std::sin(flowingFrictionAngle(c.friction_angle * M_PI / 180));
-  m.mu_2 = m.mu_s + 0.261;
-  m.inertial_i0 = 0.279;
-  m.grain_diameter = 0.001;
-  m.solid_fraction = 0.6;
-  return m;
+  m.model = MaterialModel::kDruckerPrager;
+  m.friction_angle = c.friction_angle * M_PI / 180;
+  // The granular sand flows at the same in-plane angle (bladeFrictionAngle); grains of 1 mm.
+  return c.sand == Blade::Sand::kGranular ? matchedGranular(m, 0.001) : m;
 }
 
 Real bladeFrictionAngle(const Blade& c) {

@@ -379,10 +379,9 @@ struct Blade {
   Real ramp = 0.05;       // s over which the blade's speed is eased in
 };
 // The blade's sand (rho = 1500 kg/m^3, E and nu from the Blade). Drucker-Prager: phi =
-// friction_angle, no dilation or cohesion. Granular (mu(I), Jop, Forterre & Pouliquen 2006):
-// mu_s = sin of the Drucker-Prager sand's flowing in-plane angle (bladeFrictionAngle, 33.0 deg
-// for phi = 35 deg: mu_s = 0.545), mu_2 - mu_s = 0.261 and I_0 = 0.279 (glass beads' span),
-// grains 1 mm, solid fraction 0.6.
+// friction_angle, no dilation or cohesion. Granular: matchedGranular of that sand (mu_s = sin
+// of its flowing in-plane angle, bladeFrictionAngle: 33.0 deg for phi = 35 deg, mu_s = 0.545),
+// grains 1 mm.
 MaterialDef bladeSand(const Blade& c);
 // The in-plane friction angle at which bladeSand flows in plane strain (rad): the one source of
 // Reece's phi for either model. Drucker-Prager without dilation: asin(q_phi)
