@@ -604,7 +604,22 @@ MaterialDef tableThreeSand(const char* name) {
 
 }  // namespace
 
-WorldDef silo(Real neck, Real h, int ppc) {
+MaterialDef siloGranularSand(const char* name) {
+  MaterialDef m;
+  m.name = name;
+  m.model = MaterialModel::kGranular;
+  m.density = kSandDensity;
+  m.bulk_modulus = 5e5;
+  m.shear_modulus = 3.2e5;
+  m.mu_s = std::sin(35 * M_PI / 180);
+  m.mu_2 = m.mu_s + 0.261;
+  m.inertial_i0 = 0.279;
+  m.grain_diameter = 2 * kSiloContactRadius;
+  m.solid_fraction = 0.6;
+  return m;
+}
+
+WorldDef silo(Real neck, Real h, int ppc, SiloSand material) {
   const Real a = 0.005, t = 0.02;  // rounding and plate thickness (m)
   WorldDef def;
   def.domain.min = Vec2(0, 0);
@@ -613,7 +628,8 @@ WorldDef silo(Real neck, Real h, int ppc) {
   def.solver.gravity = Vec2(0, -kSiloGravity);
   def.solver.kernel = KernelType::kGimp;
   def.solver.transfer = TransferScheme::kApic;
-  def.materials.push_back(tableThreeSand("sand"));
+  def.materials.push_back(material == SiloSand::kGranular ? siloGranularSand("sand")
+                                                          : tableThreeSand("sand"));
   const Real right = kSiloLeft + kSiloWidth, wall_top = kSiloPlateTop + 0.2;
   auto add = [&def](const char* name, const Vec2& lo, const Vec2& hi) {
     BlockDef b =
@@ -692,6 +708,10 @@ SiloFlow siloFlow(World& w, Real t_max) {
 Real beverlooWidth(Real neck) {
   const Real kc = 2.2;
   return std::max<Real>(0, neck - kc * kSiloContactRadius);
+}
+
+Real siloDensityRootGravity() {
+  return kSandDensity * std::sqrt(kSiloGravity);
 }
 
 Real beverloo(Real neck) {
