@@ -25,6 +25,11 @@ CASES = [
     ("silo", "Seed 000 sec. 5.3: silo discharge against Beverloo", True),
     ("silo_convergence", "Seed 000 sec. 5.3: silo flow rate under refinement per neck (7 to 2.5 mm"
                          " cells), Beverloo exponent over necks of at least 6 cells", True),
+    ("silo_granular", "Issue 41: the silo in the mu(I) granular sand (mu_s = sin 35 deg, 2 mm "
+                      "grains) over necks of at least 6 cells at 7, 5, 3.5 and 2.5 mm cells: "
+                      "rates, Beverloo exponent, C and k with the exponent 1.5", True),
+    ("silo_granular_asflip", "Issue 41: the granular silo with ASFLIP (relaxation 0.03 s) at 7, "
+                             "5 and 3.5 mm cells", True),
     ("contact_schemes", "Seed 000 sec. 5.4: contact-scheme comparison (1D rod)", True),
     ("debris", "Seed 000 sec. 6 / seed 003: granular flow hitting three wooden blocks", True),
     ("debris_sweep", "Seed 000 sec. 6 / seed 003: resolution sweep of the wooden-block scene (IMP)",

@@ -604,6 +604,9 @@ MaterialDef tableThreeSand(const char* name) {
 
 }  // namespace
 
+// The glass beads' rate dependence (Jop, Forterre & Pouliquen 2006) that issue 41's sands borrow.
+constexpr Real kBeadsMuSpan = 0.261, kBeadsI0 = 0.279, kCriticalSolidFraction = 0.6;
+
 MaterialDef matchedGranular(const MaterialDef& dp, Real grain_diameter) {
   MaterialDef g;
   g.name = dp.name;
@@ -612,14 +615,23 @@ MaterialDef matchedGranular(const MaterialDef& dp, Real grain_diameter) {
   g.bulk_modulus = dp.bulk_modulus;
   g.shear_modulus = dp.shear_modulus;
   g.mu_s = std::sin(flowingFrictionAngle(dp.friction_angle));
-  g.mu_2 = g.mu_s + 0.261;
-  g.inertial_i0 = 0.279;
+  g.mu_2 = g.mu_s + kBeadsMuSpan;
+  g.inertial_i0 = kBeadsI0;
   g.grain_diameter = grain_diameter;
-  g.solid_fraction = 0.6;
+  g.solid_fraction = kCriticalSolidFraction;
   return g;
 }
 
-WorldDef silo(Real neck, Real h, int ppc) {
+MaterialDef siloGranularSand(const char* name) {
+  // Table 3's sand dilates, so it flows at no single angle to match (matchedGranular): its 35
+  // deg is read as the Mohr-Coulomb angle, mu_s = sin 35 deg.
+  MaterialDef m = matchedGranular(tableThreeSand(name), 2 * kSiloContactRadius);
+  m.mu_s = std::sin(35 * M_PI / 180);
+  m.mu_2 = m.mu_s + kBeadsMuSpan;
+  return m;
+}
+
+WorldDef silo(Real neck, Real h, int ppc, SiloSand material) {
   const Real a = 0.005, t = 0.02;  // rounding and plate thickness (m)
   WorldDef def;
   def.domain.min = Vec2(0, 0);
@@ -628,7 +640,8 @@ WorldDef silo(Real neck, Real h, int ppc) {
   def.solver.gravity = Vec2(0, -kSiloGravity);
   def.solver.kernel = KernelType::kGimp;
   def.solver.transfer = TransferScheme::kApic;
-  def.materials.push_back(tableThreeSand("sand"));
+  def.materials.push_back(material == SiloSand::kGranular ? siloGranularSand("sand")
+                                                          : tableThreeSand("sand"));
   const Real right = kSiloLeft + kSiloWidth, wall_top = kSiloPlateTop + 0.2;
   auto add = [&def](const char* name, const Vec2& lo, const Vec2& hi) {
     BlockDef b =
@@ -707,6 +720,10 @@ SiloFlow siloFlow(World& w, Real t_max) {
 Real beverlooWidth(Real neck) {
   const Real kc = 2.2;
   return std::max<Real>(0, neck - kc * kSiloContactRadius);
+}
+
+Real siloDensityRootGravity() {
+  return kSandDensity * std::sqrt(kSiloGravity);
 }
 
 Real beverloo(Real neck) {

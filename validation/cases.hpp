@@ -284,7 +284,19 @@ Kirsch kirsch(Real a, Real S, const Vec2& d);
 // ends, 25 cm above the floor that catches the flow. GIMP, APIC; r_p = 1 mm, V_d = 2 mm as in
 // Table 3; springs 1e6 and 5e5 N/m (stiff enough that the static load of the fill, 4 N/m per
 // point at the base, closes less than 4 um of r_p).
-WorldDef silo(Real neck, Real cell_size, int points_per_cell);
+// The silo's sand: Table 3's Drucker-Prager above (the default, behind every figure before
+// issue 41), or the mu(I) granular material of issue 41 (siloGranularSand) with the same
+// density and stiffness.
+enum class SiloSand { kDruckerPrager, kGranular };
+WorldDef silo(Real neck, Real cell_size, int points_per_cell,
+              SiloSand sand = SiloSand::kDruckerPrager);
+// Issue 41's silo sand (MaterialModel::kGranular): Table 3's rho = 1500 kg/m^3, K = 500 kPa,
+// G = 320 kPa; mu_s = sin 35 deg = 0.574, the plane-strain Mohr-Coulomb angle of Table 3 (the
+// return caps sqrt(J2) at mu p, and steady isochoric plane-strain flow has no out-of-plane
+// deviator, so sqrt(J2) is the Mohr circle's radius and p its centre: mu = sin phi);
+// mu_2 - mu_s = 0.261 and I_0 = 0.279 (glass beads, Jop, Forterre & Pouliquen 2006); grains
+// of 2 mm (Table 3's V_d, twice the contact radius r_p = 1 mm); critical solid fraction 0.6.
+MaterialDef siloGranularSand(const char* name);
 // Runs a silo until 30% of its fill has passed below the plates or t_max: the discharged mass
 // in time and the rate fitted by least squares over the part from 10% to 30% (kg/s per metre;
 // the head is then still above the silo's width, where Beverloo's rate does not depend on it).
@@ -302,6 +314,8 @@ SiloFlow siloFlow(World& w, Real t_max);
 Real beverloo(Real neck);
 // The law's effective width D0 - k_c r_p (m).
 Real beverlooWidth(Real neck);
+// The silo's rho g^0.5 (kg m^-2.5 s^-1), so that Beverloo's rate is C rho g^0.5 W^1.5.
+Real siloDensityRootGravity();
 
 // Seed 000 sec. 7, scaled to a 30 x 30 cm container (the seed's is 61 cm): 25 random convex
 // pentagons (outer radius 2.0-2.8 cm, a = 3 mm, 2200 kg/m^3, friction 0.2) on a jittered 5 x 5

@@ -81,6 +81,7 @@ struct LineFit {
     sxy += x * y;
   }
   Real slope() const { return (n * sxy - sx * sy) / (n * sxx - sx * sx); }
+  Real intercept() const { return (sy - slope() * sx) / n; }
 };
 
 // Seed 000 sec. 5.1.1: the block's share of the kinetic energy after the collision (seed: 99.2%
@@ -490,6 +491,129 @@ void siloConvergence(const Options& o, Results& r) {
     r.add("silo_convergence", q, q_inf, cases::beverloo(necks[n]), "kg/(s m)",
           "Richardson from the three finest cell sizes", 0, "");
   }
+}
+
+// Issue 41: the silo with the mu(I) granular sand (cases::siloGranularSand; same geometry,
+// contact, GIMP and APIC as silo_convergence, 2 x 2 points per cell) over the necks that are at
+// least six cells wide, at 7, 5, 3.5 and 2.5 mm cells (fast: 5 and 6 cm at 7 mm, 1.2 s at most).
+// Per cell size, Beverloo's exponent fitted against log W with W = D0 (k = 0) and W = D0 -
+// k_c r_p (the seed's k_c = 2.2), and C and k fitted with the exponent held at 1.5 (rate^(2/3)
+// is then linear in D0: slope (C rho g^0.5)^(2/3), root k d); published 2D ranges: C about
+// 0.5-0.65, k about 1.5-3 grain diameters; the same from the rates' Richardson limits (three
+// finest sizes, as in silo_convergence). One material for every neck and cell size.
+// silo_granular_asflip: the same with ASFLIP (relaxation time 0.03 s, as in the granular
+// wooden-block scene) at 7, 5 and 3.5 mm, to show the transfer's weight.
+void siloGranularWith(const Options& o, Results& r, TransferScheme transfer) {
+  const bool asflip = transfer == TransferScheme::kAsflip;
+  const std::string name = asflip ? "silo_granular_asflip" : "silo_granular";
+  const std::vector<Real> necks =
+      o.fast ? std::vector<Real>{0.05, 0.06} : std::vector<Real>{0.02, 0.03, 0.04, 0.05, 0.06};
+  const std::vector<Real> sizes = o.fast   ? std::vector<Real>{0.007}
+                                  : asflip ? std::vector<Real>{0.007, 0.005, 0.0035}
+                                           : std::vector<Real>{0.007, 0.005, 0.0035, 0.0025};
+  const Real t_max = o.fast ? 1.2 : 4.0;
+  const Real d = cases::siloGranularSand("sand").grain_diameter;
+  FILE* table = std::fopen((o.out + "/" + name + ".csv").c_str(), "w");
+  std::fprintf(table,
+               "neck_m,cell_size_m,points,steps,rate_kg_s_m,beverloo_kg_s_m,window,window_start_s,"
+               "window_end_s,wall_s\n");
+  // Beverloo's law fitted to (neck, rate) pairs: the exponent with k = 0 and with k = k_c, and
+  // C and k with the exponent 1.5.
+  auto beverlooFits = [&](const std::vector<std::pair<Real, Real>>& points, const char* what,
+                          const std::string& settings) {
+    LineFit bare, shifted, linear;  // log-log with k = 0 and k = k_c; rate^(2/3) against D0
+    for (const auto& [neck, rate] : points) {
+      bare.add(std::log(neck), std::log(rate));
+      shifted.add(std::log(cases::beverlooWidth(neck)), std::log(rate));
+      linear.add(neck, std::pow(rate, Real(2) / 3));
+    }
+    if (bare.n < 2) return;
+    char q[128];
+    std::snprintf(q, sizeof q, "fitted exponent, W = D0, %s", what);
+    r.add(name, q, bare.slope(), 1.5, "-", "2D Beverloo law", 0, settings);
+    std::snprintf(q, sizeof q, "fitted exponent, W = D0 - 2.2 r_p, %s", what);
+    r.add(name, q, shifted.slope(), 1.5, "-", "2D Beverloo law", 0, settings);
+    const Real s = linear.slope();
+    std::snprintf(q, sizeof q, "C with the exponent 1.5, %s", what);
+    r.add(name, q, std::pow(s, Real(1.5)) / cases::siloDensityRootGravity(), 0.58, "-",
+          "seed 000's C; published 2D about 0.5-0.65", 0, settings);
+    std::snprintf(q, sizeof q, "k (grain diameters) with the exponent 1.5, %s", what);
+    r.add(name, q, -linear.intercept() / s / d, 1.1, "d",
+          "seed 000's k_c r_p = 1.1 d; published about 1.5-3 d", 0, settings);
+  };
+  const Real nan = std::numeric_limits<Real>::quiet_NaN();
+  std::vector<std::vector<Real>> rate(necks.size(), std::vector<Real>(sizes.size(), nan));
+  for (std::size_t k = 0; k < sizes.size(); ++k) {
+    const Real h = sizes[k];
+    std::vector<std::pair<Real, Real>> points;
+    for (std::size_t n = 0; n < necks.size(); ++n) {
+      const Real neck = necks[n];
+      if (neck < 6 * h - 1e-9) continue;
+      WorldDef def = cases::silo(neck, h, 2, cases::SiloSand::kGranular);
+      def.solver.transfer = transfer;
+      if (asflip) def.solver.asflip_relaxation_time = 0.03;
+      World w(def);
+      const auto t0 = std::chrono::steady_clock::now();
+      const cases::SiloFlow f = cases::siloFlow(w, t_max);
+      const double wall = seconds(t0);
+      std::fprintf(table, "%g,%g,%zu,%ld,%.6g,%.6g,%d,%.3f,%.3f,%.4g\n", neck, h,
+                   w.particles().size(), w.stepCount(), f.rate, cases::beverloo(neck),
+                   f.window_reached ? 1 : 0, f.window_start, f.window_end, wall);
+      std::fflush(table);
+      char q[96], settings[160];
+      std::snprintf(q, sizeof q, "mass flow rate, D0 %.0f cm, h %.1f mm (%.1f cells)", 100 * neck,
+                    1000 * h, neck / h);
+      std::snprintf(settings, sizeof settings, "granular mu(I), %s; %s t = %.2f-%.2f s",
+                    asflip ? "ASFLIP 0.03 s" : "APIC",
+                    f.window_reached ? "fitted over" : "under 10% discharged: mean over",
+                    f.window_start, f.window_end);
+      r.add(name, q, f.rate, cases::beverloo(neck), "kg/(s m)",
+            "seed 000 Fig. 16 (2D Beverloo, C 0.58, k_c 2.2)", wall, settings,
+            static_cast<long>(w.particles().size()), w.stepCount());
+      if (!f.window_reached) continue;
+      rate[n][k] = f.rate;
+      points.emplace_back(neck, f.rate);
+    }
+    char what[32], settings[96];
+    std::snprintf(what, sizeof what, "h %.1f mm", 1000 * h);
+    std::snprintf(settings, sizeof settings, "least squares over %zu necks of at least 6 cells",
+                  points.size());
+    beverlooFits(points, what, settings);
+  }
+  std::fclose(table);
+  // Per neck run at the three finest sizes, the rate's observed order of convergence and its
+  // Richardson limit (as in silo_convergence), and Beverloo's law fitted to the limits.
+  if (sizes.size() < 3) return;
+  const std::size_t f = sizes.size() - 1;  // the finest
+  const Real ratio = sizes[f - 1] / sizes[f];
+  std::vector<std::pair<Real, Real>> limits;
+  for (std::size_t n = 0; n < necks.size(); ++n) {
+    const Real d1 = rate[n][f - 1] - rate[n][f - 2], d2 = rate[n][f] - rate[n][f - 1];
+    if (!std::isfinite(d1) || !std::isfinite(d2)) continue;
+    char q[96];
+    std::snprintf(q, sizeof q, "rate change, finest two / coarser two, D0 %.0f cm", 100 * necks[n]);
+    r.add(name, q, d2 / d1, 0, "-", "below 1: converging", 0,
+          "differences of the three finest cell sizes");
+    if (!(d1 * d2 > 0 && std::abs(d2) < std::abs(d1))) continue;  // not in the asymptotic range
+    const Real p = std::log(d1 / d2) / std::log(ratio);
+    const Real q_inf = rate[n][f] + d2 / (std::pow(ratio, p) - 1);
+    std::snprintf(q, sizeof q, "extrapolated rate (order %.2f), D0 %.0f cm", p, 100 * necks[n]);
+    r.add(name, q, q_inf, cases::beverloo(necks[n]), "kg/(s m)",
+          "Richardson from the three finest cell sizes", 0, "");
+    limits.emplace_back(necks[n], q_inf);
+  }
+  char settings[96];
+  std::snprintf(settings, sizeof settings, "least squares over the %zu necks' Richardson limits",
+                limits.size());
+  beverlooFits(limits, "Richardson limits", settings);
+}
+
+void siloGranular(const Options& o, Results& r) {
+  siloGranularWith(o, r, TransferScheme::kApic);
+}
+
+void siloGranularAsflip(const Options& o, Results& r) {
+  siloGranularWith(o, r, TransferScheme::kAsflip);
 }
 
 // Seed 000 sec. 7: uniaxial compression of the granular matrix at three fines contents; the
@@ -2091,6 +2215,8 @@ int main(int argc, char** argv) {
       {"sph", sph},
       {"silo", siloDischarge},
       {"silo_convergence", siloConvergence},
+      {"silo_granular", siloGranular},
+      {"silo_granular_asflip", siloGranularAsflip},
       {"compression", compression},
       {"wheel", wheel},
       {"wheel_granular", wheelGranular},
