@@ -46,7 +46,7 @@ void Tiles::sort(const Particles& P, const Grid& g, bool by_kind) {
   // Counting sort in parallel: each thread counts its own contiguous range of points per tile,
   // then writes them after the lower threads' points of the same tile. The order is the serial
   // stable one whatever the thread count.
-  auto sort = [&] {
+  auto countingSort = [&] {
     const int threads = omp_get_num_threads(), me = omp_get_thread_num();
     const long lo = n * me / threads, hi = n * (me + 1) / threads;
     int* count = counts_.data() + static_cast<std::size_t>(me) * tiles;
@@ -80,10 +80,10 @@ void Tiles::sort(const Particles& P, const Grid& g, bool by_kind) {
   };
   // Outside a parallel region (one thread) the barrier is nothing and the single block runs.
   if (detail::singleThread()) {
-    sort();
+    countingSort();
   } else {
 #pragma omp parallel
-    sort();
+    countingSort();
   }
   if (!by_kind) std::copy(start.begin() + 1, start.end(), mpm_end.begin());
   grid_end = mpm_end;
