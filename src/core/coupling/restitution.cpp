@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace mpm_sdem {
 
@@ -88,24 +89,53 @@ Real clippedSpringImpulse(Real m, Real k, Real c, Real x, Real u, Real dt) {
   } else if (b < 0) {
     t = std::fmin(t, -f0 / b);
   }
-  // eC = exp(-zeta w t) C, eS = exp(-zeta w t) S; the hyperbolic ones as sums of decaying
-  // exponentials (s < zeta w), which cannot overflow however stiff or damped the contact.
-  Real eC, eS;
+  return m * (u - dampedOscillatorRate(w * w, zw, x, u, t));
+}
+
+namespace {
+
+// exp(-zeta w t) C(t) and exp(-zeta w t) S(t) of the oscillator (above, s2 = w2 - zw^2); the
+// hyperbolic ones as sums of decaying exponentials (s < zeta w), which cannot overflow however
+// stiff or damped the oscillator.
+std::pair<Real, Real> decayedModes(Real w2, Real zw, Real t) {
+  const Real s2 = w2 - zw * zw;
   if (s2 > 0) {
     const Real s = std::sqrt(s2), decay = std::exp(-zw * t);
-    eC = decay * std::cos(s * t);
-    eS = decay * std::sin(s * t) / s;
-  } else if (s2 < 0) {
+    return {decay * std::cos(s * t), decay * std::sin(s * t) / s};
+  }
+  if (s2 < 0) {
     const Real s = std::sqrt(-s2);
     const Real slow = std::exp((s - zw) * t), fast = std::exp(-(s + zw) * t);
-    eC = (slow + fast) / 2;
-    eS = (slow - fast) / (2 * s);  // relative round-off eps / (s t) near critical damping
-  } else {
-    eC = std::exp(-zw * t);
-    eS = eC * t;
+    // eS's relative round-off is eps / (s t) near critical damping.
+    return {(slow + fast) / 2, (slow - fast) / (2 * s)};
   }
-  const Real u_end = u * eC - (zw * u + w * w * x) * eS;
-  return m * (u - u_end);
+  const Real decay = std::exp(-zw * t);
+  return {decay, decay * t};
+}
+
+}  // namespace
+
+Real dampedOscillatorRate(Real w2, Real zw, Real x, Real u, Real t) {
+  const auto [eC, eS] = decayedModes(w2, zw, t);
+  return u * eC - (zw * u + w2 * x) * eS;
+}
+
+// The exact solution sampled every h obeys x_{n+1} = T x_n - D x_{n-1} with D = exp(-2 zeta w h)
+// and T = 2 exp(-zeta w h) C(h) (the amplification's determinant and trace). Symplectic Euler,
+// x_{n+1} - 2 x_n + x_{n-1} = -h^2 (w2' x_n + 2 zw' v_{n-1/2}) with v_{n-1/2} = (x_n - x_{n-1}) /
+// h, obeys the same recurrence for w2' = (1 + D - T) / h^2 and 2 zw' = (1 - D) / h.
+ExactStepSpring exactStepSpring(Real w2, Real zw, Real h) {
+  ExactStepSpring e;
+  // 1 - D without cancellation; 1 + D - T loses eps / (w h)^2 of its value, so below
+  // (w h)^2 = 1e-8 the spring itself (relative difference (w h)^2 / 12).
+  e.damping = zw * h > 1e-300 ? -std::expm1(-2 * zw * h) / h : 2 * zw;
+  if (w2 * h * h < 1e-8) {
+    e.stiffness = w2;
+  } else {
+    const Real eC = decayedModes(w2, zw, h).first;
+    e.stiffness = (1 + std::exp(-2 * zw * h) - 2 * eC) / (h * h);
+  }
+  return e;
 }
 
 }  // namespace mpm_sdem

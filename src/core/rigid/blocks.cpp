@@ -209,16 +209,19 @@ Vec2 Blocks::velocityAt(int s, const Vec2& p) const {
   return st.velocity + st.angular_velocity * Vec2(-r.y(), r.x());
 }
 
-Mat2 Blocks::inverseMass(int s, const Vec2& x) const {
-  if (!movable(s)) return Mat2::Zero();
+Eigen::Matrix<Real, 3, 1> Blocks::inverseMasses(int s) const {
+  if (!movable(s)) return Eigen::Matrix<Real, 3, 1>::Zero();
   const Body& b = bodies_[owner(s)];
-  const Vec2 r = x - b.state.position;
-  const Vec2 rp(-r.y(), r.x());
   // A held component (a drive) does not yield: infinite mass along it.
-  const Vec2 translation(b.drive.hold_vx ? 0 : 1 / b.mass.mass,
-                         b.drive.hold_vy ? 0 : 1 / b.mass.mass);
-  const Real rotation = b.drive.hold_angular ? 0 : 1 / b.mass.inertia;
-  return Mat2(translation.asDiagonal()) + rp * rp.transpose() * rotation;
+  return {b.drive.hold_vx ? 0 : 1 / b.mass.mass, b.drive.hold_vy ? 0 : 1 / b.mass.mass,
+          b.drive.hold_angular ? 0 : 1 / b.mass.inertia};
+}
+
+Mat2 Blocks::inverseMass(int s, const Vec2& x) const {
+  const Eigen::Matrix<Real, 3, 1> w = inverseMasses(s);
+  const Vec2 r = x - bodies_[owner(s)].state.position;
+  const Vec2 rp(-r.y(), r.x());
+  return Mat2(w.head<2>().asDiagonal()) + rp * rp.transpose() * w.z();
 }
 
 Real Blocks::lightestMass() const {

@@ -6,6 +6,8 @@
 
 #include <box2d/b2_dynamic_tree.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <cstdint>
 #include <memory>
 #include <utility>
@@ -17,6 +19,12 @@ namespace mpm_sdem::detail {
 
 class PenaltyContacts {
  public:
+  using Rates = Eigen::Matrix<Real, 6, 1>;
+  // A pair's springs: a face meets a face with four; more means the outlines passed through.
+  static constexpr int kMaxSprings = 16;
+  using Matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxSprings, kMaxSprings>;
+  using Vector = Eigen::Matrix<Real, Eigen::Dynamic, 1, 0, kMaxSprings, 1>;
+
   explicit PenaltyContacts(const BlockContactDef& def) : def_(def) {}
   // Adds the springs' forces on every block (Blocks::addContactForce) for a substep of h.
   void apply(Blocks& blocks, Real h);
@@ -31,6 +39,9 @@ class PenaltyContacts {
     Real xi;      // overlap (m)
     int vertex;   // index of the vertex in its shape
     int side;     // 0: a vertex of the first shape of the pair
+    // Its normal rate (the vertex's side moving away) as a row acting on the two blocks'
+    // velocities (v_x, v_y, w of the first shape's block, then the second's).
+    Rates rate;
   };
   // A tangential spring's name across steps and removals: the two shapes' keys, the vertex and
   // the side.
@@ -50,6 +61,9 @@ class PenaltyContacts {
     ar(history_);  // the tangential springs' stretch
   }
   void pair(Blocks& blocks, int p, int q, Real h);
+  // The springs' pushes (N/m, may be negative) over a substep h: springs_' rates set, then
+  // their modes integrated exactly.
+  const Vector& pairPush(const Blocks& blocks, int p, int q, Real gamma, Real h);
   // The broad phase: block pairs whose boxes overlap, at least one of them dynamic, into
   // pairs_ in the order (i < j) of the list, as a loop over all pairs would give them.
   void findPairs(const Blocks& blocks);
@@ -58,6 +72,8 @@ class PenaltyContacts {
   BlockContactDef def_;
   std::vector<std::pair<Key, Vec2>> history_, next_history_;  // sorted by key
   std::vector<Spring> springs_;                               // one pair's, reused
+  Eigen::SelfAdjointEigenSolver<Matrix> modes_;               // of their A (pairPush)
+  Vector push_;
   // Broad phase: every block's box (m) and its proxy in a Box2D dynamic tree, in Box2D units
   // (whose fattening, 0.1 unit, suits the blocks' sizes). A static block's is placed when the
   // blocks change (Blocks::layoutVersion) and stays; the others move each substep.

@@ -34,4 +34,17 @@ Real contactTimeStep(Real m, Real k, Real zeta, int n, Real kappa2);
 // dt it stops at most what approaches and gives back at most what the spring stored.
 Real clippedSpringImpulse(Real m, Real k, Real c, Real overlap, Real rate, Real dt);
 
+// The rate x'(t) of the free damped oscillator x'' = -w2 x - 2 zw x' (w2 = k / m, zw = c / (2 m),
+// both >= 0) from x(0) = x and x'(0) = u, in closed form for any t: the spring may pull.
+Real dampedOscillatorRate(Real w2, Real zw, Real x, Real u, Real t);
+
+// The spring and dashpot per unit mass (1/s^2, 1/s) with which symplectic Euler at step h
+// (v += h a, then x += h v: Box2D's and the MPM's) lands exactly on the oscillator
+// x'' = -w2 x - 2 zw x' at every step, however large h: both tend to w2 and 2 zw as h -> 0.
+struct ExactStepSpring {
+  Real stiffness = 0;
+  Real damping = 0;
+};
+ExactStepSpring exactStepSpring(Real w2, Real zw, Real h);
+
 }  // namespace mpm_sdem

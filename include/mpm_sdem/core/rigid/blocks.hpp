@@ -193,6 +193,9 @@ class Blocks final : public ContactBodies {
   Real mass(int s) const override;
   Vec2 velocityAt(int s, const Vec2& x) const override;
   Mat2 inverseMass(int s, const Vec2& x) const override;
+  // Shape s's block's inverse mass along x and y and inverse inertia (1/kg, 1/kg, 1/(kg m^2)),
+  // zero along what does not yield (a static or kinematic block, a held drive component).
+  Eigen::Matrix<Real, 3, 1> inverseMasses(int s) const;
   // Lightest dynamic block (kg/m), infinite when there is none.
   Real lightestMass() const override;
   Real maxDampingRatio() const override { return max_zeta_; }
