@@ -221,11 +221,12 @@ TEST(PenaltyRestitution, AsAskedForEveryContact) {
   }
 }
 
-// The same drops at the substep a scene takes (the bound at the default kappa_2 = 0.1, ten or
-// more substeps per half period of the stiffest mode). Each mode is stepped exactly
-// (exactStepSpring), so what remains is where within a substep the contact starts and ends:
-// measured, the rebound is off by at most 0.0036 of the impact speed (face, e = 0.2). Bound:
-// 0.01, below the 0.025 the explicit dashpots missed by at their own bound (disk, e = 0.2).
+// The same drops at the substep a scene takes (the bound at the default kappa_2 = 0.1: the
+// explicit dashpots' bound, or half the undamped one where that is longer). Each mode is stepped
+// exactly (exactStepSpring), so what remains is where within a substep the contact starts and
+// ends. Measured: the rebound is off by at most 0.0154 of the impact speed (disk, e = 0.5; the
+// boxes 0.0099), 0.0036 where the substep is half the undamped bound (e <= 0.2 for the boxes).
+// The explicit dashpots at the same substep missed by 0.025 (disk, e = 0.2). Bound: 0.02.
 TEST(PenaltyRestitution, AsAskedAtTheScenesSubstep) {
   const char* names[] = {"face", "corner", "tilted corner", "edge", "disk"};
   for (Drop drop : {Drop::kFace, Drop::kCorner, Drop::kTiltedCorner, Drop::kEdge, Drop::kDisk}) {
@@ -233,7 +234,7 @@ TEST(PenaltyRestitution, AsAskedAtTheScenesSubstep) {
       const Real got = penaltyRestitution(drop, e, 0.1);
       std::printf("%-14s e %.2f at the bound: %.5f (%+.4f)\n", names[static_cast<int>(drop)], e,
                   got, got - e);
-      EXPECT_NEAR(got, e, 0.01) << names[static_cast<int>(drop)];
+      EXPECT_NEAR(got, e, 0.02) << names[static_cast<int>(drop)];
     }
   }
 }

@@ -1,9 +1,9 @@
 // Chooses the OpenMP thread count of a long run from measured step times. While another process
 // loads a core, every parallel region waits for the thread that shares it with that process: the
 // default scene ran at 0.006-0.06 x real time on two threads against 1.2 x on one (issue 16). So
-// the tuner keeps the fastest count it has measured and, every kPeriod seconds, tries the next
-// smaller or larger count for a few steps (the first, and the one after a
-// switch, after kFirstTrial s), and switches when that is at least 15% faster. A trial that is
+// the tuner starts on one thread, keeps the fastest count it has measured and, every kPeriod
+// seconds, tries the next smaller or larger count for a few steps (the first, and the one after
+// a switch, after kFirstTrial s), and switches when that is at least 15% faster. A trial that is
 // clearly slower ends early, so a bad count costs little.
 #pragma once
 
@@ -21,7 +21,8 @@ class ThreadTuner {
   static constexpr int kTrialSteps = 10;
   static constexpr double kGain = 0.85;  // a trial must take under this fraction of the time
 
-  // max_threads: the most to use (1 keeps one thread and never tries another count).
+  // max_threads: the most to use (1 keeps one thread and never tries another count); it starts
+  // on one.
   explicit ThreadTuner(int max_threads);
   // Sets the OpenMP thread count for the coming step.
   void beforeStep();

@@ -220,12 +220,22 @@ const PenaltyContacts::Vector& PenaltyContacts::pairPush(const Blocks& B, int i,
     overlap(r) = s.xi;
     closing(r) = -s.rate.dot(u);
   }
+  const Real k = def_.normal_stiffness;
+  if (n == 1) {  // one mode: the spring's own
+    const Real lambda = springs_[0].rate.dot(w.cwiseProduct(springs_[0].rate));
+    push_.resize(1);
+    push_(0) = k * overlap(0) + gamma * closing(0);
+    if (lambda > 0) {
+      const ExactStepSpring e = exactStepSpring(lambda * k, lambda * gamma / 2, h);
+      push_(0) = (e.stiffness * overlap(0) + e.damping * closing(0)) / lambda;
+    }
+    return push_;
+  }
   Matrix A(n, n);
   for (int r = 0; r < n; ++r)
     for (int c = 0; c <= r; ++c)
       A(r, c) = A(c, r) = springs_[r].rate.dot(w.cwiseProduct(springs_[c].rate));
   modes_.compute(A);
-  const Real k = def_.normal_stiffness;
   const Vector x = modes_.eigenvectors().transpose() * overlap;
   const Vector v = modes_.eigenvectors().transpose() * closing;
   Vector force(n);
@@ -249,16 +259,19 @@ Real PenaltyContacts::stableStep(const Blocks& B, Real kappa2) const {
   // velocity at a contact point, v_n + w (r x n), squared is at most 2 E (1/M + (r x n)^2 / I)
   // <= 2 E / m_c (Cauchy-Schwarz), |r x n| being at most the distance to the farthest core vertex
   // (the contact point lies off the core only along n). So n springs between blocks a and b
-  // vibrate at w^2 <= n k_n (1/m_c,a + 1/m_c,b). A pair's modes are stepped exactly (pairPush)
-  // but several pairs add up explicitly: the undamped bound (w h <= 2), the dashpots setting
-  // none, halved because a contact starts and ends between substeps. At the full bound the
-  // Drucker-Prager wooden-block scene (subcycled) moved block 1 by 0.42 cm from kappa_2 = 0.1 to
-  // 0.025; at half of it by 0.16 cm (SubcycledContact test).
-  // The bound: n springs between two of the blocks with the smallest m_c. Two spheropolygons
-  // meet with at most four springs (a face, eq. 39); a cluster with at most one per disc pair,
-  // and a disc of one cluster meets at most two discs of another along a face (staggered), so
-  // twice its discs.
-  Real m_c = std::numeric_limits<Real>::infinity();
+  // vibrate at w^2 <= n k_n (1/m_c,a + 1/m_c,b). A pair's modes are stepped exactly (pairPush),
+  // so its dashpots bound nothing, but several pairs add up explicitly (the undamped bound,
+  // w h <= 2) and a contact starts and ends between substeps. So the substep is the bound the
+  // explicit dashpots allowed (contactTimeStep with the damping ratio zeta sqrt(rho): a mode w
+  // of a pair whose dashpot is sized on w_c has the ratio zeta w / w_c, at most zeta sqrt(rho)
+  // with rho = M / m_c), but at least half the undamped one. At the full undamped bound the
+  // Drucker-Prager wooden-block scene (subcycled, e = 0.05) moved block 1 by 0.42 cm from
+  // kappa_2 = 0.1 to 0.025; at half of it by 0.25 cm (SubcycledContact test).
+  // The bound: n springs between two of the blocks with the smallest m_c, with the largest rho
+  // and damping ratio. Two spheropolygons meet with at most four springs (a face, eq. 39); a
+  // cluster with at most one per disc pair, and a disc of one cluster meets at most two discs of
+  // another along a face (staggered), so twice its discs.
+  Real m_c = std::numeric_limits<Real>::infinity(), rho = 1;
   int springs = 4;
   for (int b = 0; b < B.count(); ++b) {
     if (!B.movable(B.firstShape(b))) continue;
@@ -267,10 +280,14 @@ Real PenaltyContacts::stableStep(const Blocks& B, Real kappa2) const {
     for (const Spheropolygon& part : B.parts(b))
       for (const Vec2& v : part.core) r2 = std::fmax(r2, (v - m.centroid).squaredNorm());
     m_c = std::fmin(m_c, 1 / (1 / m.mass + r2 / m.inertia));
+    rho = std::fmax(rho, 1 + m.mass * r2 / m.inertia);
     if (B.shapesOf(b) > 1) springs = std::max(springs, 2 * B.shapesOf(b));
   }
   if (!std::isfinite(m_c)) return std::numeric_limits<Real>::infinity();
-  return 0.5 * contactTimeStep(0.5 * m_c, def_.normal_stiffness, 0, springs, kappa2);
+  const Real k = def_.normal_stiffness;
+  return std::fmax(
+      contactTimeStep(0.5 * m_c, k, B.maxDampingRatio() * std::sqrt(rho), springs, kappa2),
+      0.5 * contactTimeStep(0.5 * m_c, k, 0, springs, kappa2));
 }
 
 }  // namespace mpm_sdem::detail
