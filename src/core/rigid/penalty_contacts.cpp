@@ -6,9 +6,6 @@
 #include <limits>
 #include <tuple>
 
-#include <stdexcept>
-#include <string>
-
 #include "mpm_sdem/core/coupling/restitution.hpp"
 
 namespace mpm_sdem::detail {
@@ -125,7 +122,7 @@ void PenaltyContacts::pair(Blocks& B, int i, int j, Real h) {
       if (xi <= 0) continue;
       // Eq. 41: the middle of the overlap along the normal (which points from b to a).
       springs_.push_back(
-          {X - (B.rounding(a) - xi / 2) * c.normal, c.normal, xi, k, side, Rates::Zero()});
+          {X - (B.rounding(a) - xi / 2) * c.normal, c.normal, xi, k, side, Rates::Zero(), 0});
     }
   }
   if (springs_.empty()) return;
@@ -146,7 +143,7 @@ void PenaltyContacts::pair(Blocks& B, int i, int j, Real h) {
   // The less elastic side sets the damping (the smaller restitution, the larger ratio).
   const Real gamma = 2 * std::max(B.dampingRatio(i), B.dampingRatio(j)) *
                      std::sqrt(count * def_.normal_stiffness / inverse_mass) / count;
-  const Vector& push_each = pairPush(B, i, j, gamma, h);
+  pairPush(B, i, j, gamma, h);
   const Real mu = std::min(B.friction(i), B.friction(j));
   // Adhesion (seed 003 sec. 4.3): c over the length the outlines touch, the spread of the
   // springs' points across the normal (a face's length; zero on a vertex or a disk), shared by
@@ -168,7 +165,7 @@ void PenaltyContacts::pair(Blocks& B, int i, int j, Real h) {
     const int a = s.side == 0 ? i : j, b = s.side == 0 ? j : i;
     const Vec2 v = B.velocityAt(a, s.point) - B.velocityAt(b, s.point);
     const Real vn = v.dot(s.normal);
-    const Real push = std::fmax(push_each(&s - springs_.data()), Real(0));
+    const Real push = std::fmax(s.push, Real(0));
     const Key key{key_i, key_j, s.vertex, s.side};
     Vec2 delta(0, 0);
     const auto it =
@@ -189,68 +186,57 @@ void PenaltyContacts::pair(Blocks& B, int i, int j, Real h) {
   }
 }
 
-const PenaltyContacts::Vector& PenaltyContacts::pairPush(const Blocks& B, int i, int j, Real gamma,
-                                                         Real h) {
+void PenaltyContacts::pairPush(const Blocks& B, int i, int j, Real gamma, Real h) {
   // The pair's springs and dashpots as if the two blocks met nothing else. In the springs'
   // overlaps xi (J their rates on the blocks' velocities u, W the inverse masses),
   // xi'' = -A (k xi + gamma xi') with A = J W J^T: springs and dashpots share A (Rayleigh
   // damping), so the eigenvectors of A are the pair's modes (pressing, rocking), each a damped
   // oscillator of w^2 = lambda k and 2 zeta w = lambda gamma. Each mode's spring and dashpot are
   // the ones with which the blocks' symplectic Euler lands on its exact motion at every substep
-  // (exactStepSpring): the restitution does not move with the substep, and the dashpots set no
-  // bound on it (explicit ones bounded it 7 times lower at e = 0.05).
+  // (exactStepSpring): the restitution does not move with the substep, and the dashpots need
+  // not bound it (stableStep; explicit ones bounded it 7 times lower at e = 0.05).
   const int n = static_cast<int>(springs_.size());
-  if (n > kMaxSprings)
-    throw std::runtime_error("blocks '" + B.def(B.owner(i)).name + "' and '" +
-                             B.def(B.owner(j)).name + "' overlap at " + std::to_string(n) +
-                             " vertices (at most " + std::to_string(kMaxSprings) +
-                             "): they have passed through each other; lower time.contact_factor");
   const BlockState& si = B.state(B.owner(i));
   const BlockState& sj = B.state(B.owner(j));
   Rates u, w;
   u << si.velocity, si.angular_velocity, sj.velocity, sj.angular_velocity;
   w << B.inverseMasses(i), B.inverseMasses(j);
-  Vector overlap(n), closing(n);
-  for (int r = 0; r < n; ++r) {
-    Spring& s = springs_[r];
+  for (Spring& s : springs_) {
     const Real sign = s.side == 0 ? 1 : -1;  // +1 on the vertex's block
     const Vec2 ri = s.point - si.position, rj = s.point - sj.position;
     s.rate << sign * s.normal, sign * s.normal.dot(Vec2(-ri.y(), ri.x())), -sign * s.normal,
         -sign * s.normal.dot(Vec2(-rj.y(), rj.x()));
-    overlap(r) = s.xi;
-    closing(r) = -s.rate.dot(u);
   }
   const Real k = def_.normal_stiffness;
-  if (n == 1) {  // one mode: the spring's own
-    const Real lambda = springs_[0].rate.dot(w.cwiseProduct(springs_[0].rate));
-    push_.resize(1);
-    push_(0) = k * overlap(0) + gamma * closing(0);
-    if (lambda > 0) {
-      const ExactStepSpring e = exactStepSpring(lambda * k, lambda * gamma / 2, h);
-      push_(0) = (e.stiffness * overlap(0) + e.damping * closing(0)) / lambda;
-    }
-    return push_;
+  // A mode of inverse mass lambda, overlap x and closing rate v: its push. A mode nothing moves
+  // (a held or static side) takes the spring and dashpot themselves.
+  auto push = [&](Real lambda, Real x, Real v) {
+    if (!(lambda > 0)) return k * x + gamma * v;
+    const ExactStepSpring e = exactStepSpring(lambda * k, lambda * gamma / 2, h);
+    return (e.stiffness * x + e.damping * v) / lambda;
+  };
+  if (n == 1 || n > kMaxSprings) {
+    // One spring: its own mode. More than a face's four many times over: outlines that passed
+    // through each other, each spring stepped as if alone (no worse than explicit dashpots).
+    for (Spring& s : springs_)
+      s.push = push(s.rate.dot(w.cwiseProduct(s.rate)), s.xi, -s.rate.dot(u));
+    return;
   }
   Matrix A(n, n);
-  for (int r = 0; r < n; ++r)
+  Vector overlap(n), closing(n);
+  for (int r = 0; r < n; ++r) {
+    overlap(r) = springs_[r].xi;
+    closing(r) = -springs_[r].rate.dot(u);
     for (int c = 0; c <= r; ++c)
       A(r, c) = A(c, r) = springs_[r].rate.dot(w.cwiseProduct(springs_[c].rate));
+  }
   modes_.compute(A);
   const Vector x = modes_.eigenvectors().transpose() * overlap;
   const Vector v = modes_.eigenvectors().transpose() * closing;
   Vector force(n);
-  for (int m = 0; m < n; ++m) {
-    const Real lambda = modes_.eigenvalues()(m);
-    Real spring = k, dashpot = gamma;  // a mode nothing moves (a held or static side)
-    if (lambda > 0) {
-      const ExactStepSpring e = exactStepSpring(lambda * k, lambda * gamma / 2, h);
-      spring = e.stiffness / lambda;
-      dashpot = e.damping / lambda;
-    }
-    force(m) = spring * x(m) + dashpot * v(m);
-  }
-  push_ = modes_.eigenvectors() * force;
-  return push_;
+  for (int m = 0; m < n; ++m) force(m) = push(modes_.eigenvalues()(m), x(m), v(m));
+  const Vector each = modes_.eigenvectors() * force;
+  for (int r = 0; r < n; ++r) springs_[r].push = each(r);
 }
 
 Real PenaltyContacts::stableStep(const Blocks& B, Real kappa2) const {

@@ -42,6 +42,7 @@ class PenaltyContacts {
     // Its normal rate (the vertex's side moving away) as a row acting on the two blocks'
     // velocities (v_x, v_y, w of the first shape's block, then the second's).
     Rates rate;
+    Real push;  // N/m, before the cap at zero (pairPush)
   };
   // A tangential spring's name across steps and removals: the two shapes' keys, the vertex and
   // the side.
@@ -61,9 +62,9 @@ class PenaltyContacts {
     ar(history_);  // the tangential springs' stretch
   }
   void pair(Blocks& blocks, int p, int q, Real h);
-  // The springs' pushes (N/m, may be negative) over a substep h: springs_' rates set, then
-  // their modes integrated exactly.
-  const Vector& pairPush(const Blocks& blocks, int p, int q, Real gamma, Real h);
+  // The springs' rates and pushes (N/m, may be negative) for a substep h, each mode of the pair
+  // stepped exactly.
+  void pairPush(const Blocks& blocks, int p, int q, Real gamma, Real h);
   // The broad phase: block pairs whose boxes overlap, at least one of them dynamic, into
   // pairs_ in the order (i < j) of the list, as a loop over all pairs would give them.
   void findPairs(const Blocks& blocks);
@@ -73,7 +74,6 @@ class PenaltyContacts {
   std::vector<std::pair<Key, Vec2>> history_, next_history_;  // sorted by key
   std::vector<Spring> springs_;                               // one pair's, reused
   Eigen::SelfAdjointEigenSolver<Matrix> modes_;               // of their A (pairPush)
-  Vector push_;
   // Broad phase: every block's box (m) and its proxy in a Box2D dynamic tree, in Box2D units
   // (whose fattening, 0.1 unit, suits the blocks' sizes). A static block's is placed when the
   // blocks change (Blocks::layoutVersion) and stays; the others move each substep.
