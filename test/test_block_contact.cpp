@@ -5,11 +5,28 @@
 // test_blocks executable.
 #include <gtest/gtest.h>
 
+#include <tuple>
+#include <utility>
+
 #include "block_helpers.hpp"
 #include "mpm_sdem/core/rigid/block_checks.hpp"
 #include "mpm_sdem/core/rigid/blocks.hpp"
 
 using namespace mpm_sdem;
+
+namespace {
+
+// One RK4 step of x'' = accel(x, x') over h: the reference the closed forms are checked against.
+template <class Accel>
+std::pair<Real, Real> rk4Step(Accel&& accel, Real x, Real v, Real h) {
+  const Real k1x = v, k1v = accel(x, v);
+  const Real k2x = v + h / 2 * k1v, k2v = accel(x + h / 2 * k1x, v + h / 2 * k1v);
+  const Real k3x = v + h / 2 * k2v, k3v = accel(x + h / 2 * k2x, v + h / 2 * k2v);
+  const Real k4x = v + h * k3v, k4v = accel(x + h * k3x, v + h * k3v);
+  return {x + h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x), v + h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v)};
+}
+
+}  // namespace
 
 // The closed form of the no-tension spring-dashpot's restitution against a fine integration of
 // x'' = -x - 2 zeta x' (w = 1, v0 = 1) until the force x + 2 zeta x' vanishes. RK4 at h = 1e-4
@@ -21,12 +38,7 @@ TEST(Restitution, ClosedFormMatchesIntegration) {
     Real x = 0, v = 1;
     const Real h = 1e-4;
     for (;;) {
-      const Real k1x = v, k1v = accel(x, v);
-      const Real k2x = v + h / 2 * k1v, k2v = accel(x + h / 2 * k1x, v + h / 2 * k1v);
-      const Real k3x = v + h / 2 * k2v, k3v = accel(x + h / 2 * k2x, v + h / 2 * k2v);
-      const Real k4x = v + h * k3v, k4v = accel(x + h * k3x, v + h * k3v);
-      const Real xn = x + h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
-      const Real vn = v + h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
+      const auto [xn, vn] = rk4Step(accel, x, v, h);
       const Real f = x + 2 * zeta * v, fn = xn + 2 * zeta * vn;
       if (fn <= 0) {
         const Real t = f / (f - fn);
@@ -72,12 +84,7 @@ TEST(Restitution, ExactImpulseMatchesIntegration) {
           const int n = 200000;
           const Real h = (dt - t) / n;
           for (int i = 0; i < n && x >= 0; ++i) {
-            const Real k1x = v, k1v = accel(x, v);
-            const Real k2x = v + h / 2 * k1v, k2v = accel(x + h / 2 * k1x, v + h / 2 * k1v);
-            const Real k3x = v + h / 2 * k2v, k3v = accel(x + h / 2 * k2x, v + h / 2 * k2v);
-            const Real k4x = v + h * k3v, k4v = accel(x + h * k3x, v + h * k3v);
-            x += h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
-            v += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
+            std::tie(x, v) = rk4Step(accel, x, v, h);
           }
           const Real expected = m * (v_start - v);
           const Real got = clippedSpringImpulse(m, k, c, x0, u0, dt);
@@ -109,14 +116,7 @@ TEST(Restitution, ExactStepSpringLandsOnTheOscillator) {
     const int n = 2000;
     const Real h = t / n;
     auto a = [zeta](Real y, Real s) { return -y - 2 * zeta * s; };
-    for (int i = 0; i < n; ++i) {
-      const Real k1x = v, k1v = a(x, v);
-      const Real k2x = v + h / 2 * k1v, k2v = a(x + h / 2 * k1x, v + h / 2 * k1v);
-      const Real k3x = v + h / 2 * k2v, k3v = a(x + h / 2 * k2x, v + h / 2 * k2v);
-      const Real k4x = v + h * k3v, k4v = a(x + h * k3x, v + h * k3v);
-      x += h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
-      v += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
-    }
+    for (int i = 0; i < n; ++i) std::tie(x, v) = rk4Step(a, x, v, h);
     return std::make_pair(x, v);
   };
   for (Real zeta : {0.0, 0.3, 1.0, 1.8, 5.0}) {
