@@ -480,9 +480,8 @@ StepInfo World::step(Real dt) {
     particleToGrid(true, false);
     foldPeriodic({&grid_.mass, &grid_.mom_x, &grid_.mom_y});
     gridVelocity(0, false);
-    stressAndInternalForce(stress_lag_);
-    sidewallLoad();
-    if (sph_) sphForces();  // before any point moves: the pairs are read at x^n
+    stressAndInternalForce(stress_lag_);  // and the side walls' load
+    if (sph_) sphForces();                // before any point moves: the pairs are read at x^n
     spreadPointLoads();
     stage(&Coupling::addGridForces);
     foldPeriodic({&grid_.force_x, &grid_.force_y, &sidewall_load_});
@@ -778,17 +777,25 @@ void World::foldPeriodic(std::initializer_list<std::vector<Real>*> fields) {
   }
 }
 
-void World::sidewallLoad() {
-  const SidewallsDef& w = def_.domain.sidewalls;
-  if (!(w.width > 0)) return;
-  StageTimer timer(profile_, Stage::kStress);
+Real* World::clearedSidewallLoad() {
+  if (!(def_.domain.sidewalls.width > 0)) return nullptr;
   sidewall_load_.resize(grid_.nodeCount());
   forActiveNodes(tiles_.active, [this](int first, int end) {
     std::fill(sidewall_load_.data() + first, sidewall_load_.data() + end, Real(0));
   });
+  return sidewall_load_.data();
+}
+
+Real World::sidewallCoefficient() const {
+  return 2 * def_.domain.sidewalls.friction / def_.domain.sidewalls.width;
+}
+
+void World::sidewallLoad() {
+  StageTimer timer(profile_, Stage::kStress);
+  Real* load = clearedSidewallLoad();
+  if (!load) return;
   detail::withKernel(def_.solver.kernel, [&](auto k) {
-    detail::sidewallLoad<decltype(k)>(particles_, grid_, tiles_, 2 * w.friction / w.width,
-                                      sidewall_load_.data());
+    detail::sidewallLoad<decltype(k)>(particles_, grid_, tiles_, sidewallCoefficient(), load);
   });
 }
 
@@ -814,7 +821,9 @@ void World::sidewallFriction(Real kick) {
 
 void World::stressAndInternalForce(Real dt) {
   StageTimer timer(profile_, Stage::kStress);
-  detail::stressAndInternalForce(def_.solver.kernel, particles_, grid_, tiles_, params_, dt);
+  detail::SidewallLoad walls;
+  if (Real* load = clearedSidewallLoad()) walls = {sidewallCoefficient(), load};
+  detail::stressAndInternalForce(def_.solver.kernel, particles_, grid_, tiles_, params_, dt, walls);
 }
 
 void World::gridToParticle(Real dt, StepInfo& info) {

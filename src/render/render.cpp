@@ -107,16 +107,46 @@ VideoRecorder::VideoRecorder(const std::string& path, double fps, const RenderDe
     throw std::runtime_error("OpenCV cannot write the video " + path +
                              " (use a .avi, .mp4 or .mkv name in a writable directory)");
   }
+  encoder_ = std::thread([this] { encode(); });
+}
+
+VideoRecorder::~VideoRecorder() {
+  close();
 }
 
 void VideoRecorder::record(const World& world) {
   if (!writer_.isOpened() || !frames_due_.due(world.time())) return;
   renderWorld(world, def_, frame_);
-  writer_.write(frame_);
+  std::unique_lock<std::mutex> lock(mutex_);
+  changed_.wait(lock, [this] { return queue_.size() < kQueued; });
+  queue_.push_back(frame_.clone());
+  changed_.notify_all();
   ++frames_;
 }
 
+void VideoRecorder::encode() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  for (;;) {
+    changed_.wait(lock, [this] { return closing_ || !queue_.empty(); });
+    if (queue_.empty()) return;  // closing, and every frame written
+    const cv::Mat frame = std::move(queue_.front());
+    queue_.pop_front();
+    changed_.notify_all();
+    lock.unlock();
+    writer_.write(frame);
+    lock.lock();
+  }
+}
+
 void VideoRecorder::close() {
+  if (encoder_.joinable()) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      closing_ = true;
+    }
+    changed_.notify_all();
+    encoder_.join();
+  }
   writer_.release();
 }
 

@@ -221,11 +221,16 @@ class World {
   // Local damping on the whole of a step's velocity change, for a coupling that changes the
   // velocities after the update (its impulses are part of the force the damping must see).
   void dampVelocityChange(Real kick);
+  // USF: with side walls, the new pressure's wall load too (one pass over the points).
   void stressAndInternalForce(Real dt);
   // The side walls' friction (SidewallsDef): what the points' pressure lets the walls resist on
-  // each node (after the stress), then that resistance on the nodes' velocities after the kick.
+  // each node (after the stress; sidewallLoad for USL, stressAndInternalForce for USF), then
+  // that resistance on the nodes' velocities after the kick.
   void sidewallLoad();
   void sidewallFriction(Real kick);
+  // The wall load's nodes zeroed where points are (nullptr: no side walls), and 2 mu_w / W (1/m).
+  Real* clearedSidewallLoad();
+  Real sidewallCoefficient() const;
   // Periodic in x: nodes i and i + cells_x are one node, so each gets the sum of both.
   void foldPeriodic(std::initializer_list<std::vector<Real>*> fields);
   bool periodicX() const { return def_.domain.left.type == WallType::kPeriodic; }

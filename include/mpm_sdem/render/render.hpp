@@ -3,9 +3,13 @@
 // Used for the node's ~image topic and for videos. Not part of the core.
 #pragma once
 
+#include <condition_variable>
+#include <deque>
+#include <mutex>
 #include <opencv2/core.hpp>
 #include <opencv2/videoio.hpp>
 #include <string>
+#include <thread>
 
 #include "mpm_sdem/core/sample_clock.hpp"
 #include "mpm_sdem/core/world.hpp"
@@ -28,24 +32,39 @@ std::string videoPathProblem(const std::string& path);
 
 // Writes frames every 1/fps s of simulation time, played back at fps: the video runs in
 // simulation time. The container follows the file name (.avi: MJPG, .mp4: mp4v, .mkv: FFV1).
-
+// Frames are drawn on the caller's thread (they read the world) and encoded on a thread of the
+// recorder's own, as rosbag record writes on its own thread: the simulation does not wait for the
+// codec. At most kQueued frames wait; a full queue makes record() wait, so no frame is dropped.
 class VideoRecorder {
  public:
   // Throws std::runtime_error when OpenCV cannot open a writer for path.
   VideoRecorder(const std::string& path, double fps, const RenderDef& def, const World& world);
+  ~VideoRecorder();
+  VideoRecorder(const VideoRecorder&) = delete;
+  VideoRecorder& operator=(const VideoRecorder&) = delete;
   // Adds a frame if one is due at the world's current time.
   void record(const World& world);
+  // Encodes the frames still queued and closes the file; idempotent.
   void close();
   int frames() const { return frames_; }
   const std::string& path() const { return path_; }
 
+  static constexpr std::size_t kQueued = 4;
+
  private:
+  void encode();  // the encoder thread
+
   cv::VideoWriter writer_;
   RenderDef def_;
   std::string path_;
   SampleClock frames_due_;
   int frames_ = 0;
   cv::Mat frame_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<cv::Mat> queue_;  // drawn, not yet encoded
+  bool closing_ = false;
+  std::thread encoder_;  // last: started once the rest is in place
 };
 
 }  // namespace mpm_sdem::render

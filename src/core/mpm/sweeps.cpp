@@ -108,10 +108,12 @@ void particleToGrid(const Particles& P, Grid& G, const Tiles& T) {
 // the stress update over dt with it (skipped when dt = 0, the first step), then the internal
 // force of the new stress onto the same nodes (eq. 13).
 // The SPH particles of the transition band lend the nodes their stress, which the SPH sums
-// updated (seed 001 sec. 4).
+// updated (seed 001 sec. 4). With side walls, the new pressure's wall load onto the same nodes
+// (sidewallForce in transfer.hpp): one pass over the points instead of two.
 template <class K>
 void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
-                            const std::vector<MaterialParams>& materials, Real dt) {
+                            const std::vector<MaterialParams>& materials, Real dt,
+                            SidewallLoad walls) {
   constexpr int S = K::kSupport;
   const Real inv_h = G.inv_h;
   const int nx = G.nx;
@@ -141,6 +143,13 @@ void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
       const Row4 gx = k.dwx * k.wy[j], gy = k.wx * k.dwy[j];
       storeRow(gfx + row, loadRow(gfx + row) - (sxx * gx + sxy * gy));
       storeRow(gfy + row, loadRow(gfy + row) - (sxy * gx + syy * gy));
+    }
+    if (!walls.load) return;
+    const Real f = sidewallForce(P, p, walls.coefficient);
+    if (!(f > 0)) return;
+    for (int j = 0; j < S; ++j) {
+      const int row = (k.base + j) * nx + k.first;
+      storeRow(walls.load + row, loadRow(walls.load + row) + k.wx * (k.wy[j] * f));
     }
   };
   auto band = [&](int p) {
@@ -317,8 +326,10 @@ void ParticleToGrid(KernelType kernel, P2GParts parts, const Particles& P, Grid&
 }
 
 void StressAndInternalForce(KernelType kernel, Particles& P, Grid& G, const Tiles& T,
-                            const std::vector<MaterialParams>& materials, Real dt) {
-  withKernel(kernel, [&](auto k) { stressAndInternalForce<decltype(k)>(P, G, T, materials, dt); });
+                            const std::vector<MaterialParams>& materials, Real dt,
+                            SidewallLoad walls) {
+  withKernel(kernel,
+             [&](auto k) { stressAndInternalForce<decltype(k)>(P, G, T, materials, dt, walls); });
 }
 
 void GridToParticle(KernelType kernel, TransferScheme scheme, bool gradient, Particles& P,
@@ -375,8 +386,9 @@ void particleToGrid(KernelType kernel, P2GParts parts, const Particles& P, Grid&
 }
 
 void stressAndInternalForce(KernelType kernel, Particles& P, Grid& G, const Tiles& T,
-                            const std::vector<MaterialParams>& materials, Real dt) {
-  MPM_SDEM_SWEEP(StressAndInternalForce)(kernel, P, G, T, materials, dt);
+                            const std::vector<MaterialParams>& materials, Real dt,
+                            SidewallLoad walls) {
+  MPM_SDEM_SWEEP(StressAndInternalForce)(kernel, P, G, T, materials, dt, walls);
 }
 
 void gridToParticle(KernelType kernel, TransferScheme scheme, bool gradient, Particles& P,

@@ -36,10 +36,19 @@ struct G2PSettings {
 // P2G over the tiles T (the SPH particles of the transition band included, seed 001 sec. 4).
 void particleToGrid(KernelType kernel, P2GParts parts, const Particles& P, Grid& G, const Tiles& T);
 
+// The side walls' load (transfer.hpp, sidewallForce) a stress sweep adds to load (N per metre,
+// per node; the caller zeroes it), with coefficient 2 mu_w / W; none without load.
+struct SidewallLoad {
+  Real coefficient = 0;  // 1/m
+  Real* load = nullptr;
+};
+
 // USF's middle (seed 000 sec. 2.2): each point's L_p from the pre-kick grid velocity, its stress
-// over dt (none when dt = 0) and the new stress's internal force on the nodes.
+// over dt (none when dt = 0) and the new stress's internal force on the nodes; and, given walls,
+// the new pressure's side-wall load.
 void stressAndInternalForce(KernelType kernel, Particles& P, Grid& G, const Tiles& T,
-                            const std::vector<MaterialParams>& materials, Real dt);
+                            const std::vector<MaterialParams>& materials, Real dt,
+                            SidewallLoad walls = {});
 
 // G2P in the scheme's way, moving every point; with gradient (USL) also L_p from the post-kick
 // velocity. Points outside the domain box are clamped onto it (counted in clamped); a

@@ -158,13 +158,19 @@ inline void updateStresses(Particles& P, const std::vector<MaterialParams>& mate
 // The side walls' friction capacity on the nodes (issue 41, SidewallsDef): each point resists
 // with 2 mu_w p_p V_p / W (coefficient = 2 mu_w / W; p_p its pressure, none in tension), spread
 // like a body force, load_I = sum_p S_Ip coefficient p_p V_p (N per metre of thickness).
+// Point p's part: coefficient p_p V_p, or 0.
+[[gnu::always_inline]] inline Real sidewallForce(const Particles& P, long p, Real coefficient) {
+  const Real pressure = -(P.sxx[p] + P.syy[p] + P.szz[p]) / 3;
+  return pressure > 0 ? coefficient * pressure * P.volume0[p] * P.J[p] : Real(0);
+}
+// The nodes' load from every point (USL: after P2G; USF spreads it with the internal force,
+// sweeps.hpp).
 template <class K>
 void sidewallLoad(const Particles& P, const Grid& G, const Tiles& T, Real coefficient, Real* load) {
   constexpr int S = K::kSupport;
   forEachParticleByColour(T, [&](int p) {
-    const Real pressure = -(P.sxx[p] + P.syy[p] + P.szz[p]) / 3;
-    if (!(pressure > 0)) return;
-    const Real f = coefficient * pressure * P.volume0[p] * P.J[p];
+    const Real f = sidewallForce(P, p, coefficient);
+    if (!(f > 0)) return;
     Real xg, yg;
     Stencil1D sx, sy;
     stencils<K>(G, P.x[p], P.y[p], P.half_size[p], xg, yg, sx, sy);
