@@ -115,10 +115,12 @@ VideoRecorder::~VideoRecorder() {
 }
 
 void VideoRecorder::record(const World& world) {
-  if (!writer_.isOpened() || !frames_due_.due(world.time())) return;
+  if (!encoder_.joinable() || !frames_due_.due(world.time())) return;
   renderWorld(world, def_, frame_);
   std::unique_lock<std::mutex> lock(mutex_);
-  changed_.wait(lock, [this] { return queue_.size() < kQueued; });
+  changed_.wait(lock, [this] { return queue_.size() < kQueued || !failure_.empty(); });
+  // The codec's error reaches the caller, as it did when frames were encoded here.
+  if (!failure_.empty()) throw std::runtime_error("video " + path_ + ": " + failure_);
   queue_.push_back(frame_.clone());
   changed_.notify_all();
   ++frames_;
@@ -133,7 +135,15 @@ void VideoRecorder::encode() {
     queue_.pop_front();
     changed_.notify_all();
     lock.unlock();
-    writer_.write(frame);
+    try {
+      writer_.write(frame);
+    } catch (const std::exception& e) {  // not past the thread (std::terminate, no bag closed)
+      lock.lock();
+      failure_ = e.what();
+      queue_.clear();
+      changed_.notify_all();
+      return;
+    }
     lock.lock();
   }
 }

@@ -42,7 +42,8 @@ class VideoRecorder {
   ~VideoRecorder();
   VideoRecorder(const VideoRecorder&) = delete;
   VideoRecorder& operator=(const VideoRecorder&) = delete;
-  // Adds a frame if one is due at the world's current time.
+  // Adds a frame if one is due at the world's current time. Throws std::runtime_error when the
+  // codec failed on an earlier frame.
   void record(const World& world);
   // Encodes the frames still queued and closes the file; idempotent.
   void close();
@@ -64,6 +65,7 @@ class VideoRecorder {
   std::condition_variable changed_;
   std::deque<cv::Mat> queue_;  // drawn, not yet encoded
   bool closing_ = false;
+  std::string failure_;  // the codec's error; no frame is encoded after it
   std::thread encoder_;  // last: started once the rest is in place
 };
 
