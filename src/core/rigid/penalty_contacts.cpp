@@ -117,13 +117,9 @@ void PenaltyContacts::pair(Blocks& B, int i, int j, Real h) {
     const Real reach = B.rounding(a) + B.rounding(b);
     // A vertex farther than reach from b's core box along x or y is farther than that from the
     // core: no spring, and no distance to compute (a face's far vertices, half of them).
-    Box near{B.coreVertices(b)[0], B.coreVertices(b)[0]};
-    for (int k = 1; k < nb; ++k) {
-      near.min = near.min.cwiseMin(B.coreVertices(b)[k]);
-      near.max = near.max.cwiseMax(B.coreVertices(b)[k]);
-    }
-    near.min.array() -= reach;
-    near.max.array() += reach;
+    Box near = B.bounds(b);
+    near.min.array() -= B.rounding(a);
+    near.max.array() += B.rounding(a);
     for (int k = 0; k < B.coreVertexCount(a); ++k) {
       const Vec2 X = B.coreVertices(a)[k];
       if ((X.array() < near.min.array()).any() || (X.array() > near.max.array()).any()) continue;
