@@ -30,16 +30,16 @@ cv::Size imageSize(const World& world, int width) {
 
 }  // namespace
 
-void renderWorld(const World& world, const RenderDef& def, cv::Mat& image) {
+void takeSnapshot(const World& world, const RenderDef& def, Snapshot& snap) {
   const ColorScale& scale = def.scale;
   if (!(scale.max_value > 0))
     throw std::invalid_argument("renderWorld: the colour scale's top must be > 0 (chooseScale)");
-  const cv::Size size = imageSize(world, def.width);
-  image.create(size, CV_8UC3);
-  image.setTo(detail::kBackground);
+  snap.size = imageSize(world, def.width);
+  snap.time = world.time();
   const DomainDef& dom = world.def().domain;
-  const detail::PixelFrame frame{Vec2(dom.min.x(), dom.max.y()),
-                                 size.width / (dom.max.x() - dom.min.x())};
+  snap.top_left = Vec2(dom.min.x(), dom.max.y());
+  snap.per_metre = snap.size.width / (dom.max.x() - dom.min.x());
+  const detail::PixelFrame frame{snap.top_left, snap.per_metre};
   const Particles& P = world.particles();
   auto value = [&](std::size_t p) -> Real {
     if (scale.color_by == ColorBy::kSpeed) return std::hypot(P.vx[p], P.vy[p]);
@@ -49,47 +49,75 @@ void renderWorld(const World& world, const RenderDef& def, cv::Mat& image) {
   // A point covers its share of a cell: h / sqrt(points per cell), at least one pixel.
   int ppc = 1;
   for (const BodyDef& b : world.def().bodies) ppc = std::max(ppc, b.points_per_cell);
-  const int radius = std::max(
+  snap.radius = std::max(
       1, static_cast<int>(std::lround(0.5 * world.def().cell_size / ppc * frame.per_metre)));
-  const cv::Mat& map = detail::colourMap();
+  snap.points.resize(P.size());
+  snap.colours.resize(P.size());
   for (std::size_t p = 0; p < P.size(); ++p) {
-    const cv::Vec3b c = map.at<cv::Vec3b>(0, detail::colourIndex(value(p), scale.max_value));
-    cv::circle(image, frame(Vec2(P.x[p], P.y[p])), radius, cv::Scalar(c), cv::FILLED);
+    snap.points[p] = frame(Vec2(P.x[p], P.y[p]));
+    snap.colours[p] = static_cast<std::uint8_t>(detail::colourIndex(value(p), scale.max_value));
   }
-  std::vector<detail::NameTag> names;
+  snap.triangles.clear();
+  snap.outlines.clear();
+  snap.movable.clear();
+  snap.names.clear();
+  snap.name_at.clear();
   if (const FemBodies* fem = world.femBodies()) {
-    for (int e = 0; e < fem->totalElements(); ++e) {
-      const std::array<int, 3>& n = fem->elementNodes(e);
-      const cv::Point corners[3] = {frame(fem->position(n[0])), frame(fem->position(n[1])),
-                                    frame(fem->position(n[2]))};
-      cv::fillConvexPoly(image, corners, 3, cv::Scalar(150, 190, 150), cv::LINE_AA);
-    }
+    for (int e = 0; e < fem->totalElements(); ++e)
+      for (const int n : fem->elementNodes(e)) snap.triangles.push_back(frame(fem->position(n)));
     for (int b = 0; b < fem->count(); ++b) {
       Vec2 sum(0, 0);
       for (int k = 0; k < fem->nodeCount(b); ++k) sum += fem->position(fem->firstNode(b) + k);
-      names.push_back({fem->def(b).name, sum / std::max(1, fem->nodeCount(b))});
+      snap.names.push_back(fem->def(b).name);
+      snap.name_at.push_back(sum / std::max(1, fem->nodeCount(b)));
     }
   }
   if (const Blocks* blocks = world.blocks()) {
     for (int s = 0; s < blocks->shapeCount(); ++s) {  // a cluster drawn disc by disc
-      const cv::Scalar colour =
-          blocks->movable(s) ? cv::Scalar(90, 170, 230) : cv::Scalar(170, 170, 170);
       const std::vector<Vec2> core(blocks->coreVertices(s),
                                    blocks->coreVertices(s) + blocks->coreVertexCount(s));
-      std::vector<cv::Point> outline;
+      std::vector<cv::Point>& outline = snap.outlines.emplace_back();
       for (const Vec2& p : roundedOutline(core, blocks->rounding(s), 6))
         outline.push_back(frame(p));
-      cv::fillConvexPoly(image, outline, colour, cv::LINE_AA);
+      snap.movable.push_back(blocks->movable(s));
     }
-    for (int b = 0; b < blocks->count(); ++b)
-      names.push_back({blocks->def(b).name, blocks->state(b).position});
+    for (int b = 0; b < blocks->count(); ++b) {
+      snap.names.push_back(blocks->def(b).name);
+      snap.name_at.push_back(blocks->state(b).position);
+    }
   }
-  if (size.width < detail::kMinOverlayWidth) return;
-  const detail::Layout layout = detail::layoutFor(size, frame);
+}
+
+void drawSnapshot(const Snapshot& snap, const RenderDef& def, cv::Mat& image) {
+  image.create(snap.size, CV_8UC3);
+  image.setTo(detail::kBackground);
+  const cv::Mat& map = detail::colourMap();
+  for (std::size_t p = 0; p < snap.points.size(); ++p)
+    cv::circle(image, snap.points[p], snap.radius,
+               cv::Scalar(map.at<cv::Vec3b>(0, snap.colours[p])), cv::FILLED);
+  for (std::size_t t = 0; t + 2 < snap.triangles.size(); t += 3)
+    cv::fillConvexPoly(image, &snap.triangles[t], 3, cv::Scalar(150, 190, 150), cv::LINE_AA);
+  for (std::size_t s = 0; s < snap.outlines.size(); ++s) {
+    const cv::Scalar colour =
+        snap.movable[s] ? cv::Scalar(90, 170, 230) : cv::Scalar(170, 170, 170);
+    cv::fillConvexPoly(image, snap.outlines[s], colour, cv::LINE_AA);
+  }
+  if (snap.size.width < detail::kMinOverlayWidth) return;
+  const detail::PixelFrame frame{snap.top_left, snap.per_metre};
+  std::vector<detail::NameTag> names;
+  for (std::size_t k = 0; k < snap.names.size(); ++k)
+    names.push_back({snap.names[k], snap.name_at[k]});
+  const detail::Layout layout = detail::layoutFor(snap.size, frame);
   detail::drawNames(image, layout, names, frame);
   detail::drawScaleBar(image, layout);
-  detail::drawTime(image, layout, world.time());
-  detail::drawColorBar(image, layout, scale);
+  detail::drawTime(image, layout, snap.time);
+  detail::drawColorBar(image, layout, def.scale);
+}
+
+void renderWorld(const World& world, const RenderDef& def, cv::Mat& image) {
+  Snapshot snap;
+  takeSnapshot(world, def, snap);
+  drawSnapshot(snap, def, image);
 }
 
 std::string videoPathProblem(const std::string& path) {
@@ -116,26 +144,29 @@ VideoRecorder::~VideoRecorder() {
 
 void VideoRecorder::record(const World& world) {
   if (!encoder_.joinable() || !frames_due_.due(world.time())) return;
-  renderWorld(world, def_, frame_);
+  Snapshot snap;
+  takeSnapshot(world, def_, snap);
   std::unique_lock<std::mutex> lock(mutex_);
   changed_.wait(lock, [this] { return queue_.size() < kQueued || !failure_.empty(); });
   // The codec's error reaches the caller, as it did when frames were encoded here.
   if (!failure_.empty()) throw std::runtime_error("video " + path_ + ": " + failure_);
-  queue_.push_back(frame_.clone());
+  queue_.push_back(std::move(snap));
   changed_.notify_all();
   ++frames_;
 }
 
 void VideoRecorder::encode() {
+  cv::Mat frame;
   std::unique_lock<std::mutex> lock(mutex_);
   for (;;) {
     changed_.wait(lock, [this] { return closing_ || !queue_.empty(); });
     if (queue_.empty()) return;  // closing, and every frame written
-    const cv::Mat frame = std::move(queue_.front());
+    const Snapshot snap = std::move(queue_.front());
     queue_.pop_front();
     changed_.notify_all();
     lock.unlock();
     try {
+      drawSnapshot(snap, def_, frame);
       writer_.write(frame);
     } catch (const std::exception& e) {  // not past the thread (std::terminate, no bag closed)
       lock.lock();

@@ -41,9 +41,11 @@ BagRecorder::BagRecorder(const std::string& path, const RecordDef& def,
   } catch (const rosbag::BagException& e) {
     throw std::runtime_error("cannot write the bag " + path_ + ".active: " + e.what());
   }
+  open_ = true;
   std_msgs::String scene;
   scene.data = scene_text;
   write(def_.ns + "/scene", 0, scene, true);
+  writer_ = std::thread([this] { writeLoop(); });  // last: nothing after it throws
 }
 
 std::string bagPathProblem(const std::string& path) {
@@ -55,26 +57,78 @@ BagRecorder::~BagRecorder() {
 }
 
 template <class M>
-void BagRecorder::write(const std::string& topic, Real t, const M& msg, bool latched) {
+void BagRecorder::write(const std::string& topic, Real t, M msg, bool latched) {
+  boost::shared_ptr<ros::M_string> header;
   if (latched) {
     // A connection header given to rosbag replaces the one it would build: it needs the type,
     // checksum and definition as well, or `rosbag info` calls the bag unindexed.
     namespace mt = ros::message_traits;
-    auto header = boost::make_shared<ros::M_string>();
+    header = boost::make_shared<ros::M_string>();
     (*header)["type"] = mt::DataType<M>::value();
     (*header)["md5sum"] = mt::MD5Sum<M>::value();
     (*header)["message_definition"] = mt::Definition<M>::value();
     (*header)["latching"] = "1";
     (*header)["callerid"] = def_.ns;
-    bag_->write(topic, bagTime(t), msg, header);
-  } else {
-    bag_->write(topic, bagTime(t), msg);
   }
+  auto owned = std::make_shared<const M>(std::move(msg));
+  enqueue([topic, time = bagTime(t), owned, header](rosbag::Bag& bag) {
+    if (header)
+      bag.write(topic, time, *owned, header);
+    else
+      bag.write(topic, time, *owned);
+  });
   ++messages_;
 }
 
+void BagRecorder::throwIfFailed() const {
+  if (!failure_.empty())
+    throw std::runtime_error("cannot write the bag " + path_ + ": " + failure_);
+}
+
+void BagRecorder::enqueue(std::function<void(rosbag::Bag&)> write) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  changed_.wait(lock, [this] { return queue_.size() < kQueued || !failure_.empty(); });
+  throwIfFailed();
+  queue_.push_back(std::move(write));
+  changed_.notify_all();
+}
+
+void BagRecorder::drain() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  changed_.wait(lock, [this] { return (queue_.empty() && writing_ == 0) || !failure_.empty(); });
+  throwIfFailed();
+}
+
+void BagRecorder::writeLoop() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  for (;;) {
+    changed_.wait(lock, [this] { return closing_ || !queue_.empty(); });
+    if (queue_.empty()) return;  // closing, and every message written
+    const std::function<void(rosbag::Bag&)> write = std::move(queue_.front());
+    queue_.pop_front();
+    ++writing_;
+    changed_.notify_all();
+    lock.unlock();
+    std::string error;
+    try {
+      write(*bag_);
+    } catch (const std::exception& e) {  // not past the thread (std::terminate, no bag closed)
+      error = e.what();
+    }
+    lock.lock();
+    --writing_;
+    if (!error.empty()) {
+      failure_ = error;
+      queue_.clear();
+      changed_.notify_all();
+      return;
+    }
+    changed_.notify_all();
+  }
+}
+
 void BagRecorder::blocksChanged(const World& world) {
-  if (!bag_->isOpen()) return;
+  if (!open_) return;
   // The domain's frame and the static blocks, as the node sends them on /tf_static.
   std_msgs::Header header;
   header.stamp = conversions::toRosTime(world.time());
@@ -87,7 +141,7 @@ void BagRecorder::blocksChanged(const World& world) {
 }
 
 void BagRecorder::record(World& world, const conversions::StatsInput& stats) {
-  if (!bag_->isOpen()) return;
+  if (!open_) return;
   if (!started_) {
     started_ = true;
     blocksChanged(world);
@@ -126,7 +180,7 @@ void BagRecorder::record(World& world, const conversions::StatsInput& stats) {
 }
 
 void BagRecorder::checkpoint(World& world) {
-  if (!bag_->isOpen() || world.time() == last_checkpoint_) return;
+  if (!open_ || world.time() == last_checkpoint_) return;
   last_checkpoint_ = world.time();
   mpm_sdem::Checkpoint msg;
   const std::string bytes = saveCheckpoint(world, state_text_);
@@ -141,11 +195,12 @@ void BagRecorder::checkpoint(World& world) {
 }
 
 void BagRecorder::command(const WorldCommand& c) {
-  if (!bag_->isOpen()) return;
+  if (!open_) return;
   write(def_.ns + "/commands", c.time, conversions::toMsg(c, def_.fixed_frame));
 }
 
 void BagRecorder::continueFrom(const std::string& path, Real t) {
+  drain();  // the writer idle: the old run's messages go in here, in order
   rosbag::Bag source;
   try {
     source.open(path, rosbag::bagmode::Read);
@@ -171,7 +226,16 @@ void BagRecorder::continueFrom(const std::string& path, Real t) {
 }
 
 void BagRecorder::close() {
-  if (!bag_ || !bag_->isOpen()) return;
+  if (!open_) return;
+  open_ = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    closing_ = true;
+  }
+  changed_.notify_all();
+  writer_.join();  // every message queued is written (or the first error stopped it)
+  if (!failure_.empty())
+    std::fprintf(stderr, "mpm_sdem: bag %s: %s\n", path_.c_str(), failure_.c_str());
   bag_->close();
   if (std::rename((path_ + ".active").c_str(), path_.c_str()) != 0) {
     std::perror(("mpm_sdem: cannot rename " + path_ + ".active").c_str());

@@ -4,12 +4,14 @@
 #pragma once
 
 #include <condition_variable>
+#include <cstdint>
 #include <deque>
 #include <mutex>
 #include <opencv2/core.hpp>
 #include <opencv2/videoio.hpp>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "mpm_sdem/core/sample_clock.hpp"
 #include "mpm_sdem/core/world.hpp"
@@ -22,9 +24,30 @@ struct RenderDef {
   ColorScale scale;  // chooseScale: fixed for the run
 };
 
-// Draws the world into image (CV_8UC3, BGR), reallocated only when its size changes. The
-// overlays (time, scale bar, colour bar, block names) are left out below 320 px, where they
-// would cover the picture.
+// What a picture shows, read from the world and already in pixels (y down, the domain's top
+// left at 0, 0): taking it is a copy of the points' places and colours, cheap enough for the
+// simulation's thread; drawing it needs no world, so a recorder draws on a thread of its own.
+struct Snapshot {
+  cv::Size size;                                 // px
+  Real time = 0;                                 // s
+  Vec2 top_left{0, 0};                           // m: where pixel (0, 0) is
+  Real per_metre = 1;                            // px/m
+  int radius = 1;                                // px, of a material point's disk
+  std::vector<cv::Point> points;                 // material points
+  std::vector<std::uint8_t> colours;             // their colour map indices (0-255)
+  std::vector<cv::Point> triangles;              // FEM elements, three corners each
+  std::vector<std::vector<cv::Point>> outlines;  // block shapes, rounding included
+  std::vector<bool> movable;                     // per outline: dynamic or kinematic (else grey)
+  std::vector<std::string> names;                // blocks' and FEM bodies' names
+  std::vector<Vec2> name_at;                     // where to write them (m)
+};
+// Fills snapshot (its vectors reused) with what def draws of world now.
+void takeSnapshot(const World& world, const RenderDef& def, Snapshot& snapshot);
+// Draws a snapshot into image (CV_8UC3, BGR), reallocated only when its size changes. The
+// overlays (time, scale bar, colour bar, names) are left out below 320 px, where they would
+// cover the picture.
+void drawSnapshot(const Snapshot& snapshot, const RenderDef& def, cv::Mat& image);
+// Both at once.
 void renderWorld(const World& world, const RenderDef& def, cv::Mat& image);
 
 // "" or why a video cannot be written there (limits::outputFileProblem: .avi, .mp4 or .mkv).
@@ -32,9 +55,10 @@ std::string videoPathProblem(const std::string& path);
 
 // Writes frames every 1/fps s of simulation time, played back at fps: the video runs in
 // simulation time. The container follows the file name (.avi: MJPG, .mp4: mp4v, .mkv: FFV1).
-// Frames are drawn on the caller's thread (they read the world) and encoded on a thread of the
-// recorder's own, as rosbag record writes on its own thread: the simulation does not wait for the
-// codec. At most kQueued frames wait; a full queue makes record() wait, so no frame is dropped.
+// The caller's thread takes a snapshot (it reads the world); a thread of the recorder's own
+// draws and encodes it, as rosbag record writes on its own thread: the simulation waits for
+// neither the drawing nor the codec. At most kQueued frames wait; a full queue makes record()
+// wait, so no frame is dropped.
 class VideoRecorder {
  public:
   // Throws std::runtime_error when OpenCV cannot open a writer for path.
@@ -53,17 +77,16 @@ class VideoRecorder {
   static constexpr std::size_t kQueued = 4;
 
  private:
-  void encode();  // the encoder thread
+  void encode();  // the encoder thread: draws and encodes
 
   cv::VideoWriter writer_;
   RenderDef def_;
   std::string path_;
   SampleClock frames_due_;
   int frames_ = 0;
-  cv::Mat frame_;
   std::mutex mutex_;
   std::condition_variable changed_;
-  std::deque<cv::Mat> queue_;  // drawn, not yet encoded
+  std::deque<Snapshot> queue_;  // taken, not yet drawn and encoded
   bool closing_ = false;
   std::string failure_;  // the codec's error; no frame is encoded after it
   std::thread encoder_;  // last: started once the rest is in place

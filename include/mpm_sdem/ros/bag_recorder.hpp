@@ -4,8 +4,13 @@
 // complete, and one left with it (a killed process) can be recovered with `rosbag reindex`.
 #pragma once
 
+#include <condition_variable>
+#include <deque>
+#include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
 
 #include "mpm_sdem/core/sample_clock.hpp"
 #include "mpm_sdem/core/world.hpp"
@@ -32,6 +37,11 @@ struct RecordDef {
 // "" or why a bag cannot be written there (limits::outputFileProblem: a .bag file).
 std::string bagPathProblem(const std::string& path);
 
+// Messages are made on the caller's thread (they read the world) and written by a thread of the
+// recorder's own, as `rosbag record` does: rosbag seeks and writes the file for every message,
+// a system call each, which the simulation does not wait for. At most kQueued messages wait; a
+// full queue makes the caller wait, so none is dropped. A write's error is thrown on the caller's
+// thread at its next call.
 class BagRecorder {
  public:
   // Throws std::runtime_error with the reason when the file cannot be opened. scene_text is the
@@ -69,12 +79,20 @@ class BagRecorder {
   const std::string& path() const { return path_; }
   long messageCount() const { return messages_; }
 
+  static constexpr std::size_t kQueued = 256;
+
  private:
-  // latched: marks the connection so that `rosbag play` latches it, as the node does live.
+  // Queues msg for topic at time t. latched: marks the connection so that `rosbag play` latches
+  // it, as the node does live.
   template <class M>
-  void write(const std::string& topic, Real t, const M& msg, bool latched = false);
+  void write(const std::string& topic, Real t, M msg, bool latched = false);
+  void enqueue(std::function<void(rosbag::Bag&)> write);
+  void drain();                // waits until every queued message is in the file
+  void writeLoop();            // the writer thread
+  void throwIfFailed() const;  // with mutex_ held
 
   std::unique_ptr<rosbag::Bag> bag_;
+  bool open_ = false;
   RecordDef def_;
   std::string path_;
   std::string state_text_;
@@ -82,7 +100,14 @@ class BagRecorder {
   Real last_checkpoint_ = -1;  // s
   long messages_ = 0;
   bool started_ = false;
-  sensor_msgs::PointCloud2 cloud_, fem_cloud_;  // reused: no allocation per cloud
+  sensor_msgs::PointCloud2 cloud_, fem_cloud_;  // filled in place, copied into the queue
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<std::function<void(rosbag::Bag&)>> queue_;
+  int writing_ = 0;  // taken from the queue, not yet written
+  bool closing_ = false;
+  std::string failure_;  // rosbag's error; nothing is written after it
+  std::thread writer_;
 };
 
 }  // namespace mpm_sdem
