@@ -5,6 +5,7 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <map>
 
@@ -13,7 +14,7 @@
 
 using namespace mpm_sdem;
 
-// 0.05 s of the node's bed scene with the states sampled at every step (10 kHz asks more than
+// 0.1 s of the node's bed scene with the states sampled at every step (10 kHz asks more than
 // the steps give) and a checkpoint every 0.01 s: many more messages than the queue holds
 // (kQueued), made faster than one thread writes them. Read back: as many as were queued, each
 // topic's times increasing, the last states at the run's end, and no .active file left.
@@ -32,8 +33,8 @@ TEST(BagRecorder, EveryMessageQueuedReachesTheBagInOrder) {
     BagRecorder bag(path, def, "scene text", scene.state_text);
     conversions::StatsInput stats;
     bag.record(world, stats);
-    while (world.time() < 0.05 - 1e-12) {
-      world.step(stepTowards(world.chooseTimeStep().dt, 0.05, world.time()));
+    while (world.time() < 0.1 - 1e-12) {
+      world.step(stepTowards(world.chooseTimeStep().dt, 0.1, world.time()));
       bag.record(world, stats);
     }
     bag.close();
@@ -44,6 +45,7 @@ TEST(BagRecorder, EveryMessageQueuedReachesTheBagInOrder) {
   rosbag::Bag read(path, rosbag::bagmode::Read);
   rosbag::View view(read);
   EXPECT_EQ(static_cast<long>(view.size()), queued);
+  std::printf("%ld messages queued, %u in the bag\n", queued, view.size());
   std::map<std::string, ros::Time> last;
   for (const rosbag::MessageInstance& m : view) {
     auto it = last.find(m.getTopic());

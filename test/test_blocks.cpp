@@ -3,6 +3,8 @@
 // conserved in a free collision, and blocks added, moved and removed while running.
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include "block_helpers.hpp"
 #include "mpm_sdem/core/rigid/blocks.hpp"
 #include "mpm_sdem/core/world.hpp"
@@ -157,11 +159,50 @@ TEST(BlockCollision, SubstepsMatchShortSteps) {
   }
 }
 
+// Subcycled springs do not bound the material's step, but one step holds at most 1000 of their
+// substeps: a spawned obstacle too light for its springs (0.2 mm, 1 kg/m^3: the fuzzer's find,
+// 3 steps that took over 10 s) shortens the step instead, as explicit springs do, and a step
+// stays quick.
+TEST(RuntimeBlocks, ALightObstacleShortensTheSubcycledStep) {
+  WorldDef def = loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/test/data/valid.yaml").world;
+  def.coupling.normal_integration = ContactIntegration::kSubcycled;
+  World world(def);
+  const Real material = world.chooseTimeStep().dt;
+  BlockDef grain;
+  grain.name = "grain";
+  grain.core = {Vec2(0, 0)};
+  grain.rounding = 2e-4;
+  grain.density = 1;
+  grain.position = Vec2(0.3, 0.15);
+  ASSERT_EQ(world.placementProblem(grain, false).text(), "");
+  world.addBlock(grain);
+  const TimeStepChoice dt = world.chooseTimeStep();
+  EXPECT_EQ(dt.limit, StepLimit::kContact);
+  EXPECT_LT(dt.dt, material);
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 0; k < 3; ++k) ASSERT_TRUE(world.step(world.chooseTimeStep().dt).finite);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+}
+
 // Blocks added and removed while running (the node's obstacle services), in a scene that started
 // without any: placement is checked, the block falls freely under Box2D's symplectic Euler
-// (v += g dt, then y += v dt) until removed, and the time step follows.
+// (v += g dt, then y += v dt) until removed, and the time step follows: with explicit springs
+// (the default) the block's contact term sets it; subcycled the material's term keeps it.
 TEST(RuntimeBlocks, AddedToASceneWithoutBlocksFallsAndIsRemoved) {
-  World world(loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/test/data/valid.yaml").world);
+  WorldDef def = loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/test/data/valid.yaml").world;
+  {
+    WorldDef sub = def;
+    sub.coupling.normal_integration = ContactIntegration::kSubcycled;
+    World subcycled(sub);
+    BlockDef disk;
+    disk.name = "stone";
+    disk.core = {Vec2(0, 0)};
+    disk.rounding = 0.01;
+    disk.position = Vec2(0.3, 0.15);
+    subcycled.addBlock(disk);
+    EXPECT_EQ(subcycled.chooseTimeStep().limit, StepLimit::kCfl);
+  }
+  World world(def);  // explicit: one Box2D step per step
   ASSERT_EQ(world.blocks(), nullptr);
   EXPECT_EQ(world.chooseTimeStep().limit, StepLimit::kCfl);
   BlockDef disk;

@@ -420,9 +420,14 @@ TimeStepChoice World::stepBound(Real cfl, Real kappa2) const {
   if (fem_ && cfl * fem_->elementStep() < choice.dt)
     choice = {cfl * fem_->elementStep(), StepLimit::kElement};
   // The springs between bodies never bound this step (the bodies take substeps within their
-  // own bound), nor do subcycled coupling springs.
-  if (hasContactBodies() && coupling_->hasSprings() && !coupling_->subcycles()) {
-    const Real dt = springStep(kappa2);
+  // own bound).
+  if (hasContactBodies() && coupling_->hasSprings()) {
+    // Subcycled springs bound their substeps, and a step holds at most kMaxContactSubsteps of
+    // them: a contact too stiff for its mass (a tiny or light obstacle) shortens the step as an
+    // explicit one does, rather than making one step endless (the node refuses such a block
+    // once the step falls below limits::kMinTimeStep).
+    constexpr Real kMaxContactSubsteps = 1000;
+    const Real dt = (coupling_->subcycles() ? kMaxContactSubsteps : 1) * springStep(kappa2);
     if (dt < choice.dt) choice = {dt, StepLimit::kContact};
   }
   return choice;

@@ -139,15 +139,21 @@ CoreDistance closestOnCore(const Vec2* v, int n, const Vec2& q) {
     const Vec2& b = v[(i + 1) % n];
     const Vec2 e = b - a;
     const Real len2 = e.squaredNorm();
-    const Real t = std::fmin(std::fmax((q - a).dot(e) / len2, Real(0)), Real(1));
+    // The edge's parameter clamped to [0, 1] as fmin(fmax(r, 0), 1) would, NaN (a zero-length
+    // edge) to 0, without their calls (this runs for every pair in every contact substep).
+    const Real r = (q - a).dot(e) / len2;
+    const Real t = r > 0 ? (r < 1 ? r : Real(1)) : Real(0);
     const Vec2 c = a + t * e;
     const Real d2 = (q - c).squaredNorm();
     if (d2 < best) {
       best = d2;
       out.point = c;
     }
-    if (n >= 3) {
-      const Vec2 nrm(e.y() / std::sqrt(len2), -e.x() / std::sqrt(len2));
+    // The deepest edge matters only while the point may be inside: one edge it is outside of
+    // settles that.
+    if (inside) {
+      const Real len = std::sqrt(len2);
+      const Vec2 nrm(e.y() / len, -e.x() / len);
       const Real s = (q - a).dot(nrm);
       if (s > 0) inside = false;
       if (s > deepest) {
