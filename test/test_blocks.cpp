@@ -160,9 +160,9 @@ TEST(BlockCollision, SubstepsMatchShortSteps) {
 }
 
 // Subcycled springs do not bound the material's step, but one step holds at most 1000 of their
-// substeps: a spawned obstacle too light for its springs (0.2 mm, 1 kg/m^3: the fuzzer's find,
-// 3 steps that took over 10 s) shortens the step instead, as explicit springs do, and a step
-// stays quick.
+// substeps: a spawned obstacle too light for its springs (here 0.2 mm at 1 kg/m^3; the fuzzer
+// found a light block whose 3 steps took over 10 s) shortens the step instead, as explicit
+// springs do. Without the bound the limit stays the CFL term's.
 TEST(RuntimeBlocks, ALightObstacleShortensTheSubcycledStep) {
   WorldDef def = loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/test/data/valid.yaml").world;
   def.coupling.normal_integration = ContactIntegration::kSubcycled;
