@@ -135,7 +135,11 @@ VideoRecorder::VideoRecorder(const std::string& path, double fps, const RenderDe
     throw std::runtime_error("OpenCV cannot write the video " + path +
                              " (use a .avi, .mp4 or .mkv name in a writable directory)");
   }
-  encoder_ = std::thread([this] { encode(); });
+  encoder_ = std::make_unique<BoundedWorker<Snapshot>>(kQueued, [this](Snapshot& snap) {
+    drawSnapshot(snap, def_, frame_);
+    writer_.write(frame_);
+  });
+  open_ = true;
 }
 
 VideoRecorder::~VideoRecorder() {
@@ -143,51 +147,19 @@ VideoRecorder::~VideoRecorder() {
 }
 
 void VideoRecorder::record(const World& world) {
-  if (!encoder_.joinable() || !frames_due_.due(world.time())) return;
+  if (!open_ || !frames_due_.due(world.time())) return;
   Snapshot snap;
   takeSnapshot(world, def_, snap);
-  std::unique_lock<std::mutex> lock(mutex_);
-  changed_.wait(lock, [this] { return queue_.size() < kQueued || !failure_.empty(); });
   // The codec's error reaches the caller, as it did when frames were encoded here.
-  if (!failure_.empty()) throw std::runtime_error("video " + path_ + ": " + failure_);
-  queue_.push_back(std::move(snap));
-  changed_.notify_all();
+  if (!encoder_->push(std::move(snap)))
+    throw std::runtime_error("video " + path_ + ": " + encoder_->failure());
   ++frames_;
 }
 
-void VideoRecorder::encode() {
-  cv::Mat frame;
-  std::unique_lock<std::mutex> lock(mutex_);
-  for (;;) {
-    changed_.wait(lock, [this] { return closing_ || !queue_.empty(); });
-    if (queue_.empty()) return;  // closing, and every frame written
-    const Snapshot snap = std::move(queue_.front());
-    queue_.pop_front();
-    changed_.notify_all();
-    lock.unlock();
-    try {
-      drawSnapshot(snap, def_, frame);
-      writer_.write(frame);
-    } catch (const std::exception& e) {  // not past the thread (std::terminate, no bag closed)
-      lock.lock();
-      failure_ = e.what();
-      queue_.clear();
-      changed_.notify_all();
-      return;
-    }
-    lock.lock();
-  }
-}
-
 void VideoRecorder::close() {
-  if (encoder_.joinable()) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      closing_ = true;
-    }
-    changed_.notify_all();
-    encoder_.join();
-  }
+  if (!open_) return;
+  open_ = false;
+  encoder_->finish();  // the frames still queued are encoded first
   writer_.release();
 }
 

@@ -41,11 +41,12 @@ BagRecorder::BagRecorder(const std::string& path, const RecordDef& def,
   } catch (const rosbag::BagException& e) {
     throw std::runtime_error("cannot write the bag " + path_ + ".active: " + e.what());
   }
+  writer_ = std::make_unique<BoundedWorker<std::function<void(rosbag::Bag&)>>>(
+      kQueued, [this](std::function<void(rosbag::Bag&)>& write) { write(*bag_); });
   open_ = true;
   std_msgs::String scene;
   scene.data = scene_text;
   write(def_.ns + "/scene", 0, scene, true);
-  writer_ = std::thread([this] { writeLoop(); });  // last: nothing after it throws
 }
 
 std::string bagPathProblem(const std::string& path) {
@@ -80,51 +81,14 @@ void BagRecorder::write(const std::string& topic, Real t, M msg, bool latched) {
   ++messages_;
 }
 
-void BagRecorder::throwIfFailed() const {
-  if (!failure_.empty())
-    throw std::runtime_error("cannot write the bag " + path_ + ": " + failure_);
-}
-
 void BagRecorder::enqueue(std::function<void(rosbag::Bag&)> write) {
-  std::unique_lock<std::mutex> lock(mutex_);
-  changed_.wait(lock, [this] { return queue_.size() < kQueued || !failure_.empty(); });
-  throwIfFailed();
-  queue_.push_back(std::move(write));
-  changed_.notify_all();
+  if (!writer_->push(std::move(write)))
+    throw std::runtime_error("cannot write the bag " + path_ + ": " + writer_->failure());
 }
 
 void BagRecorder::drain() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  changed_.wait(lock, [this] { return (queue_.empty() && writing_ == 0) || !failure_.empty(); });
-  throwIfFailed();
-}
-
-void BagRecorder::writeLoop() {
-  std::unique_lock<std::mutex> lock(mutex_);
-  for (;;) {
-    changed_.wait(lock, [this] { return closing_ || !queue_.empty(); });
-    if (queue_.empty()) return;  // closing, and every message written
-    const std::function<void(rosbag::Bag&)> write = std::move(queue_.front());
-    queue_.pop_front();
-    ++writing_;
-    changed_.notify_all();
-    lock.unlock();
-    std::string error;
-    try {
-      write(*bag_);
-    } catch (const std::exception& e) {  // not past the thread (std::terminate, no bag closed)
-      error = e.what();
-    }
-    lock.lock();
-    --writing_;
-    if (!error.empty()) {
-      failure_ = error;
-      queue_.clear();
-      changed_.notify_all();
-      return;
-    }
-    changed_.notify_all();
-  }
+  if (!writer_->drain())
+    throw std::runtime_error("cannot write the bag " + path_ + ": " + writer_->failure());
 }
 
 void BagRecorder::blocksChanged(const World& world) {
@@ -228,14 +192,9 @@ void BagRecorder::continueFrom(const std::string& path, Real t) {
 void BagRecorder::close() {
   if (!open_) return;
   open_ = false;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    closing_ = true;
-  }
-  changed_.notify_all();
-  writer_.join();  // every message queued is written (or the first error stopped it)
-  if (!failure_.empty())
-    std::fprintf(stderr, "mpm_sdem: bag %s: %s\n", path_.c_str(), failure_.c_str());
+  writer_->finish();  // every message queued is written (or the first error stopped it)
+  if (const std::string failure = writer_->failure(); !failure.empty())
+    std::fprintf(stderr, "mpm_sdem: bag %s: %s\n", path_.c_str(), failure.c_str());
   bag_->close();
   if (std::rename((path_ + ".active").c_str(), path_.c_str()) != 0) {
     std::perror(("mpm_sdem: cannot rename " + path_ + ".active").c_str());

@@ -3,16 +3,14 @@
 // Used for the node's ~image topic and for videos. Not part of the core.
 #pragma once
 
-#include <condition_variable>
 #include <cstdint>
-#include <deque>
-#include <mutex>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <opencv2/videoio.hpp>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "mpm_sdem/core/bounded_worker.hpp"
 #include "mpm_sdem/core/sample_clock.hpp"
 #include "mpm_sdem/core/world.hpp"
 #include "mpm_sdem/render/view.hpp"
@@ -77,19 +75,15 @@ class VideoRecorder {
   static constexpr std::size_t kQueued = 4;
 
  private:
-  void encode();  // the encoder thread: draws and encodes
-
   cv::VideoWriter writer_;
   RenderDef def_;
   std::string path_;
   SampleClock frames_due_;
   int frames_ = 0;
-  std::mutex mutex_;
-  std::condition_variable changed_;
-  std::deque<Snapshot> queue_;  // taken, not yet drawn and encoded
-  bool closing_ = false;
-  std::string failure_;  // the codec's error; no frame is encoded after it
-  std::thread encoder_;  // last: started once the rest is in place
+  bool open_ = false;
+  cv::Mat frame_;  // the encoder's
+  // Draws and encodes the snapshots taken; last: stopped before the writer is released.
+  std::unique_ptr<BoundedWorker<Snapshot>> encoder_;
 };
 
 }  // namespace mpm_sdem::render

@@ -4,14 +4,11 @@
 // complete, and one left with it (a killed process) can be recovered with `rosbag reindex`.
 #pragma once
 
-#include <condition_variable>
-#include <deque>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <thread>
 
+#include "mpm_sdem/core/bounded_worker.hpp"
 #include "mpm_sdem/core/sample_clock.hpp"
 #include "mpm_sdem/core/world.hpp"
 #include "mpm_sdem/ros/conversions.hpp"
@@ -87,9 +84,7 @@ class BagRecorder {
   template <class M>
   void write(const std::string& topic, Real t, M msg, bool latched = false);
   void enqueue(std::function<void(rosbag::Bag&)> write);
-  void drain();                // waits until every queued message is in the file
-  void writeLoop();            // the writer thread
-  void throwIfFailed() const;  // with mutex_ held
+  void drain();  // waits until every queued message is in the file
 
   std::unique_ptr<rosbag::Bag> bag_;
   bool open_ = false;
@@ -101,13 +96,8 @@ class BagRecorder {
   long messages_ = 0;
   bool started_ = false;
   sensor_msgs::PointCloud2 cloud_, fem_cloud_;  // filled in place, copied into the queue
-  std::mutex mutex_;
-  std::condition_variable changed_;
-  std::deque<std::function<void(rosbag::Bag&)>> queue_;
-  int writing_ = 0;  // taken from the queue, not yet written
-  bool closing_ = false;
-  std::string failure_;  // rosbag's error; nothing is written after it
-  std::thread writer_;
+  // Writes the queued messages; last: stopped before the bag is closed.
+  std::unique_ptr<BoundedWorker<std::function<void(rosbag::Bag&)>>> writer_;
 };
 
 }  // namespace mpm_sdem
