@@ -745,6 +745,7 @@ void World::applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const {
         continue;
       }
       const int k = G.index(i, j);
+      if (vx[k] == 0 && vy[k] == 0) continue;  // every wall keeps a node at rest (most are)
       if (i <= left) applyWall(d.left, -1, 0, vx[k], vy[k]);
       if (i >= right) applyWall(d.right, 1, 0, vx[k], vy[k]);
       if (j <= bottom) applyWall(d.bottom, 0, -1, vx[k], vy[k]);
