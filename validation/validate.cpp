@@ -1136,9 +1136,16 @@ void debrisGranular(const Options& o, Results& r) {
     def.coupling.contact_radius = 0;  // the default at this cell size
     std::vector<DebrisRun> runs;
     double wall = 0;
+    // The first member's rotation history (both blocks every 0.01 s), for the report's figure
+    // against seed 003's description.
+    char name[64];
+    std::snprintf(name, sizeof name, "/debris_granular_angles_%.3gmm.csv", 1000 * h);
+    FILE* angles = std::fopen((o.out + name).c_str(), "w");
+    std::fprintf(angles, "time,block2_angle_deg,block1_angle_deg\n");
     for (int m = 0; m < members; ++m) {
-      runs.push_back(
-          runDebris(def, scene.end_time, nullptr, nullptr, 1e-4 * h, static_cast<unsigned>(m + 1)));
+      runs.push_back(runDebris(def, scene.end_time, m == 0 ? angles : nullptr, nullptr, 1e-4 * h,
+                               static_cast<unsigned>(m + 1)));
+      if (m == 0) std::fclose(angles);
       const DebrisRun& run = runs.back();
       std::fprintf(table, "%g,%d,%ld,%ld,%.4g,%.4f,%.4f,%.4f,%.4f,%.2f,%.2f,%.2f,%.2f\n", h, m,
                    run.points, run.steps, run.wall, 100 * run.left2, 100 * run.left1, run.landing2,
