@@ -82,13 +82,15 @@ void BagRecorder::write(const std::string& topic, Real t, M msg, bool latched) {
 }
 
 void BagRecorder::enqueue(std::function<void(rosbag::Bag&)> write) {
-  if (!writer_->push(std::move(write)))
-    throw std::runtime_error("cannot write the bag " + path_ + ": " + writer_->failure());
+  if (!writer_->push(std::move(write))) throwWriteFailure();
 }
 
 void BagRecorder::drain() {
-  if (!writer_->drain())
-    throw std::runtime_error("cannot write the bag " + path_ + ": " + writer_->failure());
+  if (!writer_->drain()) throwWriteFailure();
+}
+
+void BagRecorder::throwWriteFailure() const {
+  throw std::runtime_error("cannot write the bag " + path_ + ": " + writer_->failure());
 }
 
 void BagRecorder::blocksChanged(const World& world) {

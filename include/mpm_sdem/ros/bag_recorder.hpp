@@ -84,7 +84,8 @@ class BagRecorder {
   template <class M>
   void write(const std::string& topic, Real t, M msg, bool latched = false);
   void enqueue(std::function<void(rosbag::Bag&)> write);
-  void drain();  // waits until every queued message is in the file
+  void drain();                                 // waits until every queued message is in the file
+  [[noreturn]] void throwWriteFailure() const;  // the writer's error, on the caller's thread
 
   std::unique_ptr<rosbag::Bag> bag_;
   bool open_ = false;
