@@ -3,6 +3,7 @@
 // still queued and reports its error to the caller; finish() does what is queued first.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <stdexcept>
@@ -18,16 +19,21 @@ using namespace mpm_sdem;
 // done once, in order, never more than 3 waiting.
 TEST(BoundedWorker, DoesEveryJobInOrderThroughAFullQueue) {
   std::vector<int> done;
-  std::atomic<int> pushed{0};
+  std::atomic<int> begun{0};   // push(k) called
+  std::atomic<int> pushed{0};  // push(k) returned
   std::atomic<bool> hold{true};
-  std::size_t most_waiting = 0;
+  int most_waiting = 0;
   BoundedWorker<int> worker(3, [&](int& job) {
     while (hold) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    most_waiting = std::max(most_waiting, static_cast<std::size_t>(pushed - job - 1));
+    // While job runs, push(begun - 1) may still wait, but push(begun - 2) has returned: jobs
+    // job + 1 .. begun - 2 are queued. Counting from `pushed` instead races (the worker may
+    // take a job before its push() returns) and could go below zero.
+    most_waiting = std::max(most_waiting, begun - job - 2);
     done.push_back(job);
   });
   std::thread producer([&] {
     for (int k = 0; k < 200; ++k) {
+      ++begun;
       if (!worker.push(k)) return;
       ++pushed;
     }
@@ -40,7 +46,7 @@ TEST(BoundedWorker, DoesEveryJobInOrderThroughAFullQueue) {
   ASSERT_TRUE(worker.drain());
   ASSERT_EQ(done.size(), 200u);
   for (int k = 0; k < 200; ++k) EXPECT_EQ(done[k], k);
-  EXPECT_LE(most_waiting, 3u);
+  EXPECT_LE(most_waiting, 3);
   EXPECT_EQ(worker.failure(), "");
 }
 
