@@ -94,9 +94,12 @@ void PartitionedCoupling::attach(const Particles& P) {
       }
     }
   }
-  offset_.assign(x_.size(), Vec2(0, 0));
-  for (std::size_t e = 0; e < x_.size(); ++e)
-    if (host_[e] >= 0) offset_[e] = x_[e] - Vec2(P.x[host_[e]], P.y[host_[e]]);
+  offset_.resize(x_.size());
+  for (std::size_t e = 0; e < x_.size(); ++e) offset_[e] = offsetFrom(P, x_[e], host_[e]);
+}
+
+Vec2 PartitionedCoupling::offsetFrom(const Particles& P, const Vec2& x, int host) {
+  return host >= 0 ? Vec2(x - Vec2(P.x[host], P.y[host])) : Vec2(0, 0);
 }
 
 int PartitionedCoupling::nearestPoint(const CouplingStep& s, const Vec2& x, int body) const {
@@ -292,8 +295,7 @@ void PartitionedCoupling::rehost(const CouplingStep& s, std::size_t e) {
   const int host = nearestPoint(s, x_[e], body_[e]);
   if (host == host_[e]) return;
   host_[e] = host;
-  offset_[e] =
-      host >= 0 ? Vec2(x_[e] - Vec2(s.particles.x[host], s.particles.y[host])) : Vec2(0, 0);
+  offset_[e] = offsetFrom(s.particles, x_[e], host);
 }
 
 void PartitionedCoupling::afterMaterialStep(CouplingStep& s) {
@@ -341,8 +343,7 @@ void PartitionedCoupling::afterMaterialStep(CouplingStep& s) {
       // same host away from the gap (the wooden-block scene passed 0.67 GB and did not finish).
       const int host = nearestPoint(s, x_[m], body_[a]);
       host_.push_back(host);
-      offset_.push_back(host >= 0 ? Vec2(x_[m] - Vec2(s.particles.x[host], s.particles.y[host]))
-                                  : Vec2(0, 0));
+      offset_.push_back(offsetFrom(s.particles, x_[m], host));
     }
     load_.emplace_back(0, 0);
     couple_.push_back(0);

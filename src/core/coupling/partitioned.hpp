@@ -53,6 +53,8 @@ class PartitionedCoupling final : public Coupling {
   void attach(const Particles& P);
   // The nearest point of body to x among those binned near it this step, or -1.
   int nearestPoint(const CouplingStep& s, const Vec2& x, int body) const;
+  // x relative to point host, zero without a host (-1): a boundary particle's offset.
+  static Vec2 offsetFrom(const Particles& P, const Vec2& x, int host);
   // Boundary particle e's host anew (the nearest point) once its offset exceeds a cell.
   void rehost(const CouplingStep& s, std::size_t e);
 
