@@ -11,6 +11,7 @@
 #include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/real_time_meter.hpp"
 #include "mpm_sdem/core/rigid/block_checks.hpp"
+#include "mpm_sdem/core/step_guard.hpp"
 #include "mpm_sdem/core/thread_tuner.hpp"
 
 using namespace mpm_sdem;
@@ -76,6 +77,27 @@ BlockDef square(BodyType type) {
 }
 
 }  // namespace
+
+// The stop for a collapsed step: measured from the first step after a (re)base, at the scene's
+// fraction of it; below the absolute floor always, also as the first step.
+TEST(StepGuard, StopsBelowTheFractionOfTheFirstStepAndBelowTheFloor) {
+  StepGuard guard(1e-3);
+  const auto step = [](Real dt) { return TimeStepChoice{dt, StepLimit::kCfl}; };
+  EXPECT_EQ(guard.problem(step(3e-5)), "");
+  EXPECT_EQ(guard.reference(), 3e-5);
+  EXPECT_EQ(guard.problem(step(3.1e-8)), "");  // 1.03e-3 of the first
+  EXPECT_EQ(guard.problem(step(6e-5)), "");    // a longer step does not move the reference
+  EXPECT_EQ(guard.reference(), 3e-5);
+  const std::string p = guard.problem(step(2.9e-8));
+  EXPECT_NE(p.find("fell to 2.9e-08 s (cfl term)"), std::string::npos) << p;
+  EXPECT_NE(p.find("limits.step_collapse"), std::string::npos) << p;
+  guard.rebase();  // e.g. a light obstacle spawned in the node
+  EXPECT_EQ(guard.problem(step(2.9e-8)), "");
+  EXPECT_EQ(guard.reference(), 2.9e-8);
+  StepGuard fresh(1e-3);
+  EXPECT_NE(fresh.problem(step(5e-10)).find("time would stand still"), std::string::npos);
+  EXPECT_NE(fresh.problem(step(std::nan(""))).find("time would stand still"), std::string::npos);
+}
 
 TEST(BlockChecks, EachValueIsJudgedUnderItsKey) {
   const auto key = [](BlockDef b) { return blockProblem(b, BlockContactModel::kPenalty).key; };

@@ -8,6 +8,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include "helpers.hpp"
 #include "mpm_sdem/scene/scene.hpp"
@@ -350,6 +352,12 @@ INSTANTIATE_TEST_SUITE_P(
                                "--set materials.sand.density=-3",
                                "materials[0].density",
                                "must be in [0.1, 100000] kg/m^3, got -3"},
+                      BadScene{"StepCollapseNotAFraction",
+                               "valid.yaml",
+                               {"limits.step_collapse=1"},
+                               "--set limits.step_collapse=1",
+                               "limits.step_collapse",
+                               "must lie in (0, 1), got 1"},
                       // Ranges that keep the arithmetic sound and time moving (limits.hpp).
                       BadScene{"BlockDensityOverflowsBox2D",
                                "valid_blocks.yaml",
@@ -614,6 +622,28 @@ TEST(SceneErrors, RunnerExitsNonZeroBeforeSimulating) {
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 1);
   EXPECT_FALSE(fs::exists(out / "timeseries.csv"));
+}
+
+// The runner asks the step guard before every step: with the stop at 0.9 of the first step the
+// default scene's flow (its CFL step falls by about a tenth as it speeds up) stops the run
+// with status 3 and the key in the message; the default fraction lets it run (every test
+// that runs the scene).
+TEST(SceneErrors, RunnerStopsWhenTheStepFallsBelowTheGuard) {
+  namespace fs = std::filesystem;
+  const fs::path out = fs::temp_directory_path() / "mpm_sdem_test_step_guard";
+  fs::remove_all(out);
+  const std::string cmd =
+      std::string(MPM_SDEM_RUNNER) + " " +
+      test::sourcePath("config/scenes/debris_impact_granular.yaml") +
+      " --quiet --threads 1 --set limits.step_collapse=0.9 --set time.end=0.3 --out " +
+      out.string() + " 2>" + (out.string() + ".err");
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 3);
+  std::ifstream in(out.string() + ".err");
+  const std::string log((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(log.find("below 0.9 of the first step"), std::string::npos) << log;
+  EXPECT_NE(log.find("limits.step_collapse"), std::string::npos) << log;
 }
 
 // Every shipped scene parses, builds its world and steps: a few steps, all positions finite.

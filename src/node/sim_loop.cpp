@@ -33,6 +33,7 @@ Simulation::Simulation(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
       world_(std::make_unique<World>(scene_.world)),
       drivers_(pnh, commands_, params_),
       publishers_(nh, pnh, params_, scene_text_, *world_),
+      step_guard_(scene_.limits.step_collapse),
       paused_(params.start_paused) {
   if (!params_.resume.empty()) resumeFromCheckpoint();
   logCommands();
@@ -222,10 +223,15 @@ bool Simulation::advance() {
   const auto start = Clock::now();
   if (tuner_) tuner_->beforeStep();
   dt_ = world_->chooseTimeStep();
-  if (!(dt_.dt >= limits::kMinTimeStep)) {
-    fail("the stable step collapsed (below " + std::to_string(limits::kMinTimeStep) +
-             " s: time would stand still)",
-         dt_.dt);
+  // A spawned light obstacle may shorten the step for good: the guard measures from the first
+  // step after the bodies changed (also moved by a request: harmless, rare).
+  const std::uint64_t layout = world_->blocks() ? world_->blocks()->layoutVersion() : 0;
+  if (layout != guarded_layout_) {
+    guarded_layout_ = layout;
+    step_guard_.rebase();
+  }
+  if (const std::string p = step_guard_.problem(dt_); !p.empty()) {
+    fail(p, dt_.dt);
     return false;
   }
   const bool to_end = params_.end_action != EndAction::kContinue && !end_reached_;
@@ -337,6 +343,7 @@ Reply Simulation::reset() {
   ++resets_;
   unstable_ = false;
   end_reached_ = false;
+  step_guard_.rebase();
   pending_steps_ = 0;
   last_request_.clear();
   real_time_.clear();

@@ -17,6 +17,7 @@
 #include "mpm_sdem/core/diagnostics.hpp"
 #include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/sample_clock.hpp"
+#include "mpm_sdem/core/step_guard.hpp"
 #include "mpm_sdem/core/thread_tuner.hpp"
 #include "mpm_sdem/ros/bag_recorder.hpp"
 #include "mpm_sdem/ros/checkpoint_source.hpp"
@@ -236,6 +237,7 @@ int main(int argc, char** argv) {
   runner::Progress progress(scene.end_time, !opt.quiet);
   int status = 0;
   bool mach_warned = false, outside_warned = false;
+  StepGuard step_guard(scene.limits.step_collapse);  // its reference: this run's first step
   while (world.time() < scene.end_time - eps && !g_interrupted) {
     const auto start = std::chrono::steady_clock::now();
     if (tuner) tuner->beforeStep();
@@ -243,10 +245,9 @@ int main(int argc, char** argv) {
     // added changes it).
     if (replay && replay->applyDue(world) && bag) bag->blocksChanged(world);
     dt = world.chooseTimeStep();
-    if (!(dt.dt >= limits::kMinTimeStep)) {
-      std::cerr << "\nerror: the stable step collapsed to " << dt.dt << " s ("
-                << stepLimitName(dt.limit) << " term) at step " << world.stepCount()
-                << ", t = " << world.time() << " s: time would stand still.\n";
+    if (const std::string p = step_guard.problem(dt); !p.empty()) {
+      std::cerr << "\nerror: at step " << world.stepCount() << ", t = " << world.time() << " s, "
+                << p << ". Lower time.cfl or time.dt, or refine the grid.\n";
       status = 3;
       break;
     }

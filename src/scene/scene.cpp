@@ -914,11 +914,15 @@ Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& s
   if (s.output.interval <= 0) s.output.interval = s.end_time / 100;
   parseView(ctx, top, s);
   if (top.has("limits")) {
-    MapReader l(ctx, top.node("limits"), "limits", {"energy_growth"});
+    MapReader l(ctx, top.node("limits"), "limits", {"energy_growth", "step_collapse"});
     s.limits.energy_growth =
         l.number("energy_growth", "(fraction of the initial energy)", s.limits.energy_growth);
     l.require(s.limits.energy_growth > 0, "energy_growth",
               "must be > 0, got " + num(s.limits.energy_growth));
+    s.limits.step_collapse =
+        l.number("step_collapse", "(fraction of the first step)", s.limits.step_collapse);
+    l.require(s.limits.step_collapse > 0 && s.limits.step_collapse < 1, "step_collapse",
+              "must lie in (0, 1), got " + num(s.limits.step_collapse));
   }
   return s;
 }

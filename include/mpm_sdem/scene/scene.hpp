@@ -23,6 +23,8 @@ struct OutputDef {
 struct LimitsDef {
   // Stop when the total energy exceeds its initial value by this fraction of it.
   Real energy_growth = 0.5;
+  // Stop when the stable step falls below this fraction of the run's first step (StepGuard).
+  Real step_collapse = 1e-3;
 };
 
 struct Scene {
