@@ -1,7 +1,7 @@
 // libFuzzer target: checkpoint bytes as they arrive from a damaged file or bag. The first input
 // is a valid checkpoint of a small world with blocks (written here), which the fuzzer mutates.
 // A finding is a crash, a sanitizer report or a hang; a refusal (CheckpointError) is the answer
-// expected. What passes the CRC-32 is taken as written by mpm_sdem (README, "Restart").
+// expected. What passes the CRC-32 is taken as written by mpm_sdem (docs/restart.md).
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>

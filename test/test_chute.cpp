@@ -26,8 +26,8 @@ constexpr Real kG = 9.81, kDensity = 1500;
 // speed per layer against Bagnold's at 5 and 2.5 mm cells. Measured: 3.6% and 1.8% of the
 // surface speed, the profile shifted up by a slip of about half a cell's shear at the base
 // (first order). The issue's bound, 2%, at the finer cell, and the error must shrink. (The
-// report's `chute` case adds angles and cells: README, Granular flows.) The start is symmetric
-// and the rows of points stay alike; from a perturbed start see the disabled test below.
+// report's `chute` case adds angles and cells: docs/method.md, Granular flows.) The start is
+// symmetric and the rows of points stay alike; from a perturbed start see the disabled test below.
 TEST(Chute, SteadyFlowFollowsBagnoldsProfile) {
   cases::ChuteProfile error[2];
   for (int k = 0; k < 2; ++k) {
@@ -46,8 +46,8 @@ TEST(Chute, SteadyFlowFollowsBagnoldsProfile) {
 // The same flow from a start perturbed by up to 10 um (2.5 mm cells): it should hold Bagnold's
 // profile as the symmetric start does. It does not: the disturbance grows from the start, the
 // points crowd while their J grows, and the top runs away (1.6% at 2.5 s, 32% at 4 s, 121% at
-// 6 s; README, Granular flows). Open in issue 41; kept disabled so that the fix has its test
-// waiting (--gtest_also_run_disabled_tests runs it).
+// 6 s; docs/method.md, Granular flows). Open in issue 41; kept disabled so that the fix has its
+// test waiting (--gtest_also_run_disabled_tests runs it).
 TEST(Chute, DISABLED_PerturbedStartStaysOnBagnoldsProfile) {
   cases::Chute c;
   c.cell_size = 0.0025;
@@ -65,8 +65,8 @@ TEST(Chute, DISABLED_PerturbedStartStaysOnBagnoldsProfile) {
 // in a periodic box shorter than its depth is stable (Kapitza's waves are long), so the points'
 // vertical speed, zero in the uniform film, must stay small; 1% of the surface speed is far above
 // what the start from rest leaves (the symmetric start: below 1e-4 m/s at 1.25 s) and far below
-// what grows today with ASFLIP (0.35 m/s at 2 s; APIC 0.011, README, Granular flows). This is
-// the sand's instability without the rheology; kept disabled until it is fixed.
+// what grows today with ASFLIP (0.35 m/s at 2 s; APIC 0.011, docs/method.md, Granular flows). This
+// is the sand's instability without the rheology; kept disabled until it is fixed.
 TEST(Chute, DISABLED_PerturbedNewtonianFilmStaysUniform) {
   cases::Chute c;
   c.theta = 27 * M_PI / 180;
@@ -114,7 +114,7 @@ TEST(ColumnCollapse, RelaxedAsflipDepositComesToRest) {
 // height kept, H_inf = H0 (a < 1.15). The bounds, 20% and 10%, are looser than the experiments'
 // scatter about their fits and than the 2.5 mm run's difference from this one should be; the
 // material must also be at rest (every point below 1 cm/s) by 3 s, as the grains are within
-// about 1 s. It fails today: run-out 2.15, height 0.73, at rest at 0.96 s (README, Granular
+// about 1 s. It fails today: run-out 2.15, height 0.73, at rest at 0.96 s (docs/method.md, Granular
 // flows); kept disabled until the granular material is fixed.
 TEST(ColumnCollapse, DISABLED_AspectOneRunsOutAsTheExperiments) {
   cases::GranularColumn c;

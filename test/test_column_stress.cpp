@@ -44,7 +44,7 @@ void settleColumn(KernelType kernel, StressUpdate update) {
 
 // GIMP, the seed's kernel for solids (seed 000 Appendix A). The quadratic B-spline is not held to
 // this test: with ghost nodes below a wall its stress has a boundary layer in the first cells
-// (measured: up to 31% of rho0 g H0 here), see the README's limitations.
+// (measured: up to 31% of rho0 g H0 here), see docs/limitations.md.
 TEST(ColumnStress, GimpUsf) {
   settleColumn(KernelType::kGimp, StressUpdate::kUsf);
 }

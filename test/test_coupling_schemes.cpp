@@ -216,8 +216,8 @@ TEST(Partitioned, WallStaysBoundedInATearingFlow) {
 // 33.32 / 40.77, 33.31 / 41.00, 33.34 / 41.02 cm (the blocks' pairs stepped mode by mode at half
 // their undamped bound; at the full bound block 1 moved 0.42 cm; with explicit dashpots at
 // their damped bound 33.31 / 41.01, 33.34 / 40.88, 33.32 / 40.89). (The explicit springs moved
-// block 1 by 4.6 cm between the same three factors; the material's own step still moves it: README,
-// Multi-rate contact.)
+// block 1 by 4.6 cm between the same three factors; the material's own step still moves it:
+// docs/method.md, Multi-rate contact.)
 TEST(SubcycledContact, WoodenBlocksRestAtTheSamePlaceForEveryContactSubstep) {
   auto leftFaces = [](Real contact_factor) {
     WorldDef def = loadScene(test::sourcePath("config/scenes/debris_impact.yaml")).world;

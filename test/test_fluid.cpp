@@ -151,7 +151,7 @@ Poiseuille poiseuille(Real h, Real nu, Real sound_speed, Real t_end) {
 // of the profile's curvature (APIC keeps affine fields only) costs O(h^2) a step over O(1/h) steps:
 // first order. Measured at h = 5, 2.5, 1.25 mm: centre speed 0.804, 0.975, 1.009 of the series,
 // largest deviation 0.159, 0.030, 0.009 of the centre speed. When the viscous bound h^2 / (2 nu)
-// sets the step instead, that loss does not shrink with h (README, Limitations).
+// sets the step instead, that loss does not shrink with h (docs/limitations.md).
 TEST(FluidViscosity, AColumnBetweenStickyWallsConvergesToPoiseuilleStartUp) {
   const Poiseuille coarse = poiseuille(0.0025, 0.01, 40, 0.05);
   const Poiseuille fine = poiseuille(0.00125, 0.01, 40, 0.05);

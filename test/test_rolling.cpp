@@ -87,7 +87,7 @@ TEST(Rolling, RollingDiskKeepsItsEnergy) {
 // Issue 40's transfer, ASFLIP, on the same throw and the same rolling start, with the same
 // tolerances. Measured: spin-up 0.9868, roll speed 0.9932, rolling energy -0.31% (APIC 0.9827,
 // 0.9906, -0.76%). The softer disk of issue 40 (E = 1 MPa) is not asserted: APIC 0.937, 0.970,
-// -2.7%; ASFLIP 0.947, 0.977, -0.91% (README, Transfers).
+// -2.7%; ASFLIP 0.947, 0.977, -0.91% (docs/method.md, Transfers).
 TEST(Rolling, AsflipSpinsUpRollsAndKeepsTheRollingEnergy) {
   cases::ThrownDisk c;
   c.transfer = TransferScheme::kAsflip;
@@ -123,7 +123,7 @@ TEST(Rolling, PartitionedAndParticleSurfaceSpinTheDiskUp) {
 // sit up to h/2 ahead and cost up to h / (2 mu R) of the friction's torque, a first-order error
 // (0% spin before the distance check). CI compares 1 cm with 5 mm (5 and 10 cells per radius);
 // the validation report's rolling case adds 2.5 mm for every scheme (at 2.5 mm the centre
-// decelerates 1.8% faster than mu g, an open item in README).
+// decelerates 1.8% faster than mu g, an open item in docs/limitations.md).
 TEST(Rolling, MultiVelocitySpinUpConverges) {
   Real error[2];
   for (int k = 0; k < 2; ++k) {

@@ -192,9 +192,9 @@ TEST(TransferLoss, WoodenBlockFlowKeepsItsEnergyAsTheStepShrinks) {
 // perturbed by 1 um, at the scene's step (cfl 0.3), a half and a quarter of it. The bound is the
 // issue's: each block's mean resting left face moves by less than 0.3 cm or three times the
 // members' largest range, whichever is larger. The Drucker-Prager default with its explicit
-// springs moves by 4.7 cm against ranges of 0.003-0.04 cm (README, issue 40), so this can fail.
-// Measured (the scene relaxes ASFLIP's departure over 0.03 s; block springs 1.5e5 N/m per
-// metre): means 34.33 / 38.39, 34.10 / 39.77, 34.57 / 39.33 cm (blocks 2 / 1), the largest
+// springs moves by 4.7 cm against ranges of 0.003-0.04 cm (docs/method.md, Multi-rate contact), so
+// this can fail. Measured (the scene relaxes ASFLIP's departure over 0.03 s; block springs 1.5e5
+// N/m per metre): means 34.33 / 38.39, 34.10 / 39.77, 34.57 / 39.33 cm (blocks 2 / 1), the largest
 // range 0.70 cm (block 2 at the scene's step), so a bound of 2.1 cm against moves of 0.24 /
 // 1.38 cm (with springs of 1e6: 0.47 / 1.20 against 3.1; before the blocks' pairs were stepped
 // mode by mode: 0.49 / 1.22 against 2.2; pure ASFLIP: 0.66 / 2.4 against 3.9).

@@ -472,7 +472,7 @@ PowerLaw powerLaw(const std::vector<Real>& x, const std::vector<Real>& y,
 // Pouliquen 2006: mu_s = tan 20.9 deg, mu_2 = tan 32.76 deg, I_0 = 0.279, phi = 0.6, 1500 kg/m^3;
 // K = 1 MPa, G = 0.6 MPa) of grains d, depth h on a rough (sticky) base, periodic in x (10
 // cells wide), gravity tilted by theta, ASFLIP (APIC's loss per transfer acts as a viscosity
-// here: README, Granular flows), 2 x 2 points per cell.
+// here: docs/method.md, Granular flows), 2 x 2 points per cell.
 struct Chute {
   Real theta = 24 * M_PI / 180;  // rad
   Real depth = 0.05;             // h (m)

@@ -305,7 +305,7 @@ void stability(const Options& o, Results& r) {
     // 100 dynamic 1 cm blocks (a = 2 mm, 1000 kg/m^3) on the bed's surface as it collapses
     // sideways (the right wall taken away: a 30 cm bed in a 60 cm domain). The lowest row
     // starts 0.5 mm beyond the IMP reach r_p = h / sqrt(2) of the bed's top points (a quarter
-    // cell below its top): a block set within r_p starts on loaded springs (README Limitations;
+    // cell below its top): a block set within r_p starts on loaded springs (docs/limitations.md;
     // 2.9 mm lower, the peak energy was 4.5 times the initial).
     WorldDef d = cases::rockIntoBed();
     d.domain.max.x() = 0.6;

@@ -8,7 +8,7 @@ namespace mpm_sdem {
 
 // It starts on one thread, the count no other process can stall, and tries more after
 // kFirstTrial: the default scene's first second ran 23% faster in the node than from two
-// threads (README, Threads on a busy machine).
+// threads (docs/robustness.md, Threads on a busy machine).
 ThreadTuner::ThreadTuner(int max_threads) : max_(std::max(1, max_threads)), best_(1), current_(1) {}
 
 void ThreadTuner::beforeStep() {

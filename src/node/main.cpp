@@ -1,4 +1,4 @@
-// mpm_sdem_node: loads a scene, steps it, publishes, serves, records. Parameters: README.
+// mpm_sdem_node: loads a scene, steps it, publishes, serves, records. Parameters: docs/node.md.
 #include <ros/ros.h>
 
 #include <csignal>

@@ -1,5 +1,5 @@
 // The node's private parameters (~name), read once at start-up and checked: a missing or wrong
-// one is an error naming it, not a silent default. Defaults and units are in the README.
+// one is an error naming it, not a silent default. Defaults and units are in docs/node.md.
 #pragma once
 
 #include <ros/node_handle.h>

@@ -32,7 +32,7 @@ struct Ensemble {
   unsigned seed = 1;        // member m (from 0) is drawn from seed + m
 };
 
-// A number read from one run's output files (the runner's CSVs, README "Outputs").
+// A number read from one run's output files (the runner's CSVs, docs/running.md).
 struct Output {
   std::string name;    // its column in results.csv
   std::string file;    // timeseries.csv | blocks.csv | particles.csv | summary.csv
