@@ -559,8 +559,8 @@ TEST(BlockLoads, RestingBoxCarriesItsWeightWithEitherModel) {
       blocks.addLoad(blocks.id(1), push, blocks.state(1).position + arm, 0);
       blocks.step(dt, blocks.stableStep(0.1));
     }
-    const Blocks::Coupling& on_box = blocks.blockContact(1);
-    const Blocks::Coupling& on_floor = blocks.blockContact(0);
+    const Blocks::Load& on_box = blocks.blockContact(1);
+    const Blocks::Load& on_floor = blocks.blockContact(0);
     const char* name = model == BlockContactModel::kPenalty ? "penalty" : "box2d";
     std::printf(
         "%s: force on the box (%.4f, %.4f) of W = %.4f N/m, torque %.2e N m/m, %d "

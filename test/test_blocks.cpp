@@ -7,6 +7,7 @@
 
 #include "block_helpers.hpp"
 #include "mpm_sdem/core/rigid/blocks.hpp"
+#include "mpm_sdem/core/stepper.hpp"
 #include "mpm_sdem/core/world.hpp"
 #include "mpm_sdem/scene/scene.hpp"
 
@@ -159,6 +160,21 @@ TEST(BlockCollision, SubstepsMatchShortSteps) {
   }
 }
 
+namespace {
+
+// A disk of 0.2 mm at 1 kg/m^3 inside valid.yaml's domain, above its material.
+BlockDef lightGrain() {
+  BlockDef grain;
+  grain.name = "grain";
+  grain.core = {Vec2(0, 0)};
+  grain.rounding = 2e-4;
+  grain.density = 1;
+  grain.position = Vec2(0.3, 0.15);
+  return grain;
+}
+
+}  // namespace
+
 // Subcycled springs do not bound the material's step, but one step holds at most 1000 of their
 // substeps: a spawned obstacle too light for its springs (here 0.2 mm at 1 kg/m^3; the fuzzer
 // found a light block whose 3 steps took over 10 s) shortens the step instead, as explicit
@@ -168,12 +184,7 @@ TEST(RuntimeBlocks, ALightObstacleShortensTheSubcycledStep) {
   def.coupling.normal_integration = ContactIntegration::kSubcycled;
   World world(def);
   const Real material = world.chooseTimeStep().dt;
-  BlockDef grain;
-  grain.name = "grain";
-  grain.core = {Vec2(0, 0)};
-  grain.rounding = 2e-4;
-  grain.density = 1;
-  grain.position = Vec2(0.3, 0.15);
+  const BlockDef grain = lightGrain();
   ASSERT_EQ(world.placementProblem(grain, false).text(), "");
   world.addBlock(grain);
   const TimeStepChoice dt = world.chooseTimeStep();
@@ -182,6 +193,39 @@ TEST(RuntimeBlocks, ALightObstacleShortensTheSubcycledStep) {
   const auto start = std::chrono::steady_clock::now();
   for (int k = 0; k < 3; ++k) ASSERT_TRUE(world.step(world.chooseTimeStep().dt).finite);
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+}
+
+// The runner's and the node's step (Stepper): the light obstacle above shortens the step for
+// good, and the guard measures from the first step after the blocks' layout changed, so the run
+// goes on (in the node a spawn, in the runner a spawn replayed from a bag); a guard that kept the
+// run's first step stops it at the same fraction. The steps land on the end time exactly.
+TEST(RuntimeBlocks, TheStepGuardMeasuresFromTheFirstStepAfterASpawn) {
+  WorldDef def = loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/test/data/valid.yaml").world;
+  def.coupling.normal_integration = ContactIntegration::kSubcycled;
+  World world(def);
+  const Real fraction = 0.5;
+  Stepper stepper(world, fraction);
+  StepGuard kept(fraction);
+  std::string problem;
+  PlannedStep step = stepper.plan();
+  ASSERT_EQ(step.problem, "");
+  ASSERT_EQ(kept.problem(step.stable), "");
+  stepper.take(step, problem);
+  ASSERT_EQ(problem, "");
+  const BlockDef grain = lightGrain();
+  world.addBlock(grain);
+  step = stepper.plan();
+  ASSERT_LT(step.stable.dt, fraction * kept.reference());  // shortened below the stop
+  EXPECT_EQ(step.problem, "");
+  EXPECT_NE(kept.problem(step.stable).find("limits.step_collapse"), std::string::npos);
+  const Time end = world.time() + 7.3 * step.stable.dt;
+  while (world.time() < end) {
+    step = stepper.plan(end);
+    ASSERT_EQ(step.problem, "");
+    ASSERT_TRUE(stepper.take(step, problem).finite);
+    ASSERT_EQ(problem, "");
+  }
+  EXPECT_EQ(world.time(), end);
 }
 
 // Blocks added and removed while running (the node's obstacle services), in a scene that started

@@ -53,7 +53,7 @@ void checkStep(const World& w) {
   }
   if (const auto* pt = dynamic_cast<const PartitionedCoupling*>(&c)) {
     Vec2 on_blocks(0, 0);
-    for (const Blocks::Coupling& b : w.blocks()->coupling()) on_blocks += b.force;
+    for (const Blocks::Load& b : w.blocks()->coupling()) on_blocks += b.force;
     const Real scale = std::max<Real>(pt->loadSum().norm(), 1e-9);
     ASSERT_LT((pt->loadSum() + on_blocks).norm(), 1e-9 * scale) << "t = " << w.time();
     ASSERT_LT((pt->forceOnMaterial() - pt->loadSum()).norm(), 1e-9 * scale)

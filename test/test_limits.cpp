@@ -11,7 +11,7 @@
 #include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/real_time_meter.hpp"
 #include "mpm_sdem/core/rigid/block_checks.hpp"
-#include "mpm_sdem/core/step_guard.hpp"
+#include "mpm_sdem/core/stepper.hpp"
 #include "mpm_sdem/core/thread_tuner.hpp"
 
 using namespace mpm_sdem;

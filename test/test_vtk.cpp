@@ -221,8 +221,8 @@ void expectBlocks(vtkUnstructuredGrid* g, const World& w, bool loaded) {
     EXPECT_NEAR(deepest, chord_error, 1e-12) << B.def(i).name;
     EXPECT_GT(area, 0) << "clockwise outline of " << B.def(i).name;
     const BlockState& s = B.state(i);
-    const Blocks::Coupling& m = B.coupling()[i];
-    const Blocks::Coupling& o = B.blockContact(i);
+    const Blocks::Load& m = B.coupling()[i];
+    const Blocks::Load& o = B.blockContact(i);
     EXPECT_EQ(type->GetComponent(c, 0), static_cast<int>(B.def(i).type));
     EXPECT_EQ(position->GetComponent(c, 0), s.position.x());
     EXPECT_EQ(position->GetComponent(c, 1), s.position.y());

@@ -1334,7 +1334,7 @@ WheelRun runWheel(World& w, Real t_end) {
     const Real sinkage = top - (B.state(wheel).position.y() - radius);
     out.final_sinkage = sinkage;
     if (w.time() < t_end / 2) continue;
-    const Blocks::Coupling& c = B.coupling()[wheel];
+    const Blocks::Load& c = B.coupling()[wheel];
     out.pull += c.force.x();
     sum2 += c.force.x() * c.force.x();
     out.torque -= std::copysign(c.torque, spin);  // the motor's, in the sense of the spin

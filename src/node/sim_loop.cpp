@@ -33,7 +33,7 @@ Simulation::Simulation(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
       world_(std::make_unique<World>(scene_.world)),
       drivers_(pnh, commands_, params_),
       publishers_(nh, pnh, params_, scene_text_, *world_),
-      step_guard_(scene_.limits.step_collapse),
+      stepper_(std::make_unique<Stepper>(*world_, scene_.limits.step_collapse)),
       paused_(params.start_paused) {
   if (!params_.resume.empty()) resumeFromCheckpoint();
   logCommands();
@@ -222,27 +222,20 @@ void Simulation::publishWhilePaused() {
 bool Simulation::advance() {
   const auto start = Clock::now();
   if (tuner_) tuner_->beforeStep();
-  dt_ = world_->chooseTimeStep();
-  // A spawned light obstacle may shorten the step for good: the guard measures from the first
-  // step after the bodies changed (also moved by a request: harmless, rare).
-  const std::uint64_t layout = world_->blocks() ? world_->blocks()->layoutVersion() : 0;
-  if (layout != guarded_layout_) {
-    guarded_layout_ = layout;
-    step_guard_.rebase();
-  }
-  if (const std::string p = step_guard_.problem(dt_); !p.empty()) {
-    fail(p, dt_.dt);
+  const bool to_end = params_.end_action != EndAction::kContinue && !end_reached_;
+  const PlannedStep step =
+      to_end ? stepper_->plan(scene_.end_time) : stepper_->plan();  // no landing: runs on
+  dt_ = step.stable;
+  if (!step.problem.empty()) {
+    fail(step.problem, dt_.dt);
     return false;
   }
-  const bool to_end = params_.end_action != EndAction::kContinue && !end_reached_;
-  const Real h = to_end ? stepTowards(dt_.dt, scene_.end_time, world_->time()) : dt_.dt;
-  drivers_.beforeStep(*world_, h);
-  const StepInfo info = world_->step(h);
+  drivers_.beforeStep(*world_, step.dt);
+  std::string problem;
+  const StepInfo info = stepper_->take(step, problem);
   if (tuner_) tuner_->afterStep(std::chrono::duration<double>(Clock::now() - start).count());
-  if (!info.finite) {
-    fail("the state became non-finite" +
-             (info.block_problem.empty() ? std::string() : " (" + info.block_problem + ")"),
-         h);
+  if (!problem.empty()) {
+    fail(problem, step.dt);
     return false;
   }
   real_time_.sample(world_->time());
@@ -339,11 +332,11 @@ Reply Simulation::reset() {
   const bool was_recording = bag_ || video_;
   closeRecordings();
   world_ = std::make_unique<World>(scene_.world);
+  stepper_ = std::make_unique<Stepper>(*world_, scene_.limits.step_collapse);
   logCommands();
   ++resets_;
   unstable_ = false;
   end_reached_ = false;
-  step_guard_.rebase();
   pending_steps_ = 0;
   last_request_.clear();
   real_time_.clear();

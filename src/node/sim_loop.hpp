@@ -6,14 +6,13 @@
 
 #include <chrono>
 #include <csignal>
-#include <cstdint>
 #include <memory>
 #include <string>
 
 #include "commands.hpp"
 #include "mpm_sdem/core/real_time_meter.hpp"
 #include "mpm_sdem/core/sample_clock.hpp"
-#include "mpm_sdem/core/step_guard.hpp"
+#include "mpm_sdem/core/stepper.hpp"
 #include "mpm_sdem/core/thread_tuner.hpp"
 #include "mpm_sdem/render/render.hpp"
 #include "mpm_sdem/ros/bag_recorder.hpp"
@@ -86,8 +85,7 @@ class Simulation {
   std::unique_ptr<VtkSeries> vtk_;
   SampleClock vtk_clock_;
   TimeStepChoice dt_;
-  StepGuard step_guard_;
-  std::uint64_t guarded_layout_ = 0;  // the blocks' layout version the guard's reference saw
+  std::unique_ptr<Stepper> stepper_;  // of world_: made again with it on a reset
   bool paused_ = false;
   bool end_reached_ = false;
   bool unstable_ = false;

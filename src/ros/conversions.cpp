@@ -109,12 +109,12 @@ mpm_sdem::BlockStates toBlockStates(const World& world, const std_msgs::Header& 
     m.twist.angular.z = s.angular_velocity;
     m.center_of_mass.x = s.position.x();
     m.center_of_mass.y = s.position.y();
-    const Blocks::Coupling& c = B->coupling()[i];
+    const Blocks::Load& c = B->coupling()[i];
     m.coupling_force.x = c.force.x();
     m.coupling_force.y = c.force.y();
     m.coupling_torque = c.torque;
     m.contact_count = static_cast<std::uint32_t>(c.contacts);
-    const Blocks::Coupling& k = B->blockContact(i);
+    const Blocks::Load& k = B->blockContact(i);
     m.block_force.x = k.force.x();
     m.block_force.y = k.force.y();
     m.block_torque = k.torque;

@@ -17,7 +17,7 @@
 #include "mpm_sdem/core/diagnostics.hpp"
 #include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/sample_clock.hpp"
-#include "mpm_sdem/core/step_guard.hpp"
+#include "mpm_sdem/core/stepper.hpp"
 #include "mpm_sdem/core/thread_tuner.hpp"
 #include "mpm_sdem/ros/bag_recorder.hpp"
 #include "mpm_sdem/ros/checkpoint_source.hpp"
@@ -237,30 +237,26 @@ int main(int argc, char** argv) {
   runner::Progress progress(scene.end_time, !opt.quiet);
   int status = 0;
   bool mach_warned = false, outside_warned = false;
-  StepGuard step_guard(scene.limits.step_collapse);  // its reference: this run's first step
+  Stepper stepper(world, scene.limits.step_collapse);
   while (world.time() < scene.end_time - eps && !g_interrupted) {
     const auto start = std::chrono::steady_clock::now();
     if (tuner) tuner->beforeStep();
     // Where the node applies them: between steps, before the next step is chosen (a block
     // added changes it).
     if (replay && replay->applyDue(world) && bag) bag->blocksChanged(world);
-    dt = world.chooseTimeStep();
-    if (const std::string p = step_guard.problem(dt); !p.empty()) {
-      std::cerr << "\nerror: at step " << world.stepCount() << ", t = " << world.time() << " s, "
-                << p << ". Lower time.cfl or time.dt, or refine the grid.\n";
-      status = 3;
-      break;
+    const PlannedStep step = stepper.plan(scene.end_time);
+    dt = step.stable;
+    std::string problem = step.problem;
+    StepInfo info;
+    if (problem.empty()) {
+      info = stepper.take(step, problem);
+      if (tuner)
+        tuner->afterStep(
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
-    const Real h = stepTowards(dt.dt, scene.end_time, world.time());
-    const StepInfo info = world.step(h);
-    if (tuner)
-      tuner->afterStep(
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    if (!info.finite) {
-      std::cerr << "\nerror: the state became non-finite at step " << world.stepCount()
-                << ", t = " << world.time() << " s (dt = " << h << " s"
-                << (info.block_problem.empty() ? "" : "; " + info.block_problem)
-                << "). Lower time.cfl or time.dt, or refine the grid.\n";
+    if (!problem.empty()) {
+      std::cerr << "\nerror: at step " << world.stepCount() << ", t = " << world.time() << " s, "
+                << problem << ". Lower time.cfl or time.dt, or refine the grid.\n";
       status = 3;
       break;
     }
@@ -316,7 +312,7 @@ int main(int argc, char** argv) {
         break;
       }
     }
-    progress.update(world.stepCount(), world.time(), h,
+    progress.update(world.stepCount(), world.time(), step.dt,
                     static_cast<long>(world.particles().size()));
   }
   progress.finish(world.stepCount(), world.time(), static_cast<long>(world.particles().size()));

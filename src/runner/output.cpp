@@ -72,8 +72,8 @@ void BlockSeriesWriter::write(const World& w) {
   const Blocks& B = *w.blocks();
   for (int b = 0; b < B.count(); ++b) {
     const BlockState& s = B.state(b);
-    const Blocks::Coupling& c = B.coupling()[b];    // from the material
-    const Blocks::Coupling& k = B.blockContact(b);  // from the other blocks
+    const Blocks::Load& c = B.coupling()[b];    // from the material
+    const Blocks::Load& k = B.blockContact(b);  // from the other blocks
     Box box = B.bounds(B.firstShape(b));
     for (int sh = B.firstShape(b) + 1; sh < B.firstShape(b) + B.shapesOf(b); ++sh) {
       box.min = box.min.cwiseMin(B.bounds(sh).min);

@@ -127,8 +127,8 @@ vtkSmartPointer<vtkUnstructuredGrid> blocks(const World& world) {
   for (int i = 0; i < B.count(); ++i) {
     names->InsertNextValue(B.def(i).name);
     const BlockState& s = B.state(i);
-    const Blocks::Coupling& c = B.coupling()[i];
-    const Blocks::Coupling& k = B.blockContact(i);
+    const Blocks::Load& c = B.coupling()[i];
+    const Blocks::Load& k = B.blockContact(i);
     const std::vector<Spheropolygon> parts = B.currentParts(i);
     for (std::size_t j = 0; j < parts.size(); ++j) {
       std::vector<Vec2> outline = roundedOutline(parts[j].core, parts[j].rounding, kCornerChords);

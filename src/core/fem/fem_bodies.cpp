@@ -379,7 +379,7 @@ Real FemBodies::potentialEnergy() const {
 
 void FemBodies::beginCoupling(Real dt) {
   internalForces();
-  for (Coupling& c : coupling_) c = Coupling();
+  for (Load& c : coupling_) c = Load();
   std::fill(cfx_.begin(), cfx_.end(), Real(0));
   std::fill(cfy_.begin(), cfy_.end(), Real(0));
   for (std::size_t k = 0; k < x_.size(); ++k) {

@@ -11,9 +11,9 @@
 #include "mpm_sdem/core/mpm/kernels.hpp"
 #include "mpm_sdem/core/mpm/material.hpp"
 #include "mpm_sdem/core/mpm/particles.hpp"
+#include "mpm_sdem/core/mpm/solver.hpp"
 #include "mpm_sdem/core/mpm/tiles.hpp"
 #include "mpm_sdem/core/types.hpp"
-#include "mpm_sdem/core/world.hpp"
 
 namespace mpm_sdem::detail {
 

@@ -289,8 +289,8 @@ void Blocks::interiorPoints(int s, Real spacing, std::vector<Vec2>& points, Real
 }
 
 void Blocks::beginCoupling(Real dt) {
-  for (Coupling& c : coupling_) c = Coupling();
-  for (Coupling& c : block_contact_) c = Coupling();
+  for (Load& c : coupling_) c = Load();
+  for (Load& c : block_contact_) c = Load();
   for (Body& b : bodies_) {
     b.trial_v = b.state.velocity;
     b.trial_w = b.state.angular_velocity;
@@ -343,7 +343,7 @@ void Blocks::addContactForce(int a, int b, const Vec2& f, const Vec2& point) {
 
 void Blocks::recordContactForce(int a, int b, const Vec2& f, const Vec2& point) {
   for (const auto& [i, fi] : {std::pair<int, Vec2>(a, f), std::pair<int, Vec2>(b, -f)}) {
-    Coupling& c = block_contact_[i];
+    Load& c = block_contact_[i];
     c.force += substep_share_ * fi;
     c.torque += substep_share_ * cross(point - bodies_[i].state.position, fi);
     ++c.contacts;
@@ -361,7 +361,7 @@ void Blocks::pushForce(int s, const Vec2& f, const Vec2& point) {
 
 void Blocks::recordForce(int s, const Vec2& f, const Vec2& point) {
   const int i = owner(s);
-  Coupling& c = coupling_[i];
+  Load& c = coupling_[i];
   c.force += f;
   c.torque += cross(point - bodies_[i].state.position, f);
   ++c.contacts;

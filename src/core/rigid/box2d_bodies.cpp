@@ -272,7 +272,7 @@ void Blocks::refresh(int i) {
 }
 
 int Blocks::step(Real dt, Real max_substep) {
-  for (Coupling& c : block_contact_) c = Coupling();
+  for (Load& c : block_contact_) c = Load();
   return advance(dt, max_substep, true, 1);
 }
 
@@ -300,7 +300,7 @@ int Blocks::advance(Real dt, Real max_substep, bool ends_step, Real share) {
       b.force = b.held_force;
       b.torque = b.held_torque;
     }
-    for (Coupling& c : block_contact_) c.contacts = 0;  // the last substep's count
+    for (Load& c : block_contact_) c.contacts = 0;  // the last substep's count
     if (contact_.model == BlockContactModel::kPenalty) penalty_->apply(*this, h);
     for (const int i : moving_) {
       Body& b = bodies_[i];

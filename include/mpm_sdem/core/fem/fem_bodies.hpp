@@ -94,7 +94,7 @@ class FemBodies final : public ContactBodies {
   Real strainEnergy() const;
   Real potentialEnergy() const;
   // What the material did to each body in the last step (N/m) and its contact count.
-  struct Coupling {
+  struct Load {
     Vec2 force{0, 0};
     int contacts = 0;
     template <class Archive>
@@ -102,7 +102,7 @@ class FemBodies final : public ContactBodies {
       ar(force, contacts);
     }
   };
-  const std::vector<Coupling>& coupling() const { return coupling_; }
+  const std::vector<Load>& coupling() const { return coupling_; }
 
   // The explicit step the elements allow (s): the smallest, over triangles, of h / c_p (h the
   // triangle's least altitude, c_p = sqrt((lambda + 2 mu) / rho) the plane-strain P-wave speed)
@@ -207,7 +207,7 @@ class FemBodies final : public ContactBodies {
   std::vector<Stress> stress_;
   std::vector<Segment> segments_;
   std::vector<Vec2> segment_vertices_;
-  std::vector<Coupling> coupling_;
+  std::vector<Load> coupling_;
   Vec2 gravity_{0, 0};
   Real element_step_ = std::numeric_limits<Real>::infinity();
   Real lightest_ = std::numeric_limits<Real>::infinity();

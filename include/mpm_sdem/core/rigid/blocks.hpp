@@ -221,7 +221,7 @@ class Blocks final : public ContactBodies {
 
   // A load on one block in the last step (for outputs): what the material did to it
   // (coupling), or what the other blocks did (blockContact).
-  struct Coupling {
+  struct Load {
     Vec2 force{0, 0};  // N/m
     Real torque = 0;   // N m/m about the centre of mass
     int contacts = 0;
@@ -230,12 +230,12 @@ class Blocks final : public ContactBodies {
       ar(force, torque, contacts);
     }
   };
-  const std::vector<Coupling>& coupling() const { return coupling_; }
+  const std::vector<Load>& coupling() const { return coupling_; }
   // The contact forces of the other blocks on block i, averaged over the last step's substeps,
   // with either contact model (the penalty springs, or Box2D's contact impulses over each
   // substep); contacts: the springs or Box2D manifold points of the last substep. With
   // coupling()[i], the load a kinematic block such as a loading plate or a blade carries.
-  const Coupling& blockContact(int i) const { return block_contact_[i]; }
+  const Load& blockContact(int i) const { return block_contact_[i]; }
   // For the block-block contact models, during step(): a contact force between blocks a and b
   // (force on a, -force on b) at a point (m). addContactForce applies it for the substep
   // (penalty springs); recordContactForce only notes what Box2D's solver applied.
@@ -316,9 +316,9 @@ class Blocks final : public ContactBodies {
   std::vector<Lattice> lattices_;
   std::vector<Body> bodies_;  // hot
   std::vector<Shape> shapes_;
-  std::vector<Vec2> world_vertices_;     // the shapes' core vertices, world frame
-  std::vector<Coupling> coupling_;       // records for outputs
-  std::vector<Coupling> block_contact_;  // from the other blocks, last step
+  std::vector<Vec2> world_vertices_;  // the shapes' core vertices, world frame
+  std::vector<Load> coupling_;        // records for outputs
+  std::vector<Load> block_contact_;   // from the other blocks, last step
   // The blocks that move (not static), in list order: a substep touches only these, so that a
   // thousand static obstacles cost nothing per step (layoutShapes keeps it).
   std::vector<int> moving_;
