@@ -642,7 +642,7 @@ TEST(SceneErrors, RunnerStopsWhenTheStepFallsBelowTheGuard) {
   EXPECT_EQ(WEXITSTATUS(status), 3);
   std::ifstream in(out.string() + ".err");
   const std::string log((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  EXPECT_NE(log.find("below 0.9 of the first step"), std::string::npos) << log;
+  EXPECT_NE(log.find("below 0.9 of the reference step"), std::string::npos) << log;
   EXPECT_NE(log.find("limits.step_collapse"), std::string::npos) << log;
 }
 

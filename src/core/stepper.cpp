@@ -19,8 +19,9 @@ std::string StepGuard::problem(const TimeStepChoice& dt) {
   if (reference_ == 0) reference_ = dt.dt;
   if (dt.dt < fraction_ * reference_) {
     std::snprintf(text, sizeof text,
-                  "the stable step fell to %.3g s (%s term), below %g of the first step "
-                  "(%.3g s; limits.step_collapse): the run has likely blown up",
+                  "the stable step fell to %.3g s (%s term), below %g of the reference step "
+                  "(%.3g s: the run's first, or the first after its blocks changed; "
+                  "limits.step_collapse): the run has likely blown up",
                   dt.dt, stepLimitName(dt.limit), fraction_, reference_);
     return text;
   }
