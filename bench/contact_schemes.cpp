@@ -19,6 +19,7 @@
 
 #include "cases.hpp"
 #include "mpm_sdem/core/diagnostics.hpp"
+#include "mpm_sdem/core/stepper.hpp"
 #include "mpm_sdem/core/world.hpp"
 
 using namespace mpm_sdem;
@@ -38,7 +39,7 @@ Result run(CouplingScheme scheme, Real h) {
   const Real e0 = d0.kinetic + d0.elastic;  // kinetic includes the blocks
   const Real end = approach + 0.06;
   const auto t0 = std::chrono::steady_clock::now();
-  while (w.time() < end) w.step(stepTowards(w.chooseTimeStep().dt, end, w.time()));
+  runUntil(w, end);
   const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const Diagnostics d = measure(w);
   const Real e = d.kinetic + d.elastic;

@@ -9,12 +9,13 @@
 #include <string>
 
 #include "bench_scenes.hpp"
+#include "mpm_sdem/core/stepper.hpp"
 
 using namespace mpm_sdem;
 
 // Not inlined, so that callgrind can switch its counting on and off at its boundaries.
 __attribute__((noinline)) void measuredSteps(World& world, int steps) {
-  for (int s = 0; s < steps; ++s) world.step(world.chooseTimeStep().dt);
+  for (int s = 0; s < steps; ++s) stepStable(world);
 }
 
 int main(int argc, char** argv) {
@@ -38,7 +39,7 @@ int main(int argc, char** argv) {
                                                                 : MaterialModel::kDruckerPrager);
   def.solver.stress_update = update == "usf" ? StressUpdate::kUsf : StressUpdate::kUsl;
   World world(def);
-  for (int s = 0; s < 10; ++s) world.step(world.chooseTimeStep().dt);  // warm-up, as throughput
+  for (int s = 0; s < 10; ++s) stepStable(world);  // warm-up, as throughput
   measuredSteps(world, std::atoi(argv[3]));
   std::printf("particles %zu\n", world.particles().size());
   return 0;

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <string>
 
+#include "mpm_sdem/core/stepper.hpp"
 #include "mpm_sdem/core/world.hpp"
 #include "mpm_sdem/scene/scene.hpp"
 
@@ -43,7 +44,7 @@ int main(int argc, char** argv) {
               "active_nodes");
   double rss_first = 0, rss_last = 0;
   for (long s = 1; s <= steps; ++s) {
-    const StepInfo info = w.step(w.chooseTimeStep().dt);
+    const StepInfo info = stepStable(w);
     if (!info.finite) {
       std::fprintf(stderr, "non-finite state at step %ld\n", s);
       return 1;

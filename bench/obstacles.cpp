@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "mpm_sdem/core/limits.hpp"
+#include "mpm_sdem/core/stepper.hpp"
 #include "mpm_sdem/scene/scene.hpp"
 
 using namespace mpm_sdem;
@@ -68,7 +69,7 @@ Result run(const Scene& scene, int count, double sim_time) {
   const Profile before = world.profile();
   const Clock::time_point start = Clock::now();
   while (world.time() < sim_time) {
-    world.step(world.chooseTimeStep().dt);
+    stepStable(world);
     ++r.steps;
   }
   const double wall = seconds(start);

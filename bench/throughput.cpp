@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bench_scenes.hpp"
+#include "mpm_sdem/core/stepper.hpp"
 #include "mpm_sdem/scene/scene.hpp"
 
 using namespace mpm_sdem;
@@ -124,11 +125,11 @@ int main(int argc, char** argv) {
       for (int r = 0; r < repeats; ++r) {
         World world(c.def);
         count = static_cast<long>(world.particles().size());
-        for (int s = 0; s < 10; ++s) world.step(world.chooseTimeStep().dt);  // warm-up
+        for (int s = 0; s < 10; ++s) stepStable(world);  // warm-up
         world.resetProfile();
         const double sim0 = world.time();
         const auto t0 = std::chrono::steady_clock::now();
-        for (int s = 0; s < steps; ++s) world.step(world.chooseTimeStep().dt);
+        for (int s = 0; s < steps; ++s) stepStable(world);
         const double sec =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         rates.push_back(static_cast<double>(count) * steps / sec);

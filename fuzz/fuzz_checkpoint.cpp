@@ -9,6 +9,7 @@
 #include <string>
 
 #include "mpm_sdem/core/checkpoint.hpp"
+#include "mpm_sdem/core/stepper.hpp"
 #include "mpm_sdem/core/world.hpp"
 #include "small_world.hpp"
 
@@ -34,7 +35,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const WorldDef def = worldWithABox();
   static const std::string valid = [] {
     World w(def);
-    for (int k = 0; k < 20; ++k) w.step(w.chooseTimeStep().dt);
+    for (int k = 0; k < 20; ++k) stepStable(w);
     return saveCheckpoint(w, "scene");
   }();
   // Half the inputs are the valid checkpoint with the input written over part of it, so that
@@ -55,6 +56,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   // Accepted: only the valid checkpoint itself (or an equal one) gets here; it must step.
-  for (int k = 0; k < 5; ++k) w.step(w.chooseTimeStep().dt);
+  for (int k = 0; k < 5; ++k) stepStable(w);
   return 0;
 }

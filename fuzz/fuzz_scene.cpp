@@ -7,6 +7,7 @@
 #include <string>
 
 #include "mpm_sdem/core/limits.hpp"
+#include "mpm_sdem/core/stepper.hpp"
 #include "mpm_sdem/scene/scene.hpp"
 
 using namespace mpm_sdem;

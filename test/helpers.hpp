@@ -6,6 +6,7 @@
 
 #include "cases.hpp"
 #include "mpm_sdem/core/diagnostics.hpp"
+#include "mpm_sdem/core/stepper.hpp"
 #include "mpm_sdem/core/world.hpp"
 
 namespace mpm_sdem::test {
@@ -63,11 +64,6 @@ inline WorldDef box(const Vec2& lo, const Vec2& hi, Real h) {
   d.domain.max = hi;
   d.cell_size = h;
   return d;
-}
-
-// Steps with the world's own time-step choice until time t.
-inline void runUntil(World& w, Real t) {
-  while (w.time() < t - 1e-12) w.step(std::fmin(w.chooseTimeStep().dt, t - w.time()));
 }
 
 inline std::string sourcePath(const std::string& rel) {

@@ -50,7 +50,7 @@ void spinDisk(KernelType kernel, StressUpdate update,
   ASSERT_GT(p_scale, 0);
   ASSERT_GT(l_scale, 0);
   for (int n = 0; n < 300; ++n) {
-    w.step(w.chooseTimeStep().dt);
+    stepStable(w);
     const Diagnostics d = measure(w);
     ASSERT_LT((d.momentum - prev.momentum).norm() / p_scale, 1e-10) << "step " << n;
     if (transfer == TransferScheme::kApic) {

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <map>
 
+#include "mpm_sdem/core/stepper.hpp"
 #include "mpm_sdem/ros/bag_recorder.hpp"
 #include "mpm_sdem/scene/scene.hpp"
 
@@ -34,7 +35,7 @@ TEST(BagRecorder, EveryMessageQueuedReachesTheBagInOrder) {
     conversions::StatsInput stats;
     bag.record(world, stats);
     while (world.time() < 0.1 - 1e-12) {
-      world.step(stepTowards(world.chooseTimeStep().dt, 0.1, world.time()));
+      stepStable(world, 0.1);
       bag.record(world, stats);
     }
     bag.close();

@@ -52,18 +52,19 @@ TEST(Spheropolygon, OffCentreTriangleCentroid) {
 }
 
 TEST(Spheropolygon, BadCoresAreRefused) {
-  EXPECT_NE(coreProblem({}), "");
-  EXPECT_NE(coreProblem({Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0.8, 0.3)}), "");  // concave
-  EXPECT_NE(coreProblem({Vec2(0, 0), Vec2(1, 1), Vec2(1, 0), Vec2(0, 1)}), "");      // crossing
-  EXPECT_NE(coreProblem({Vec2(0, 0), Vec2(1, 0), Vec2(2, 0)}), "");                  // zero area
+  EXPECT_NE(coreProblem({}).text(), "");
+  EXPECT_NE(coreProblem({Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0.8, 0.3)}).text(),
+            "");                                                                        // concave
+  EXPECT_NE(coreProblem({Vec2(0, 0), Vec2(1, 1), Vec2(1, 0), Vec2(0, 1)}).text(), "");  // crossing
+  EXPECT_NE(coreProblem({Vec2(0, 0), Vec2(1, 0), Vec2(2, 0)}).text(), "");              // zero area
   std::vector<Vec2> nine;
   for (int i = 0; i < 9; ++i)
     nine.push_back(Vec2(std::cos(i * 2 * M_PI / 9), std::sin(i * 2 * M_PI / 9)));
-  EXPECT_NE(coreProblem(nine), "");
+  EXPECT_NE(coreProblem(nine).text(), "");
   nine.pop_back();
-  EXPECT_EQ(coreProblem(nine), "");
-  EXPECT_EQ(coreProblem({Vec2(0, 0)}), "");
-  EXPECT_EQ(coreProblem({Vec2(0, 0), Vec2(1, 0)}), "");
+  EXPECT_EQ(coreProblem(nine).text(), "");
+  EXPECT_EQ(coreProblem({Vec2(0, 0)}).text(), "");
+  EXPECT_EQ(coreProblem({Vec2(0, 0), Vec2(1, 0)}).text(), "");
 }
 
 namespace {
@@ -191,7 +192,7 @@ TEST(RuntimeBlocks, ALightObstacleShortensTheSubcycledStep) {
   EXPECT_EQ(dt.limit, StepLimit::kContact);
   EXPECT_LT(dt.dt, material);
   const auto start = std::chrono::steady_clock::now();
-  for (int k = 0; k < 3; ++k) ASSERT_TRUE(world.step(world.chooseTimeStep().dt).finite);
+  for (int k = 0; k < 3; ++k) ASSERT_TRUE(stepStable(world).finite);
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
 }
 
@@ -279,7 +280,7 @@ TEST(RuntimeBlocks, AddedToASceneWithoutBlocksFallsAndIsRemoved) {
   world.removeBlock(id);
   EXPECT_EQ(world.blocks()->count(), 0);
   EXPECT_EQ(world.chooseTimeStep().limit, StepLimit::kCfl);
-  EXPECT_TRUE(world.step(world.chooseTimeStep().dt).finite);
+  EXPECT_TRUE(stepStable(world).finite);
 }
 
 // The step names a moving block whose centre leaves the domain (a disk thrown out of its top)
@@ -292,22 +293,20 @@ TEST(RuntimeBlocks, StepNamesABlockOutsideTheDomainOrNotFinite) {
   const BlockId stone =
       world.addBlock(test::diskBlock("stone", Vec2(0.37, 0.05), 0.01, BodyType::kDynamic, 1000));
   StepInfo info;
-  while (world.time() < 0.3 && info.block_problem.empty())
-    info = world.step(world.chooseTimeStep().dt);
+  while (world.time() < 0.3 && info.block_problem.empty()) info = stepStable(world);
   EXPECT_EQ(info.block_problem, "");
   EXPECT_LT(world.blocks()->blockBounds(1).min.y(), 0) << "resting, pressed past the bottom";
   EXPECT_NEAR(world.blocks()->state(1).velocity.norm(), 0, 1e-3);
   world.setBlockPose(stone, Vec2(0.37, 0.185), 0);
   world.setBlockVelocity(stone, Vec2(0, 5), 0);
-  for (int n = 0; n < 100 && info.block_problem.empty(); ++n)
-    info = world.step(world.chooseTimeStep().dt);
+  for (int n = 0; n < 100 && info.block_problem.empty(); ++n) info = stepStable(world);
   EXPECT_TRUE(info.finite);
   EXPECT_NE(info.block_problem.find("block 'stone'"), std::string::npos) << info.block_problem;
   EXPECT_NE(info.block_problem.find("left the domain"), std::string::npos);
   world.setBlockPose(stone, Vec2(0.37, 0.1), 0);
   world.setBlockVelocity(stone, Vec2(0, 0), 0);
   world.addBlockLoad(stone, Vec2(1e300, 0), Vec2(0.37, 0.1), 0);
-  info = world.step(world.chooseTimeStep().dt);
+  info = stepStable(world);
   EXPECT_FALSE(info.finite);
   EXPECT_NE(info.block_problem.find("block 'stone': its position, angle or velocity is no longer "
                                     "finite"),

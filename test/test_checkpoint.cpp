@@ -18,10 +18,6 @@ using namespace mpm_sdem;
 
 namespace {
 
-void runTo(World& w, Real t) {
-  while (w.time() < t) w.step(stepTowards(w.chooseTimeStep().dt, t, w.time()));
-}
-
 // Values that differ between two worlds' particle columns.
 long differingValues(const World& a, const World& b) {
   std::vector<const std::vector<Real>*> ca, cb;
@@ -48,10 +44,10 @@ void expectResumeIdentical(const WorldDef& def, Real t1, Real t2,
                            const std::function<void(World&)>& change = {}) {
   World a(def);
   if (change) change(a);
-  runTo(a, t1);
+  runUntil(a, t1);
   const std::string at_t1 = saveCheckpoint(a, "scene");
   const long steps_t1 = a.stepCount();
-  runTo(a, t2);
+  runUntil(a, t2);
   // What the material touches at t2 (the contact state the checkpoint had to carry).
   long contacts = 0;
   Real block_speed = 0;
@@ -66,7 +62,7 @@ void expectResumeIdentical(const WorldDef& def, Real t1, Real t2,
   restoreCheckpoint(b, at_t1);
   EXPECT_EQ(b.time(), readCheckpointHeader(at_t1).time);
   EXPECT_EQ(b.stepCount(), steps_t1);
-  runTo(b, t2);
+  runUntil(b, t2);
   EXPECT_EQ(b.stepCount(), a.stepCount());
   EXPECT_EQ(differingValues(a, b), 0) << "particle values that differ after the resume";
   if (a.blocks()) {
@@ -141,7 +137,7 @@ TEST(Checkpoint, BlocksAddedAndRemovedWhileRunningAreRestored) {
   // The second world is built from the scene alone: the checkpoint brings the new block, the
   // removed one's absence and the ids (a removed slot's generation).
   expectResumeIdentical(debris(), 0.085, 0.1, [](World& w) {
-    runTo(w, 0.02);
+    runUntil(w, 0.02);
     BlockDef d = w.blocks()->def(2);
     d.name = "added";
     d.position += Vec2(0, 0.1);
@@ -155,7 +151,7 @@ namespace {
 
 std::string checkpointOf(const std::string& path, Real t) {
   World w(scene(path));
-  runTo(w, t);
+  runUntil(w, t);
   return saveCheckpoint(w, "scene");
 }
 
@@ -210,7 +206,7 @@ TEST(Checkpoint, ACheckpointOfAnotherKindOfWorldIsRefused) {
 
 TEST(Checkpoint, HeaderCarriesTimeStepsSceneAndBuild) {
   World w(scene("config/scenes/debris_impact.yaml"));
-  runTo(w, 0.02);
+  runUntil(w, 0.02);
   const std::string bytes = saveCheckpoint(w, "the scene text");
   const CheckpointHeader h = readCheckpointHeader(bytes);
   EXPECT_EQ(h.time, w.time());

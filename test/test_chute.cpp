@@ -34,7 +34,7 @@ TEST(Chute, SteadyFlowFollowsBagnoldsProfile) {
     cases::Chute c;
     c.cell_size = k == 0 ? 0.005 : 0.0025;
     World w(cases::chute(c));
-    test::runUntil(w, 4.0);
+    runUntil(w, 4.0);
     error[k] = cases::chuteProfile(w, c);
     std::printf("cell %.4g m: worst %.4f of the surface speed, top layer %.4f of Bagnold's\n",
                 c.cell_size, error[k].worst, error[k].surface);
@@ -53,7 +53,7 @@ TEST(Chute, DISABLED_PerturbedStartStaysOnBagnoldsProfile) {
   c.cell_size = 0.0025;
   World w(cases::chute(c));
   perturbPositions(w.particles(), 1e-5, 1);
-  test::runUntil(w, 6.0);
+  runUntil(w, 6.0);
   const cases::ChuteProfile error = cases::chuteProfile(w, c);
   std::printf("perturbed: worst %.4f of the surface speed, top layer %.4f of Bagnold's\n",
               error.worst, error.surface);
@@ -79,7 +79,7 @@ TEST(Chute, DISABLED_PerturbedNewtonianFilmStaysUniform) {
   m.tensile_strength = 100;
   World w(def);
   perturbPositions(w.particles(), 1e-5, 1);
-  test::runUntil(w, 2.0);
+  runUntil(w, 2.0);
   const Particles& P = w.particles();
   Real vy = 0;
   for (std::size_t p = 0; p < P.size(); ++p) vy = std::max(vy, std::abs(P.vy[p]));
@@ -201,7 +201,7 @@ TEST(Periodic, ASpinningDiskCrossesTheSeamAsIfThereWereNone) {
       P.vx[p] = 1 - 20 * (P.y[p] - 0.05);
       P.vy[p] = 20 * (P.x[p] - 0.05);
     }
-    test::runUntil(w, 0.2);  // 20 cm: twice around the periodic domain
+    runUntil(w, 0.2);  // 20 cm: twice around the periodic domain
     const Diagnostics d = measure(w);
     return std::array<Real, 2>{d.kinetic, d.elastic};
   };

@@ -19,7 +19,7 @@ TEST(ColumnCollapse, DepositAtRestBelowFrictionAngle) {
   def.bodies.push_back(test::rectangle(Vec2(0, 0), Vec2(W, H), 2));
   World w(def);
   const Real mass0 = measure(w).mass;
-  test::runUntil(w, 1.5);
+  runUntil(w, 1.5);
   const Diagnostics d = measure(w);
   EXPECT_EQ(d.mass, mass0);
   Real grid_mass = 0;

@@ -29,7 +29,7 @@ void settleColumn(KernelType kernel, StressUpdate update) {
   World w(def);
   const Particles& P = w.particles();
   const std::vector<Real> y0 = P.y;
-  test::runUntil(w, 2.0);
+  runUntil(w, 2.0);
   const Real base = rho * g * H;
   Real worst = 0;
   for (std::size_t p = 0; p < P.size(); ++p) {

@@ -43,7 +43,7 @@ Real measuredPeriod(const WorldDef& def, Real L, Real v0) {
   std::vector<Real> crossings;
   Real prev = momentumX(w), prev_t = 0;
   while (crossings.size() < 2 && w.time() < 10 * L) {
-    w.step(w.chooseTimeStep().dt);
+    stepStable(w);
     // Velocities are staggered half a step behind the positions.
     const Real t = w.time() - 0.5 * w.chooseTimeStep().dt;
     const Real m = momentumX(w);

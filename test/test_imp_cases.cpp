@@ -18,6 +18,7 @@
 
 #include "block_helpers.hpp"
 #include "cases.hpp"
+#include "mpm_sdem/core/stepper.hpp"
 
 using namespace mpm_sdem;
 
@@ -63,7 +64,7 @@ TEST(ImpCases, BlockThrownAt20MetresPerSecondDoesNotTunnel) {
   const Particles& P = w.particles();
   Real closest = 1;
   while (w.time() < 0.03) {
-    w.step(w.chooseTimeStep().dt);
+    stepStable(w);
     const Blocks& B = *w.blocks();
     for (std::size_t p = 0; p < P.size(); ++p) {
       const Real d =
@@ -99,7 +100,7 @@ Real scaledImpCollision(Real s) {
   def.coupling.contact_radius = 0.001 * s;
   def.coupling.verlet_distance = 0.002 * s;
   World w(def);
-  test::runUntil(w, 0.008 * s);
+  runUntil(w, 0.008 * s);
   return w.blocks()->state(0).velocity.x();
 }
 
@@ -161,11 +162,11 @@ TEST(ImpCases, BlockComesToRestOnGranularBed) {
   def.coupling.tangential_stiffness = 5e5;
   World w(def);
   const Real weight = w.blocks()->massProperties(0).mass * 9.81;
-  test::runUntil(w, 0.5);
+  runUntil(w, 0.5);
   const BlockState at_half = w.blocks()->state(0);
   Real fastest = 0;
   while (w.time() < 0.8) {
-    w.step(w.chooseTimeStep().dt);
+    stepStable(w);
     fastest = std::max(fastest, w.blocks()->state(0).velocity.norm());
   }
   const BlockState end = w.blocks()->state(0);

@@ -25,6 +25,7 @@
 
 #include "block_helpers.hpp"
 #include "cases.hpp"
+#include "mpm_sdem/core/stepper.hpp"
 
 using namespace mpm_sdem;
 
@@ -60,7 +61,7 @@ Outcome collide(Real bulk, Real shear, Real kn, Real kt, Real duration,
   const Diagnostics d0 = measure(w);
   Outcome out{0, 0, 0, 0};
   while (w.time() < duration) {
-    w.step(w.chooseTimeStep().dt);
+    stepStable(w);
     const Diagnostics d = measure(w);
     out.momentum_error =
         std::max(out.momentum_error, (d.momentum - d0.momentum).norm() / d0.momentum.norm());

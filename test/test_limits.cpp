@@ -18,50 +18,53 @@ using namespace mpm_sdem;
 
 TEST(Limits, RangesRefuseNaNInfinityAndTheirEnds) {
   using limits::kRestitution;
-  EXPECT_EQ(limits::rangeProblem(0.5, kRestitution), "");
-  EXPECT_EQ(limits::rangeProblem(1, kRestitution), "");
-  EXPECT_EQ(limits::rangeProblem(0, kRestitution), "must be in (0, 1], got 0");
-  EXPECT_NE(limits::rangeProblem(std::nan(""), limits::kDensity), "");
-  EXPECT_NE(limits::rangeProblem(INFINITY, limits::kDensity), "");
-  EXPECT_EQ(limits::rangeProblem(1e300, limits::kDensity),
+  EXPECT_EQ(limits::rangeProblem(0.5, kRestitution).text(), "");
+  EXPECT_EQ(limits::rangeProblem(1, kRestitution).text(), "");
+  EXPECT_EQ(limits::rangeProblem(0, kRestitution).text(), "must be in (0, 1], got 0");
+  EXPECT_NE(limits::rangeProblem(std::nan(""), limits::kDensity).text(), "");
+  EXPECT_NE(limits::rangeProblem(INFINITY, limits::kDensity).text(), "");
+  EXPECT_EQ(limits::rangeProblem(1e300, limits::kDensity).text(),
             "must be in [0.1, 100000] kg/m^3, got 1e+300");
 }
 
 TEST(Limits, NamesAreRosNamesOfBoundedLength) {
-  EXPECT_EQ(limits::nameProblem("block_1"), "");
-  EXPECT_EQ(limits::nameProblem(std::string(64, 'a')), "");
+  EXPECT_EQ(limits::nameProblem("block_1").text(), "");
+  EXPECT_EQ(limits::nameProblem(std::string(64, 'a')).text(), "");
   for (const std::string bad : {"", "1block", "block 1", "a/b", "../../etc/passwd", "a\nb", "_a"})
-    EXPECT_NE(limits::nameProblem(bad), "") << bad;
-  const std::string huge = limits::nameProblem(std::string(10 << 20, 'x'));
+    EXPECT_NE(limits::nameProblem(bad).text(), "") << bad;
+  const std::string huge = limits::nameProblem(std::string(10 << 20, 'x')).message;
   EXPECT_NE(huge.find("at most 64"), std::string::npos);
   EXPECT_LT(huge.size(), 200u) << "the message must not echo the name";
 }
 
 TEST(Limits, ThreadsFromZeroToTheCores) {
-  EXPECT_EQ(limits::threadsProblem(0), "");
-  EXPECT_EQ(limits::threadsProblem(limits::logicalCores()), "");
-  EXPECT_NE(limits::threadsProblem(limits::logicalCores() + 1), "");
-  EXPECT_NE(limits::threadsProblem(100000), "");
-  EXPECT_NE(limits::threadsProblem(-1), "");
+  EXPECT_EQ(limits::threadsProblem(0).text(), "");
+  EXPECT_EQ(limits::threadsProblem(limits::logicalCores()).text(), "");
+  EXPECT_NE(limits::threadsProblem(limits::logicalCores() + 1).text(), "");
+  EXPECT_NE(limits::threadsProblem(100000).text(), "");
+  EXPECT_NE(limits::threadsProblem(-1).text(), "");
 }
 
 TEST(Limits, MemoryEstimateNamesTheSize) {
-  EXPECT_EQ(limits::memoryProblem(1e6, 1e6), "");  // a few hundred MB
-  const std::string p = limits::memoryProblem(1e12, 0);
-  EXPECT_NE(p.find("GiB"), std::string::npos) << p;
-  EXPECT_NE(limits::memoryProblem(INFINITY, 0), "");
+  EXPECT_EQ(limits::memoryProblem(1e6, 1e6).text(), "");  // a few hundred MB
+  const Problem p = limits::memoryProblem(1e12, 0);
+  EXPECT_NE(p.message.find("GiB"), std::string::npos) << p.message;
+  EXPECT_NE(limits::memoryProblem(INFINITY, 0).text(), "");
 }
 
 TEST(Limits, OutputFilesMustBeFilesInAWritableDirectory) {
   namespace fs = std::filesystem;
   const fs::path tmp = fs::temp_directory_path();
-  EXPECT_EQ(limits::outputFileProblem((tmp / "run.bag").string(), {".bag"}), "");
-  EXPECT_NE(limits::outputFileProblem(tmp.string(), {".bag"}).find("directory"), std::string::npos);
-  EXPECT_NE(limits::outputFileProblem((tmp / "run.txt").string(), {".bag"}).find("end in .bag"),
+  EXPECT_EQ(limits::outputFileProblem((tmp / "run.bag").string(), {".bag"}).text(), "");
+  EXPECT_NE(limits::outputFileProblem(tmp.string(), {".bag"}).message.find("directory"),
             std::string::npos);
-  EXPECT_NE(limits::outputFileProblem("/no/such/dir/run.bag", {".bag"}).find("does not exist"),
-            std::string::npos);
-  EXPECT_NE(limits::outputFileProblem("", {".bag"}), "");
+  EXPECT_NE(
+      limits::outputFileProblem((tmp / "run.txt").string(), {".bag"}).message.find("end in .bag"),
+      std::string::npos);
+  EXPECT_NE(
+      limits::outputFileProblem("/no/such/dir/run.bag", {".bag"}).message.find("does not exist"),
+      std::string::npos);
+  EXPECT_NE(limits::outputFileProblem("", {".bag"}).text(), "");
 }
 
 namespace {

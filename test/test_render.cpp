@@ -198,7 +198,7 @@ TEST(Video, EveryFrameDueReachesTheFileInOrder) {
     VideoRecorder video(path, 1000, def, world);
     record(video);
     while (world.time() < 0.03 - 1e-9) {
-      world.step(std::min<Real>(world.chooseTimeStep().dt, 0.03 - world.time()));
+      stepStable(world, 0.03);
       record(video);
     }
     frames = video.frames();

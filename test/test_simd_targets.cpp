@@ -34,7 +34,7 @@ End collapse(StressUpdate update, TransferScheme transfer) {
   def.solver.stress_update = update;
   def.solver.transfer = transfer;
   World w(def);
-  test::runUntil(w, 0.1);
+  runUntil(w, 0.1);
   return {w.particles().x, w.particles().y, w.stepCount()};
 }
 

@@ -24,7 +24,7 @@ struct Snapshot {
 Snapshot run(const WorldDef& def, int threads, Real end_time) {
   omp_set_num_threads(threads);
   World w(def);
-  while (w.time() < end_time) w.step(stepTowards(w.chooseTimeStep().dt, end_time, w.time()));
+  runUntil(w, end_time);
   const Particles& P = w.particles();
   Snapshot s;
   s.columns = {P.x, P.y, P.vx, P.vy, P.bxx, P.bxy, P.byx, P.byy, P.sxx, P.syy, P.sxy, P.szz, P.J};

@@ -32,7 +32,7 @@ WorldDef freeBody(TransferScheme transfer, Real cfl, Real cell) {
 // The fraction of the total energy lost by the end.
 Real energyLoss(World& w, Real end) {
   const Real e0 = measure(w).total();
-  test::runUntil(w, end);
+  runUntil(w, end);
   return 1 - measure(w).total() / e0;
 }
 
@@ -116,7 +116,7 @@ TEST(TransferLoss, AsflipKeepsMomentum) {
     P.vy[p] = 0.05 + 2.0 * (P.x[p] - 0.5);
   }
   const Vec2 p0 = measure(w).momentum;
-  test::runUntil(w, 0.2);
+  runUntil(w, 0.2);
   EXPECT_LT((measure(w).momentum - p0).norm() / p0.norm(), 1e-12);
 }
 
@@ -138,7 +138,7 @@ TEST(TransferLoss, AsflipRelaxationKeepsMomentumExactly) {
     P.vy[p] = 0.05 + 2.0 * (P.x[p] - 0.5) + noise(random);
   }
   const Vec2 p0 = measure(w).momentum;
-  test::runUntil(w, 0.2);
+  runUntil(w, 0.2);
   EXPECT_LT((measure(w).momentum - p0).norm() / p0.norm(), 1e-12);
 }
 
@@ -152,7 +152,7 @@ TEST(TransferLoss, AsflipRelaxationLossDoesNotDependOnTheStep) {
     WorldDef def = loadScene(test::sourcePath("config/scenes/debris_impact_granular.yaml")).world;
     def.time_step.cfl = cfl;
     World w(def);
-    test::runUntil(w, 0.2);
+    runUntil(w, 0.2);
     const Real ke = measure(w).kinetic;
     std::printf("granular scene, cfl %g: kinetic energy %.4f J/m at 0.2 s, %ld steps\n", cfl, ke,
                 w.stepCount());
@@ -173,7 +173,7 @@ TEST(TransferLoss, WoodenBlockFlowKeepsItsEnergyAsTheStepShrinks) {
     def.coupling.normal_integration = ContactIntegration::kSubcycled;  // the step: cfl's alone
     def.time_step.cfl = cfl;
     World w(def);
-    while (w.time() < 0.2 - 1e-12) w.step(stepTowards(w.chooseTimeStep().dt, 0.2, w.time()));
+    runUntil(w, 0.2);
     const Real ke = measure(w).kinetic;
     std::printf("%s cfl %g: kinetic energy %.4f J/m at 0.2 s, %ld steps\n", name(transfer), cfl, ke,
                 w.stepCount());
@@ -211,7 +211,7 @@ TEST(StepIndependence, WoodenBlocksRestWhereTheyDidWhenTheStepHalvesAndQuarters)
       def.time_step.cfl = cfls[k];
       World w(def);
       perturbPositions(w.particles(), 1e-6, seed);
-      test::runUntil(w, 1.0);
+      runUntil(w, 1.0);
       const Blocks& B = *w.blocks();
       const char* names[2] = {"block2", "block1"};
       Real left[2];

@@ -308,7 +308,7 @@ TEST(Vtk, FramesReadBackAsTheWorldAndTheCollectionsListThem) {
   VtkSeries series((dir / "new" / "vtk").string());  // made with its parents
   std::vector<double> times;
   for (int f = 0; f < 3; ++f) {
-    if (f > 0) test::runUntil(w, 0.02 * f);
+    if (f > 0) runUntil(w, 0.02 * f);
     ASSERT_TRUE(series.write(w));
     times.push_back(w.time());
     EXPECT_FALSE(series.write(w)) << "a second frame at the same time";
@@ -341,10 +341,10 @@ TEST(Vtk, FramesReadBackAsTheWorldAndTheCollectionsListThem) {
 TEST(Vtk, DirectoryProblems) {
   const fs::path dir =
       fs::temp_directory_path() / ("mpm_sdem_test_vtk_dir_" + std::to_string(getpid()));
-  EXPECT_EQ(vtkDirProblem((dir / "a" / "b").string()), "");
-  EXPECT_NE(vtkDirProblem(""), "");
-  EXPECT_NE(vtkDirProblem("/dev/null").find("not a directory"), std::string::npos);
-  EXPECT_NE(vtkDirProblem("/dev/null/vtk").find("not a directory"), std::string::npos);
+  EXPECT_EQ(vtkDirProblem((dir / "a" / "b").string()).text(), "");
+  EXPECT_NE(vtkDirProblem("").text(), "");
+  EXPECT_NE(vtkDirProblem("/dev/null").message.find("not a directory"), std::string::npos);
+  EXPECT_NE(vtkDirProblem("/dev/null/vtk").message.find("not a directory"), std::string::npos);
   EXPECT_THROW({ VtkSeries s("/dev/null"); }, std::runtime_error);
   EXPECT_FALSE(fs::exists(dir)) << "a check must not make the directory";
 }

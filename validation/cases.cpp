@@ -1,4 +1,5 @@
 #include "cases.hpp"
+#include "mpm_sdem/core/stepper.hpp"
 
 #include "mpm_sdem/mesh/mesher.hpp"
 
@@ -185,7 +186,7 @@ RestingForces restingSquareForces(World& w, Real slide_speed) {
   int quiet = 0;
   while (quiet < 25 && w.time() < 3.0) {
     const Real until = w.time() + 0.01;
-    while (w.time() < until - 1e-12) w.step(std::fmin(w.chooseTimeStep().dt, until - w.time()));
+    runUntil(w, until);
     quiet = measure(w).max_speed < 1e-4 ? quiet + 1 : 0;
   }
   out.settled = quiet == 25;
@@ -199,7 +200,7 @@ RestingForces restingSquareForces(World& w, Real slide_speed) {
   long samples = 0;
   const Real start = w.time() + (slide_speed > 0 ? 0.1 : 0);
   while (w.time() < start + 0.05) {
-    w.step(w.chooseTimeStep().dt);
+    stepStable(w);
     if (w.time() > start) {
       sum += w.blocks()->coupling()[0].force;
       ++samples;
@@ -285,7 +286,7 @@ Real inclineAcceleration(Real mu, Real h, CouplingScheme scheme, Real segment, R
   std::vector<Real> ts, xs;
   const Real x0 = (measure(w).center_of_mass - top0).dot(t);
   while (w.time() < 0.3) {
-    w.step(w.chooseTimeStep().dt);
+    stepStable(w);
     ts.push_back(w.time());
     xs.push_back((measure(w).center_of_mass - top0).dot(t) - x0);
   }
@@ -357,7 +358,7 @@ Rolling rollDisk(World& w, const ThrownDisk& c) {
       sample();
       next += 1e-3;
     }
-    w.step(w.chooseTimeStep().dt);
+    stepStable(w);
   }
   sample();
   Rolling r;
@@ -459,7 +460,7 @@ Rebound dropRebound(World& w) {
   out.release = out.peak = measure(w).center_of_mass.y();
   Real peak_after = -std::numeric_limits<Real>::infinity(), prev_vy = 0;
   while (w.time() < 0.25) {
-    w.step(w.chooseTimeStep().dt);
+    stepStable(w);
     const Diagnostics d = measure(w);
     const Real vy = d.momentum.y() / d.mass;
     if (prev_vy < 0 && vy > 0) out.bounced = true;
@@ -683,7 +684,7 @@ SiloFlow siloFlow(World& w, Real t_max) {
   auto discharged = [&] { return gaugeMass(P, outlet); };
   Real next = 0;
   while (w.time() < t_max) {
-    w.step(w.chooseTimeStep().dt);
+    stepStable(w);
     if (w.time() < next) continue;
     next += 0.01;
     const Real m = discharged();
@@ -829,7 +830,7 @@ Compression compressMatrix(World& w, int plate, Real speed, Real max_settlement)
   out.fines_mass = measure(w).mass;
   out.solids_mass += out.fines_mass;
   const Real settle = 0.6;
-  while (w.time() < settle) w.step(stepTowards(w.chooseTimeStep().dt, settle, w.time()));
+  runUntil(w, settle);
   // The plate brought down to 5 mm above the settled sample, then driven into it.
   Real top = 0;
   for (int i = 0; i < B.count(); ++i) {
@@ -847,7 +848,7 @@ Compression compressMatrix(World& w, int plate, Real speed, Real max_settlement)
   Real contact_y = std::numeric_limits<Real>::quiet_NaN(), next = 0;
   const Real give_up = w.time() + (0.01 + max_settlement) / speed;
   while (w.time() < give_up) {
-    w.step(w.chooseTimeStep().dt);
+    stepStable(w);
     const Real y = B.state(plate).position.y();
     const Real f = B.coupling()[plate].force.y() + B.blockContact(plate).force.y();
     if (std::isnan(contact_y) && f > 0.01 * weight) contact_y = y;
@@ -891,7 +892,7 @@ Real femInclineAcceleration(Real mu, Real h, Real element_size, CouplingScheme s
   std::vector<Real> ts, xs;
   const Real x0 = measure(w).center_of_mass.x();
   while (w.time() < 0.3) {
-    w.step(w.chooseTimeStep().dt);
+    stepStable(w);
     ts.push_back(w.time());
     xs.push_back(measure(w).center_of_mass.x() - x0);
   }
@@ -940,7 +941,7 @@ Cantilever cantilever(Real element_size, FemModel model) {
     d.fem_bodies = {damped};
     World w(d);
     while (w.time() < 7 / w1) {
-      w.step(w.chooseTimeStep().dt);
+      stepStable(w);
       c.element_steps += w.femBodies()->totalElements();
     }
     c.static_tip = tipDeflection(w);
@@ -954,7 +955,7 @@ Cantilever cantilever(Real element_size, FemModel model) {
     std::vector<Real> crossings;
     Real before = -c.static_tip, t_before = 0;
     while (w.time() < 3.3 * 2 * M_PI / w1) {
-      w.step(w.chooseTimeStep().dt);
+      stepStable(w);
       c.element_steps += w.femBodies()->totalElements();
       const Real now = tipDeflection(w) - c.static_tip;
       if (before < 0 && now >= 0)
@@ -1011,7 +1012,7 @@ GateRun runWaterGate(World& world, Real t_end, Real interval,
       snapshot(world, snapshot_times[next_snapshot]);
       ++next_snapshot;
     }
-    world.step(stepTowards(world.chooseTimeStep().dt, t_end, world.time()));
+    stepStable(world, t_end);
   }
   r.steps = world.stepCount();
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -1103,7 +1104,7 @@ void loadFaces(World& w, const Vec2& lo, const Vec2& hi, Real s, const Vec2& t, 
       if (P.y[p] > hi.y() - s) force.y() += f * t.y(), offset.y() = s / 2;
       if (!force.isZero()) w.setPointLoad(static_cast<int>(p), force, offset);
     }
-    w.step(stepTowards(w.chooseTimeStep().dt, end, w.time()));
+    stepStable(w, end);
   }
 }
 
@@ -1180,7 +1181,7 @@ PlateHole plateWithHole(Real h, int hole_cells, Real width_over_d, const SphDef&
   while (w.time() < end) {
     const Real f = std::min<Real>(1, w.time() / ramp);
     for (const Load& l : loads) w.setPointLoad(l.p, f * total[l.p], offset[l.p]);
-    w.step(stepTowards(w.chooseTimeStep().dt, end, w.time()));
+    stepStable(w, end);
   }
   // sigma_yy along the mid line out to 3a against Kirsch at each point; and Kirsch's form
   // 1 + c1 q + c2 q^2 (q = a^2 / r^2) fitted by least squares to the points whose stencil lies
@@ -1287,10 +1288,10 @@ Throughput throughput(Real h, bool sph, int steps) {
   World w(copperPlate(Vec2(1, 1), h, {b}, d));
   Particles& P = w.particles();
   for (std::size_t p = 0; p < P.size(); ++p) P.vx[p] = 0.1 * std::sin(3 * P.y[p]);  // m/s
-  w.step(w.chooseTimeStep().dt);  // warm-up: binning, first lists
+  stepStable(w);  // warm-up: binning, first lists
   w.resetProfile();
   const auto t0 = std::chrono::steady_clock::now();
-  for (int n = 0; n < steps; ++n) w.step(w.chooseTimeStep().dt);
+  for (int n = 0; n < steps; ++n) stepStable(w);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   Throughput out;
   out.particles = static_cast<long>(P.size());
@@ -1329,7 +1330,7 @@ WheelRun runWheel(World& w, Real t_end) {
   Real sum2 = 0;
   int n = 0;
   while (w.time() < t_end - 1e-12) {
-    w.step(std::fmin(w.chooseTimeStep().dt, t_end - w.time()));
+    stepStable(w, t_end);
     const Blocks& B = *w.blocks();
     const Real sinkage = top - (B.state(wheel).position.y() - radius);
     out.final_sinkage = sinkage;
@@ -1732,7 +1733,7 @@ ColumnDeposit collapseColumn(World& w, const GranularColumn& c, Real t_max) {
   // The column needs about sqrt(2 H0 / g) to fall; look for rest only after that.
   Real next_check = std::sqrt(2 * c.aspect * c.length / 9.81);
   while (w.time() < t_max - 1e-12) {
-    w.step(stepTowards(w.chooseTimeStep().dt, t_max, w.time()));
+    stepStable(w, t_max);
     if (w.time() >= next_check - 1e-12) {
       next_check += 0.01;
       if (fastest() < 0.01) {

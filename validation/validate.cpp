@@ -22,6 +22,7 @@
 #include "cases.hpp"
 #include "mpm_sdem/core/diagnostics.hpp"
 #include "mpm_sdem/core/mpm/material.hpp"
+#include "mpm_sdem/core/stepper.hpp"
 #include "mpm_sdem/core/world.hpp"
 #include "mpm_sdem/scene/scene.hpp"
 
@@ -101,7 +102,7 @@ void collision(const Options& o, Results& r) {
     Real next_sample = 0;
     const auto t0 = std::chrono::steady_clock::now();
     while (w.time() < 0.15) {
-      w.step(w.chooseTimeStep().dt);
+      stepStable(w);
       if (w.time() >= next_sample) {
         next_sample += 2.5e-4;
         const Diagnostics d = measure(w);
@@ -223,13 +224,13 @@ void restingPile(const Options& o, Results& r) {
     return top;
   };
   // Settle first (gravity switched on at t = 0 loads the bed elastically): 0.5 s.
-  while (w.time() < 0.5) w.step(w.chooseTimeStep().dt);
+  runUntil(w, 0.5);
   const Diagnostics d0 = measure(w);
   const Real top0 = surface();
   const auto t0 = std::chrono::steady_clock::now();
   Real peak_kinetic = 0;
   for (long n = 0; n < steps; ++n) {
-    w.step(w.chooseTimeStep().dt);
+    stepStable(w);
     if (n % 1000 == 0) peak_kinetic = std::max(peak_kinetic, measure(w).kinetic);
   }
   const double wall = seconds(t0);
@@ -328,7 +329,7 @@ void stability(const Options& o, Results& r) {
     Real peak = e0;
     bool finite = true;
     while (w.time() < c.end && finite) {
-      finite = w.step(stepTowards(w.chooseTimeStep().dt, c.end, w.time())).finite;
+      finite = stepStable(w, c.end).finite;
       const Diagnostics d = measure(w);
       finite = finite && d.finite;
       peak = std::max(peak, d.total());
@@ -802,7 +803,7 @@ void contactSchemes(const Options& o, Results& r) {
       const Diagnostics d0 = measure(w);
       const Real end = approach + 0.06;
       const auto t0 = std::chrono::steady_clock::now();
-      while (w.time() < end) w.step(stepTowards(w.chooseTimeStep().dt, end, w.time()));
+      runUntil(w, end);
       const double wall = seconds(t0);
       const Diagnostics d = measure(w);
       const Real v2 = std::abs(d.kinetic - d0.kinetic) / d0.kinetic;
@@ -876,7 +877,7 @@ DebrisRun runDebris(const WorldDef& def, Real end, FILE* series, FILE* snapshots
       next_sample += 0.01;
     }
     if (w.time() >= end) break;
-    w.step(stepTowards(w.chooseTimeStep().dt, end, w.time()));
+    stepStable(w, end);
     const Real t = w.time();
     if (run.first_impact < 0)
       for (int b : {b1, b2, b3})
@@ -1237,7 +1238,7 @@ void debrisTimeStep(const Options& o, Results& r) {
       const auto t0 = std::chrono::steady_clock::now();
       World w(def);
       const Real dt = w.chooseTimeStep().dt;
-      while (w.time() < 0.2) w.step(w.chooseTimeStep().dt);
+      runUntil(w, 0.2);
       Real front = 0;
       for (std::size_t p = 0; p < w.particles().size(); ++p)
         front = std::max(front, w.particles().x[p]);
@@ -1285,7 +1286,7 @@ struct FlowAt {
 FlowAt flowBeforeImpact(const WorldDef& def, Real t_end) {
   const auto t0 = std::chrono::steady_clock::now();
   World w(def);
-  while (w.time() < t_end) w.step(stepTowards(w.chooseTimeStep().dt, t_end, w.time()));
+  runUntil(w, t_end);
   const Particles& P = w.particles();
   FlowAt f;
   std::vector<Real> xs(P.x.begin(), P.x.end());
@@ -1366,10 +1367,9 @@ void chuteFlow(const Options& o, Results& r) {
       c.cell_size = h;
       World w(cases::chute(c));
       const auto t0 = std::chrono::steady_clock::now();
-      while (w.time() < t_end - 1 - 1e-12)
-        w.step(stepTowards(w.chooseTimeStep().dt, t_end - 1, w.time()));
+      while (w.time() < t_end - 1 - 1e-12) stepStable(w, t_end - 1);
       const Real before = cases::chuteProfile(w, c).surface;
-      while (w.time() < t_end - 1e-12) w.step(stepTowards(w.chooseTimeStep().dt, t_end, w.time()));
+      runUntil(w, t_end);
       const cases::ChuteProfile p = cases::chuteProfile(w, c);
       const double wall = seconds(t0);
       char settings[120];
@@ -1523,7 +1523,7 @@ void clusters(const Options& o, Results& r) {
     Outcome out;
     const auto t0 = std::chrono::steady_clock::now();
     while (w.time() < end) {
-      w.step(stepTowards(w.chooseTimeStep().dt, end, w.time()));
+      stepStable(w, end);
       for (int s = 0; s < B.shapesOf(0); ++s)
         out.depth = std::max(out.depth, Real(0.08) - B.bounds(s).min.y());
     }
@@ -1655,7 +1655,7 @@ void flexibleBarrier(const Options& o, Results& r) {
     Real largest = 0;
     const auto t0 = std::chrono::steady_clock::now();
     while (w.time() < t_end) {
-      w.step(stepTowards(w.chooseTimeStep().dt, t_end, w.time()));
+      stepStable(w, t_end);
       largest = std::max(largest, F.position(top).x() - F.reference(top).x());
     }
     const double wall = seconds(t0);

@@ -28,7 +28,7 @@ std::string gib(double bytes) {
 
 }  // namespace
 
-std::string rangeProblem(Real v, const Range& r) {
+Problem rangeProblem(Real v, const Range& r) {
   const bool above_min = r.open_min ? v > r.min : v >= r.min;
   if (above_min && v <= r.max) return "";
   const std::string unit = *r.unit ? std::string(" ") + r.unit : std::string();
@@ -36,7 +36,7 @@ std::string rangeProblem(Real v, const Range& r) {
          "]" + unit + ", got " + num(v);
 }
 
-std::string nameProblem(const std::string& name) {
+Problem nameProblem(const std::string& name) {
   if (name.empty()) return "must not be empty";
   if (name.size() > kMaxNameLength)
     return "must be at most " + std::to_string(kMaxNameLength) + " characters, got " +
@@ -59,7 +59,7 @@ int logicalCores() {
   return n > 0 ? static_cast<int>(n) : 1;
 }
 
-std::string threadsProblem(long threads) {
+Problem threadsProblem(long threads) {
   if (threads >= 0 && threads <= logicalCores()) return "";
   return "must be 0 (automatic) to " + std::to_string(logicalCores()) +
          " (this machine's cores; more threads only wait for each other), got " +
@@ -75,7 +75,7 @@ double worldBytes(double nodes, double points) {
   return 2 * (nodes * per_node + points * per_point);
 }
 
-std::string memoryProblem(double nodes, double points) {
+Problem memoryProblem(double nodes, double points) {
   const double need = worldBytes(nodes, points);
   const double have = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * sysconf(_SC_PAGESIZE);
   if (std::isfinite(need) && (have <= 0 || need <= 0.5 * have)) return "";
@@ -84,8 +84,7 @@ std::string memoryProblem(double nodes, double points) {
          "; use larger cells or a smaller domain";
 }
 
-std::string outputFileProblem(const std::string& path,
-                              std::initializer_list<const char*> extensions) {
+Problem outputFileProblem(const std::string& path, std::initializer_list<const char*> extensions) {
   namespace fs = std::filesystem;
   if (path.empty()) return "no file given";
   std::error_code error;

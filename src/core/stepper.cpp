@@ -1,11 +1,33 @@
 #include "mpm_sdem/core/stepper.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/rigid/blocks.hpp"
 
 namespace mpm_sdem {
+
+Real stepTowards(Real dt, Time end_time, Time time) {
+  const Time remaining = end_time - time;
+  return static_cast<Real>(remaining < 1.5 * dt && remaining > dt ? 0.5 * remaining
+                                                                  : std::min<Time>(dt, remaining));
+}
+
+bool reachedEnd(Time time, Time end_time) {
+  return time >= end_time - 1e-9 * std::abs(end_time);
+}
+
+StepInfo stepStable(World& world, Time end_time) {
+  return world.step(stepTowards(world.chooseTimeStep().dt, end_time, world.time()));
+}
+
+StepInfo runUntil(World& world, Time end_time) {
+  StepInfo info;
+  while (!reachedEnd(world.time(), end_time) && info.finite) info = stepStable(world, end_time);
+  return info;
+}
 
 std::string StepGuard::problem(const TimeStepChoice& dt) {
   char text[256];
@@ -37,9 +59,7 @@ PlannedStep Stepper::plan(Time end_time) {
     guard_.rebase();
   }
   out.problem = guard_.problem(out.stable);
-  out.dt = end_time < std::numeric_limits<Time>::infinity()
-               ? stepTowards(out.stable.dt, end_time, world_.time())
-               : out.stable.dt;
+  out.dt = stepTowards(out.stable.dt, end_time, world_.time());
   return out;
 }
 

@@ -49,10 +49,9 @@ int cellCount(Real extent, Real h, const char* what) {
 
 }  // namespace
 
-std::string sizeProblem(const DomainDef& domain, Real cell_size,
-                        const std::vector<BodyDef>& bodies) {
-  if (const std::string p = limits::rangeProblem(cell_size, limits::kCellSize); !p.empty())
-    return "cell_size " + p;
+Problem sizeProblem(const DomainDef& domain, Real cell_size, const std::vector<BodyDef>& bodies) {
+  if (const Problem p = limits::rangeProblem(cell_size, limits::kCellSize); !p.empty())
+    return "cell_size " + p.message;
   const Vec2 cells = (domain.max - domain.min) / cell_size;
   const double pad = 2 * Grid::kPad + 1;
   double points = 0;
@@ -70,14 +69,14 @@ World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 
 World::World(const WorldDef& def) : def_(def) {
-  if (const std::string p = sizeProblem(def.domain, def.cell_size, def.bodies); !p.empty())
-    throw std::invalid_argument("the world " + p);
+  if (const Problem p = sizeProblem(def.domain, def.cell_size, def.bodies); !p.empty())
+    throw std::invalid_argument("the world " + p.message);
   const Vec2 size = def.domain.max - def.domain.min;
   grid_.init(def.domain.min, cellCount(size.x(), def.cell_size, "width"),
              cellCount(size.y(), def.cell_size, "height"), def.cell_size);
   tiles_.init(grid_);
   tiles_.periodic_x = periodicX();
-  if (const std::string p = periodicProblem(def); !p.empty()) throw std::invalid_argument(p);
+  if (const Problem p = periodicProblem(def); !p.empty()) throw std::invalid_argument(p.text());
   for (const MaterialDef& m : def.materials) {
     params_.push_back(makeMaterialParams(m));
     if (m.model == MaterialModel::kFluid && m.viscosity > 0)
@@ -133,12 +132,8 @@ World::World(const WorldDef& def) : def_(def) {
   if (!def.blocks.empty())
     blocks_ = std::make_unique<Blocks>(def.blocks, def.block_contact, def.solver.gravity);
   if (!def.fem_bodies.empty()) {
-    if (def.coupling.scheme == CouplingScheme::kMultiVelocity ||
-        def.coupling.scheme == CouplingScheme::kPartitioned)
-      throw std::invalid_argument(
-          std::string("coupling.scheme ") + couplingSchemeName(def.coupling.scheme) +
-          " cannot meet FEM bodies (it needs a body's interior lattice or a wall of its own); "
-          "use particle_surface (seed 002's) or imp");
+    if (const Problem p = schemeProblem(def.coupling.scheme, true, false); !p.empty())
+      throw std::invalid_argument(p.text());
     fem_ = std::make_unique<FemBodies>(def.fem_bodies, def.solver.gravity);
   }
   if (blocks_ || fem_) {
@@ -179,11 +174,11 @@ World::World(const WorldDef& def) : def_(def) {
 
 void World::initSph() {
   const SphDef& d = def_.sph;
-  const CouplingScheme scheme = def_.coupling.scheme;
-  const Problem problem = sphProblem(
-      d, def_.cell_size, def_.solver.stress_update == StressUpdate::kUsf,
-      scheme == CouplingScheme::kMultiVelocity || scheme == CouplingScheme::kPartitioned);
+  const Problem problem =
+      sphProblem(d, def_.cell_size, def_.solver.stress_update == StressUpdate::kUsf);
   if (!problem.empty()) throw std::invalid_argument("sph." + problem.text());
+  if (const Problem p = schemeProblem(def_.coupling.scheme, false, true); !p.empty())
+    throw std::invalid_argument(p.text());
   const Real R = 2 * (d.smoothing_length > 0 ? d.smoothing_length : def_.cell_size);
   sph_ = std::make_unique<detail::SphState>();
   sph_->settings = {d.kernel, R, d.viscosity_alpha, d.viscosity_beta, d.corrected_gradient};
@@ -218,10 +213,10 @@ void World::initCoupling() {
 
 Problem World::placementProblem(const BlockDef& d, bool allow_overlap, BlockId moving) const {
   if (Problem own = blockProblem(d, def_.block_contact.model); !own.empty()) return own;
-  if (!coupling_ && def_.coupling.scheme == CouplingScheme::kPartitioned && steps_ > 0)
-    return {"",
-            "the partitioned coupling builds its wall from the material's initial outline: "
-            "give the scene a block from the start, or use another coupling scheme"};
+  if (!coupling_ && !schemeTraits(def_.coupling.scheme).takes_later_blocks && steps_ > 0)
+    return {"", std::string("the ") + couplingSchemeName(def_.coupling.scheme) +
+                    " coupling builds its wall from the material's initial outline: give the "
+                    "scene a block from the start, or use another coupling scheme"};
   if (moving.isNull() && blocks_ && !blocks_->find(d.name).isNull())
     return {"name", "a block named '" + d.name + "' exists"};
   if (Problem where = domainProblem(d, def_.domain.min, def_.domain.max); !where.empty())
@@ -359,12 +354,6 @@ World::Memory World::memory() const {
   m.grid_nodes = grid_.nodeCount();
   m.active_nodes = tiles_.active.size() * Tiles::kSize * Tiles::kSize;
   return m;
-}
-
-Real stepTowards(Real dt, Time end_time, Time time) {
-  const Time remaining = end_time - time;
-  return static_cast<Real>(remaining < 1.5 * dt && remaining > dt ? 0.5 * remaining
-                                                                  : std::min<Time>(dt, remaining));
 }
 
 TimeStepChoice World::chooseTimeStep() {
@@ -754,20 +743,21 @@ void World::applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const {
   }
 }
 
-std::string periodicProblem(const WorldDef& def) {
+Problem periodicProblem(const WorldDef& def) {
   const bool left = def.domain.left.type == WallType::kPeriodic;
   const bool right = def.domain.right.type == WallType::kPeriodic;
-  if (left != right) return "domain.walls: left and right must both be periodic, or neither";
+  if (left != right) return {"domain.walls", "left and right must both be periodic, or neither"};
   if (def.domain.bottom.type == WallType::kPeriodic || def.domain.top.type == WallType::kPeriodic)
-    return "domain.walls: only left and right can be periodic";
-  if (!left) return "";
+    return {"domain.walls", "only left and right can be periodic"};
+  if (!left) return {};
   const Real cells = (def.domain.max.x() - def.domain.min.x()) / def.cell_size;
   if (cells < 2 * Grid::kPad + 1 - 1e-9)
-    return "domain.walls: a periodic domain needs at least " + std::to_string(2 * Grid::kPad + 1) +
-           " cells across, so that no node has two images";
+    return {"domain.walls", "a periodic domain needs at least " +
+                                std::to_string(2 * Grid::kPad + 1) +
+                                " cells across, so that no node has two images"};
   if (!def.blocks.empty() || !def.fem_bodies.empty() || def.sph.enabled())
-    return "domain.walls: periodic sides are for material alone: no blocks, FEM bodies or SPH";
-  return "";
+    return {"domain.walls", "periodic sides are for material alone: no blocks, FEM bodies or SPH"};
+  return {};
 }
 
 void World::foldPeriodic(std::initializer_list<std::vector<Real>*> fields) {

@@ -45,7 +45,7 @@ std::string defaultBagPath(const std::string& scene) {
 
 }  // namespace
 
-std::string frameProblem(const std::string& frame) {
+Problem frameProblem(const std::string& frame) {
   if (frame.empty()) return "must not be empty";
   if (frame.size() > kMaxFrameLength)
     return "must be at most " + std::to_string(kMaxFrameLength) + " characters, got " +
@@ -53,8 +53,8 @@ std::string frameProblem(const std::string& frame) {
   std::size_t start = 0;
   while (true) {
     const std::size_t end = frame.find('/', start);
-    if (const std::string p = limits::nameProblem(frame.substr(start, end - start)); !p.empty())
-      return "must be names joined by '/': " + p;
+    if (const Problem p = limits::nameProblem(frame.substr(start, end - start)); !p.empty())
+      return "must be names joined by '/': " + p.message;
     if (end == std::string::npos) return "";
     start = end + 1;
   }
@@ -116,10 +116,10 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
     error = m;
     return false;
   };
-  if (const std::string f = frameProblem(p.fixed_frame); !f.empty())
-    return fail("parameter ~fixed_frame " + f);
-  if (const std::string f = frameProblem(p.tf_prefix); !f.empty())
-    return fail("parameter ~tf_prefix " + f);
+  if (const Problem f = frameProblem(p.fixed_frame); !f.empty())
+    return fail("parameter ~fixed_frame " + f.message);
+  if (const Problem f = frameProblem(p.tf_prefix); !f.empty())
+    return fail("parameter ~tf_prefix " + f.message);
   if (decimation < 1) return fail("parameter ~cloud_decimation must be >= 1");
   auto nonNegative = [&](const char* key, double v, const char* unit) {
     if (v >= 0 && std::isfinite(v)) return true;
@@ -143,10 +143,10 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
     return fail(m);
   }
   for (const auto& [block, frame] : p.follow_tf) {
-    if (const std::string n = limits::nameProblem(block); !n.empty())
-      return fail("parameter ~follow_tf: block name " + n);
-    if (const std::string f = frameProblem(frame); !f.empty())
-      return fail("parameter ~follow_tf/" + block + ": frame " + f);
+    if (const Problem n = limits::nameProblem(block); !n.empty())
+      return fail("parameter ~follow_tf: block name " + n.message);
+    if (const Problem f = frameProblem(frame); !f.empty())
+      return fail("parameter ~follow_tf/" + block + ": frame " + f.message);
   }
   if (bag_decimation < 1) return fail("parameter ~bag_cloud_decimation must be >= 1");
   p.cloud_decimation = decimation;
@@ -177,19 +177,19 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
   } else {
     return fail("parameter ~end_action must be pause, shutdown or continue, got '" + end + "'");
   }
-  if (const std::string t = limits::threadsProblem(p.threads); !t.empty())
-    return fail("parameter ~threads " + t);
+  if (const Problem t = limits::threadsProblem(p.threads); !t.empty())
+    return fail("parameter ~threads " + t.message);
   if (!(p.video_fps > 0) || p.video_fps > 1000)
     return fail("parameter ~video_fps must be in (0, 1000] frames per simulated second");
   if (p.record && p.bag.empty()) p.bag = defaultBagPath(p.scene);
   // Checked now, so that a bad path stops the node before it simulates anything.
   if (p.record) {
-    if (const std::string b = bagPathProblem(p.bag); !b.empty())
-      return fail("parameter ~bag: " + b);
+    if (const Problem b = bagPathProblem(p.bag); !b.empty())
+      return fail("parameter ~bag: " + b.message);
   }
   if (!p.video.empty()) {
-    if (const std::string v = render::videoPathProblem(p.video); !v.empty())
-      return fail("parameter ~video: " + v);
+    if (const Problem v = render::videoPathProblem(p.video); !v.empty())
+      return fail("parameter ~video: " + v.message);
   }
   if (!(p.vtk_interval > 0) || !std::isfinite(p.vtk_interval))
     return fail("parameter ~vtk/interval must be a finite number > 0 s of simulated time, got " +
@@ -197,8 +197,8 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
   // Trailing slashes off, so that a reset's series is <dir>-reset<n>, not <dir>/-reset<n>.
   while (p.vtk_dir.size() > 1 && p.vtk_dir.back() == '/') p.vtk_dir.pop_back();
   if (!p.vtk_dir.empty()) {
-    if (const std::string v = vtkDirProblem(p.vtk_dir); !v.empty())
-      return fail("parameter ~vtk/dir: " + v);
+    if (const Problem v = vtkDirProblem(p.vtk_dir); !v.empty())
+      return fail("parameter ~vtk/dir: " + v.message);
   }
   p.record_def.fixed_frame = p.fixed_frame;
   p.record_def.tf_prefix = p.tf_prefix;
@@ -218,8 +218,9 @@ bool chooseImageScale(const Scene& scene, NodeParams& p, std::string& error) {
         "): leave ~image/max_value out or set ~image/color_by";
     return false;
   }
-  if (const std::string r = render::maxValueProblem(c, *p.image_request.max_value); !r.empty()) {
-    error = "parameter ~image/max_value " + r + " (the top of the " + render::colorByName(c) +
+  if (const Problem r = render::maxValueProblem(c, *p.image_request.max_value); !r.empty()) {
+    error = "parameter ~image/max_value " + r.message + " (the top of the " +
+            render::colorByName(c) +
             " colours; leave it out for the scene's view.max_value or its default)";
     return false;
   }

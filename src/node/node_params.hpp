@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "mpm_sdem/core/problem.hpp"
 #include "mpm_sdem/render/render.hpp"
 #include "mpm_sdem/ros/bag_recorder.hpp"
 #include "mpm_sdem/scene/scene.hpp"
@@ -72,7 +73,7 @@ struct NodeParams {
 // kMaxFrameLength characters), or "": the one check of ~fixed_frame, ~tf_prefix, ~follow_tf and
 // the requests' reference frames.
 inline constexpr std::size_t kMaxFrameLength = 256;
-std::string frameProblem(const std::string& frame);
+Problem frameProblem(const std::string& frame);
 
 // Fills params from the private node handle; false with a message on a bad value.
 bool loadParams(const ros::NodeHandle& pnh, NodeParams& params, std::string& error);

@@ -220,7 +220,7 @@ int Publishers::terrainColumns(const World& world) const {
   return static_cast<int>(std::ceil((d.max.x() - d.min.x()) / terrainColumn(world) - 1e-9));
 }
 
-std::string Publishers::terrainProblem(const World& world) const {
+Problem Publishers::terrainProblem(const World& world) const {
   // A message of 12 bytes a column: 1e5 columns is 1.2 MB at rates/terrain.
   constexpr double kMaxColumns = 1e5;
   const DomainDef& d = world.def().domain;

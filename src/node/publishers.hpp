@@ -17,6 +17,7 @@
 #include <memory>
 #include <vector>
 
+#include "mpm_sdem/core/problem.hpp"
 #include "mpm_sdem/core/world.hpp"
 #include "mpm_sdem/ros/conversions.hpp"
 #include "node_params.hpp"
@@ -40,7 +41,7 @@ class Publishers {
   // topics follow, /tf_static is re-sent.
   void blocksChanged(const World& world);
   // "" or why ~terrain cannot be drawn for this world (too many columns).
-  std::string terrainProblem(const World& world) const;
+  Problem terrainProblem(const World& world) const;
   // Restart the rate schedules at the world's time (after a reset).
   void restart(const World& world);
 

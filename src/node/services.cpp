@@ -138,8 +138,8 @@ bool Services::spawn(mpm_sdem::SpawnObstacle::Request& req,
 
 bool Services::remove(mpm_sdem::RemoveObstacle::Request& req,
                       mpm_sdem::RemoveObstacle::Response& res) {
-  if (const std::string p = limits::nameProblem(req.name); !p.empty())
-    return answer(res, {false, "name " + p});
+  if (const Problem p = limits::nameProblem(req.name); !p.empty())
+    return answer(res, {false, "name " + p.message});
   const std::string name = req.name;
   return answer(res, queue_.call([name](Simulation& s) -> Reply {
     const BlockId id = findBlock(s.world(), name);
@@ -155,8 +155,8 @@ bool Services::setState(mpm_sdem::SetObstacleState::Request& req,
                         mpm_sdem::SetObstacleState::Response& res) {
   if (!req.set_pose && !req.set_twist)
     return answer(res, {false, "nothing to do: set set_pose and/or set_twist"});
-  if (const std::string p = limits::nameProblem(req.name); !p.empty())
-    return answer(res, {false, "name " + p});
+  if (const Problem p = limits::nameProblem(req.name); !p.empty())
+    return answer(res, {false, "name " + p.message});
   const mpm_sdem::SetObstacleState::Request r = req;
   return answer(res, queue_.call([r](Simulation& s) -> Reply {
     World& w = s.world();
@@ -223,11 +223,11 @@ bool Services::step(mpm_sdem::StepSimulation::Request& req,
 
 bool Services::getState(mpm_sdem::GetObstacleState::Request& req,
                         mpm_sdem::GetObstacleState::Response& res) {
-  if (const std::string p = limits::nameProblem(req.name); !p.empty())
-    return answer(res, {false, "name " + p});
+  if (const Problem p = limits::nameProblem(req.name); !p.empty())
+    return answer(res, {false, "name " + p.message});
   if (!req.reference_frame.empty())
-    if (const std::string p = frameProblem(req.reference_frame); !p.empty())
-      return answer(res, {false, "reference_frame " + p});
+    if (const Problem p = frameProblem(req.reference_frame); !p.empty())
+      return answer(res, {false, "reference_frame " + p.message});
   const std::string name = req.name, frame = req.reference_frame;
   mpm_sdem::GetObstacleState::Response out;
   const Reply r = queue_.call([&](Simulation& s) -> Reply {
@@ -283,8 +283,8 @@ bool Services::getState(mpm_sdem::GetObstacleState::Request& req,
 
 bool Services::applyWrench(mpm_sdem::ApplyObstacleWrench::Request& req,
                            mpm_sdem::ApplyObstacleWrench::Response& res) {
-  if (const std::string p = limits::nameProblem(req.name); !p.empty())
-    return answer(res, {false, "name " + p});
+  if (const Problem p = limits::nameProblem(req.name); !p.empty())
+    return answer(res, {false, "name " + p.message});
   const geometry_msgs::Wrench& wr = req.wrench;
   const double values[] = {wr.force.x,
                            wr.force.y,
@@ -317,8 +317,8 @@ bool Services::applyWrench(mpm_sdem::ApplyObstacleWrench::Request& req,
 bool Services::clearWrenches(mpm_sdem::ClearObstacleWrenches::Request& req,
                              mpm_sdem::ClearObstacleWrenches::Response& res) {
   if (!req.name.empty())
-    if (const std::string p = limits::nameProblem(req.name); !p.empty())
-      return answer(res, {false, "name " + p});
+    if (const Problem p = limits::nameProblem(req.name); !p.empty())
+      return answer(res, {false, "name " + p.message});
   const std::string name = req.name;
   return answer(res, queue_.call([name](Simulation& s) -> Reply {
     return s.drivers().clearLoads(s.world(), name);
@@ -326,8 +326,8 @@ bool Services::clearWrenches(mpm_sdem::ClearObstacleWrenches::Request& req,
 }
 
 void Services::obstacleCommand(const mpm_sdem::ObstacleCommand::ConstPtr& msg) {
-  if (const std::string p = limits::nameProblem(msg->name); !p.empty()) {
-    MPM_SDEM_WARN_THROTTLE(1, "~obstacle_cmd ignored: name %s", p.c_str());
+  if (const Problem p = limits::nameProblem(msg->name); !p.empty()) {
+    MPM_SDEM_WARN_THROTTLE(1, "~obstacle_cmd ignored: name %s", p.message.c_str());
     return;
   }
   const std::string name = msg->name;

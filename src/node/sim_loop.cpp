@@ -43,8 +43,8 @@ Simulation::Simulation(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
     tuner_ = std::make_unique<ThreadTuner>(std::min(omp_get_max_threads(), limits::logicalCores()));
   dt_ = world_->chooseTimeStep();
   drivers_.checkFollowers(*world_);
-  if (const std::string p = publishers_.terrainProblem(*world_); !p.empty())
-    throw std::runtime_error(p);
+  if (const Problem p = publishers_.terrainProblem(*world_); !p.empty())
+    throw std::runtime_error(p.text());
   drivers_.sync(*world_, true);
   openRecordings();
   publishers_.blocksChanged(*world_);
@@ -249,7 +249,7 @@ bool Simulation::advance() {
     pauseOutside(info.block_problem);
     return false;
   }
-  if (to_end && world_->time() >= scene_.end_time * (1 - 1e-9)) {
+  if (to_end && reachedEnd(world_->time(), scene_.end_time)) {
     end_reached_ = true;
     logProgress(true);
     if (params_.end_action == EndAction::kShutdown) {

@@ -120,15 +120,15 @@ void renderWorld(const World& world, const RenderDef& def, cv::Mat& image) {
   drawSnapshot(snap, def, image);
 }
 
-std::string videoPathProblem(const std::string& path) {
+Problem videoPathProblem(const std::string& path) {
   return limits::outputFileProblem(path, {".avi", ".mp4", ".mkv"});
 }
 
 VideoRecorder::VideoRecorder(const std::string& path, double fps, const RenderDef& def,
                              const World& world)
     : def_(def), path_(path), frames_due_(fps) {
-  if (const std::string problem = videoPathProblem(path); !problem.empty())
-    throw std::runtime_error("cannot write the video: " + problem);
+  if (const Problem problem = videoPathProblem(path); !problem.empty())
+    throw std::runtime_error("cannot write the video: " + problem.message);
   if (!(fps > 0))
     throw std::runtime_error("video frame rate must be > 0, got " + std::to_string(fps));
   if (!writer_.open(path, fourccFor(path), fps, imageSize(world, def.width))) {

@@ -34,8 +34,8 @@ BagRecorder::BagRecorder(const std::string& path, const RecordDef& def,
       clouds_(def.cloud_rate),
       states_(def.state_rate),
       checkpoints_(def.checkpoint_rate) {
-  if (const std::string problem = bagPathProblem(path); !problem.empty())
-    throw std::runtime_error("cannot record the bag: " + problem);
+  if (const Problem problem = bagPathProblem(path); !problem.empty())
+    throw std::runtime_error("cannot record the bag: " + problem.message);
   try {
     bag_->open(path_ + ".active", rosbag::bagmode::Write);
   } catch (const rosbag::BagException& e) {
@@ -49,7 +49,7 @@ BagRecorder::BagRecorder(const std::string& path, const RecordDef& def,
   write(def_.ns + "/scene", 0, scene, true);
 }
 
-std::string bagPathProblem(const std::string& path) {
+Problem bagPathProblem(const std::string& path) {
   return limits::outputFileProblem(path, {".bag"});
 }
 

@@ -44,28 +44,10 @@ void printSummary(const Scene& s, World& w) {
       stderr, "scene %s (%s): %zu material points, grid %d x %d cells of %g m, %s dt, end %g s\n",
       s.name.c_str(), s.source.c_str(), w.particles().size(), w.grid().cells_x, w.grid().cells_y,
       d.cell_size, d.time_step.automatic ? "automatic" : "fixed", s.end_time);
-  if (const Blocks* b = w.blocks()) {
-    const CouplingDef c = w.resolvedCoupling();
-    std::fprintf(stderr, "%d blocks (Box2D scale %.4g units/m), coupling %s", b->count(),
-                 b->lengthScale(), couplingSchemeName(c.scheme));
-    switch (c.scheme) {
-      case CouplingScheme::kImp:
-      case CouplingScheme::kImpGrid:
-        std::fprintf(stderr, ": contact radius %g m, Verlet distance %g m, k_n %g N/m\n",
-                     c.contact_radius, c.verlet_distance, c.normal_stiffness);
-        break;
-      case CouplingScheme::kMultiVelocity:
-        std::fprintf(stderr, ": %d block points per cell side\n", c.block_points_per_cell);
-        break;
-      case CouplingScheme::kParticleSurface:
-        std::fprintf(stderr, ": no contact stiffness, Verlet distance %g m\n", c.verlet_distance);
-        break;
-      case CouplingScheme::kPartitioned:
-        std::fprintf(stderr, ": boundary inset %g m, k_n %g N/m\n", c.boundary_inset,
-                     c.normal_stiffness);
-        break;
-    }
-  }
+  const Blocks* b = w.blocks();
+  if (const Coupling* c = w.coupling(); b && c)
+    std::fprintf(stderr, "%d blocks (Box2D scale %.4g units/m), coupling %s: %s\n", b->count(),
+                 b->lengthScale(), couplingSchemeName(c->scheme()), c->settings().c_str());
   const TimeStepChoice dt = w.chooseTimeStep();
   std::fprintf(stderr, "time step %.4g s, set by the %s term\n", dt.dt, stepLimitName(dt.limit));
 }
@@ -238,7 +220,7 @@ int main(int argc, char** argv) {
   int status = 0;
   bool mach_warned = false, outside_warned = false;
   Stepper stepper(world, scene.limits.step_collapse);
-  while (world.time() < scene.end_time - eps && !g_interrupted) {
+  while (!reachedEnd(world.time(), scene.end_time) && !g_interrupted) {
     const auto start = std::chrono::steady_clock::now();
     if (tuner) tuner->beforeStep();
     // Where the node applies them: between steps, before the next step is chosen (a block
@@ -275,7 +257,7 @@ int main(int argc, char** argv) {
       status = 1;
       break;
     }
-    if (world.time() >= next_sample - eps || world.time() >= scene.end_time - eps) {
+    if (world.time() >= next_sample - eps || reachedEnd(world.time(), scene.end_time)) {
       const Diagnostics d = measure(world);
       if (!d.finite) {
         std::cerr << "\nerror: energy or momentum became non-finite at t = " << world.time()

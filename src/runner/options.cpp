@@ -70,10 +70,11 @@ bool parseOptions(int argc, char** argv, Options& out, std::string& error, bool&
       if (!v) return false;
       char* end = nullptr;
       const long n = std::strtol(v, &end, 10);
-      if (*end != '\0' || *v == '\0' || !limits::threadsProblem(n).empty()) {
+      const Problem p = limits::threadsProblem(n);
+      if (*end != '\0' || *v == '\0' || !p.empty()) {
         error = std::string("--threads ") +
                 (*end != '\0' || *v == '\0' ? "takes a whole number, got '" + std::string(v) + "'"
-                                            : limits::threadsProblem(n));
+                                            : p.message);
         return false;
       }
       out.threads = static_cast<int>(n);
@@ -164,8 +165,8 @@ bool parseOptions(int argc, char** argv, Options& out, std::string& error, bool&
     return false;
   }
   if (!out.bag.empty()) {
-    if (const std::string p = bagPathProblem(out.bag); !p.empty()) {
-      error = "--bag: " + p;
+    if (const Problem p = bagPathProblem(out.bag); !p.empty()) {
+      error = "--bag: " + p.message;
       return false;
     }
   }

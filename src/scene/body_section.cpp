@@ -83,8 +83,8 @@ void parseBodies(const Context& ctx, const MapReader& top, Scene& s,
               "must be a whole number in [1, 8] (points per cell per direction), got " +
                   std::to_string(b.points_per_cell));
     b.velocity = r.vec2("velocity", "m/s", b.velocity);
-    r.require(limits::rangeProblem(b.velocity.norm(), limits::kSpeed).empty(), "velocity",
-              "its magnitude " + limits::rangeProblem(b.velocity.norm(), limits::kSpeed));
+    r.require("velocity", limits::rangeProblem(b.velocity.norm(), limits::kSpeed),
+              "its magnitude ");
 
     Vec2 lo, hi;
     bounds(b.shape, lo, hi);
@@ -97,8 +97,9 @@ void parseBodies(const Context& ctx, const MapReader& top, Scene& s,
     }
     std::vector<BodyDef> so_far = s.world.bodies;
     so_far.push_back(b);
-    const std::string size = sizeProblem(dom, s.world.cell_size, so_far);
-    if (!size.empty()) ctx.fail(list[i], path, "with body '" + b.name + "' the world " + size);
+    const Problem size = sizeProblem(dom, s.world.cell_size, so_far);
+    if (!size.empty())
+      ctx.fail(list[i], path, "with body '" + b.name + "' the world " + size.message);
     const auto points = fillPoints(b.shape, dom.min, s.world.cell_size, b.points_per_cell);
     if (points.empty()) {
       ctx.fail(list[i], path,

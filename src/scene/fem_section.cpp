@@ -98,13 +98,9 @@ void parseFemBodies(const Context& ctx, const MapReader& top, Scene& s) {
         ctx.fail(list[i], path, "an FEM body named '" + b.name + "' exists already");
     s.world.fem_bodies.push_back(std::move(b));
   }
-  const CouplingScheme scheme = s.world.coupling.scheme;
-  if (!s.world.fem_bodies.empty() &&
-      (scheme == CouplingScheme::kMultiVelocity || scheme == CouplingScheme::kPartitioned))
-    ctx.fail(top.node("coupling")["scheme"], "coupling.scheme",
-             std::string(couplingSchemeName(scheme)) +
-                 " cannot meet FEM bodies (it needs a body's interior lattice or a wall of its "
-                 "own); use particle_surface (seed 002's) or imp");
+  if (const Problem p = schemeProblem(s.world.coupling.scheme, !s.world.fem_bodies.empty(), false);
+      !p.empty())
+    ctx.fail(top.node("coupling")["scheme"], p.key, p.message);
 }
 
 // The SPH region or bodies (seed 001): regions as body shapes, bodies by name.

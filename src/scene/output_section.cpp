@@ -19,8 +19,8 @@ void parseOutput(const Context& ctx, const MapReader& top, Scene& s) {
         ctx.fail(gauges, "output.gauges", "expected a map of named gauges (outlet: {below: 0.2})");
       for (const auto& kv : gauges) {
         const std::string name = kv.first.Scalar();
-        if (!limits::nameProblem(name).empty())
-          ctx.fail(kv.first, "output.gauges." + name, limits::nameProblem(name));
+        if (const Problem p = limits::nameProblem(name); !p.empty())
+          ctx.fail(kv.first, "output.gauges." + name, p.message);
         MapReader g(ctx, kv.second, "output.gauges." + name, {"below", "right_of"});
         g.require(g.has("below") != g.has("right_of"), "below",
                   "give one of below (y, m) or right_of (x, m)");
@@ -62,9 +62,9 @@ void parseView(const Context& ctx, const MapReader& top, Scene& s) {
     r.require(c != ColorBy::kKind, "max_value",
               "applies only to color_by speed or pressure; leave it out with color_by kind");
     const Real v = r.number("max_value", render::colorByUnit(c));
-    const std::string problem = render::maxValueProblem(c, v);
+    const Problem problem = render::maxValueProblem(c, v);
     r.require(problem.empty(), "max_value",
-              problem + " (the top of the " + render::colorByName(c) +
+              problem.message + " (the top of the " + render::colorByName(c) +
                   " colours; leave it out for the scene's default)");
     s.view.max_value = v;
   }

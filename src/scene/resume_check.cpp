@@ -67,12 +67,12 @@ std::vector<std::string> sceneDifferences(const std::string& checkpoint, const s
 
 namespace {
 
-// Why a checkpoint cannot continue a run of this scene: "" or the message.
-std::string resumeProblem(const Scene& scene, const CheckpointHeader& h) {
+// Why a checkpoint cannot continue a run of this scene: empty, or the message.
+Problem resumeProblem(const Scene& scene, const CheckpointHeader& h) {
   if (h.build != buildId())
     return "it was written by another build of mpm_sdem: " + buildDifference(h.build, buildId()) +
            ". Continue it with the build that wrote it, or start the run again";
-  if (h.scene_hash == sceneHash(scene.state_text) && h.scene == scene.state_text) return "";
+  if (h.scene_hash == sceneHash(scene.state_text) && h.scene == scene.state_text) return {};
   std::string why = "it was written for other scene settings (hash " + h.scene_hash + ", here " +
                     sceneHash(scene.state_text) + "):";
   for (const std::string& d : sceneDifferences(h.scene, scene.state_text)) why += "\n  " + d;
@@ -85,8 +85,8 @@ std::string resumeProblem(const Scene& scene, const CheckpointHeader& h) {
 
 void resumeWorld(World& world, const Scene& scene, const std::string& bytes,
                  const std::string& from) {
-  if (const std::string p = resumeProblem(scene, readCheckpointHeader(bytes)); !p.empty())
-    throw CheckpointError("cannot continue from " + from + ": " + p);
+  if (const Problem p = resumeProblem(scene, readCheckpointHeader(bytes)); !p.empty())
+    throw CheckpointError("cannot continue from " + from + ": " + p.message);
   restoreCheckpoint(world, bytes);
 }
 

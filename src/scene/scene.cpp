@@ -98,8 +98,8 @@ Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& s
   parseBlocks(ctx, top, s);
   parseFemBodies(ctx, top, s);
   parseSph(ctx, top, s);
-  if (const std::string p = periodicProblem(s.world); !p.empty())
-    ctx.fail(top.node("domain")["walls"], "domain.walls", p.substr(p.find(": ") + 2));
+  if (const Problem p = periodicProblem(s.world); !p.empty())
+    ctx.fail(top.node("domain")["walls"], p.key, p.message);
 
   parseOutput(ctx, top, s);
   parseView(ctx, top, s);

@@ -43,11 +43,11 @@ void parseSph(const Context& ctx, const MapReader& top, Scene& s) {
   d.viscosity_alpha = r.number("viscosity_alpha", "(dimensionless)", d.viscosity_alpha);
   d.viscosity_beta = r.number("viscosity_beta", "(dimensionless)", d.viscosity_beta);
   d.corrected_gradient = r.boolean("corrected_gradient", d.corrected_gradient);
-  const CouplingScheme scheme = s.world.coupling.scheme;
-  const Problem p = sphProblem(
-      d, s.world.cell_size, s.world.solver.stress_update == StressUpdate::kUsf,
-      scheme == CouplingScheme::kMultiVelocity || scheme == CouplingScheme::kPartitioned);
+  const Problem p =
+      sphProblem(d, s.world.cell_size, s.world.solver.stress_update == StressUpdate::kUsf);
   r.require(p.empty(), p.key.c_str(), p.message);
+  if (const Problem q = schemeProblem(s.world.coupling.scheme, false, true); !q.empty())
+    ctx.fail(top.node("coupling")["scheme"], q.key, q.message);
 }
 
 // The pictures' quantity and the top of their colour scale; max_value alone colours speeds.

@@ -75,8 +75,8 @@ void parseGrid(const Context& ctx, const MapReader& top, Scene& s) {
                     " m");
     }
   }
-  const std::string memory = sizeProblem(s.world.domain, h, {});
-  g.require(memory.empty(), "cell_size", "the grid " + memory);
+  const Problem memory = sizeProblem(s.world.domain, h, {});
+  g.require(memory.empty(), "cell_size", "the grid " + memory.message);
   s.world.cell_size = h;
 }
 
@@ -117,8 +117,8 @@ void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
       "stress_update", {{"usf", StressUpdate::kUsf}, {"usl", StressUpdate::kUsl}},
       sol.stress_update);
   sol.gravity = r.vec2("gravity", "m/s^2", sol.gravity);
-  r.require(limits::rangeProblem(sol.gravity.norm(), limits::kGravity).empty(), "gravity",
-            "its magnitude " + limits::rangeProblem(sol.gravity.norm(), limits::kGravity));
+  r.require("gravity", limits::rangeProblem(sol.gravity.norm(), limits::kGravity),
+            "its magnitude ");
   sol.damping = r.number("damping", "(dimensionless)", sol.damping);
   r.require(
       sol.damping >= 0 && sol.damping < 1, "damping",

@@ -138,7 +138,7 @@ Real MapReader::number(const char* key, const char* unit, Real fallback) const {
 
 Real MapReader::number(const char* key, const limits::Range& range) const {
   const Real v = number(key, *range.unit ? range.unit : "(dimensionless)");
-  require(limits::rangeProblem(v, range).empty(), key, limits::rangeProblem(v, range));
+  require(key, limits::rangeProblem(v, range));
   return v;
 }
 Real MapReader::number(const char* key, const limits::Range& range, Real fallback) const {
@@ -147,7 +147,7 @@ Real MapReader::number(const char* key, const limits::Range& range, Real fallbac
 
 std::string MapReader::name(const char* key) const {
   const std::string n = text(key);
-  require(limits::nameProblem(n).empty(), key, limits::nameProblem(n));
+  require(key, limits::nameProblem(n));
   return n;
 }
 
@@ -189,13 +189,16 @@ Vec2 MapReader::vec2(const char* key, const char* unit, const Vec2& fallback) co
 
 Vec2 MapReader::vec2(const char* key, const limits::Range& range) const {
   const Vec2 v = vec2(key, range.unit);
-  for (int a = 0; a < 2; ++a)
-    require(limits::rangeProblem(v[a], range).empty(), key, limits::rangeProblem(v[a], range));
+  for (int a = 0; a < 2; ++a) require(key, limits::rangeProblem(v[a], range));
   return v;
 }
 
 void MapReader::require(bool ok, const char* key, const std::string& what) const {
   if (!ok) ctx_.fail(has(key) ? node_[key] : node_, path(key), what);
+}
+
+void MapReader::require(const char* key, const Problem& p, const std::string& prefix) const {
+  require(p.empty(), key, prefix + p.message);
 }
 
 }  // namespace mpm_sdem::scene

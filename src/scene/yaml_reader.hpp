@@ -59,14 +59,14 @@ class MapReader {
 
   // Interprets a scalar as one of the listed names.
   template <class E>
-  E choice(const char* key, std::initializer_list<std::pair<const char*, E>> options,
+  E choice(const char* key, const std::vector<std::pair<const char*, E>>& options,
            E fallback) const {
     if (!has(key)) return fallback;
     return choiceOf(node(key), path(key), options);
   }
   template <class E>
   E choiceOf(const YAML::Node& n, const std::string& key_path,
-             std::initializer_list<std::pair<const char*, E>> options) const {
+             const std::vector<std::pair<const char*, E>>& options) const {
     std::string valid;
     if (n.IsScalar()) {
       for (const auto& o : options) {
@@ -79,6 +79,8 @@ class MapReader {
 
   // Fails on a value that is out of range, at that key's line.
   void require(bool ok, const char* key, const std::string& what) const;
+  // Fails when p is not empty, at that key's line, with p's message after prefix.
+  void require(const char* key, const Problem& p, const std::string& prefix = "") const;
 
   static std::string describe(const YAML::Node& n);
   static Real toNumber(const Context& ctx, const YAML::Node& n, const std::string& key_path,

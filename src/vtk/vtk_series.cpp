@@ -33,7 +33,7 @@ void writeGrid(vtkUnstructuredGrid* grid, const fs::path& path) {
 
 }  // namespace
 
-std::string vtkDirProblem(const std::string& dir) {
+Problem vtkDirProblem(const std::string& dir) {
   if (dir.empty()) return "no directory given";
   std::error_code error;
   fs::path existing = fs::absolute(dir, error);
@@ -63,8 +63,8 @@ struct VtkSeries::Impl {
 };
 
 VtkSeries::VtkSeries(const std::string& dir, double resume_after) {
-  if (const std::string p = vtkDirProblem(dir); !p.empty())
-    throw std::runtime_error("cannot write the VTK series: " + p);
+  if (const Problem p = vtkDirProblem(dir); !p.empty())
+    throw std::runtime_error("cannot write the VTK series: " + p.message);
   std::error_code error;
   fs::create_directories(dir, error);
   if (error)

@@ -9,18 +9,10 @@
 #include <initializer_list>
 #include <string>
 
+#include "mpm_sdem/core/problem.hpp"
 #include "mpm_sdem/core/types.hpp"
 
 namespace mpm_sdem {
-
-// What is wrong with an input: the key it belongs to (as a scene file names it) and why.
-// Empty when nothing is.
-struct Problem {
-  std::string key;
-  std::string message;
-  bool empty() const { return message.empty(); }
-  std::string text() const { return key.empty() ? message : key + ": " + message; }
-};
 
 namespace limits {
 
@@ -61,26 +53,25 @@ inline constexpr Real kMinTimeStep = kTimeStep.min;
 inline constexpr std::size_t kMaxNameLength = 64;
 inline constexpr std::size_t kMaxSceneBytes = 1 << 20;  // scene files are a few kB
 
-// "" when v lies in r, else "must be in [min, max] unit, got v" (NaN and infinity never lie).
-std::string rangeProblem(Real v, const Range& r);
+// Empty when v lies in r, else "must be in [min, max] unit, got v" (NaN and infinity never lie).
+Problem rangeProblem(Real v, const Range& r);
 // A ROS graph base name, also usable as a tf frame and a file-name part: a letter, then letters,
 // digits or '_', at most kMaxNameLength characters.
-std::string nameProblem(const std::string& name);
+Problem nameProblem(const std::string& name);
 // OpenMP threads: 0 (automatic) to the machine's logical cores; more only spin against each
 // other (a request for 100000 used to crash the node).
-std::string threadsProblem(long threads);
+Problem threadsProblem(long threads);
 int logicalCores();
 
 // Bytes a world of this many grid nodes and material points holds, with the coupling's and the
 // tiles' share (an estimate, rounded up), and the problem when that exceeds half the machine's
 // physical memory. Checked before anything is allocated.
 double worldBytes(double nodes, double points);
-std::string memoryProblem(double nodes, double points);
+Problem memoryProblem(double nodes, double points);
 
 // An output file a run can write (a bag, a video): not a directory, in an existing writable
 // directory, ending in one of the extensions. "" or why not; checked before the run starts.
-std::string outputFileProblem(const std::string& path,
-                              std::initializer_list<const char*> extensions);
+Problem outputFileProblem(const std::string& path, std::initializer_list<const char*> extensions);
 
 }  // namespace limits
 }  // namespace mpm_sdem

@@ -1,5 +1,6 @@
-// One step of a run, as the runner and the node take it (Stepper), and the stop for a run whose
-// stable step has collapsed (StepGuard).
+// How a step is taken: the rule for landing on an end time (stepTowards), the plain loops of
+// tests, validation and benchmarks (stepStable, runUntil), one step of a run as the runner and
+// the node take it (Stepper), and the stop for a run whose stable step has collapsed (StepGuard).
 //
 // StepGuard: the stop for a run whose stable step has collapsed. An unstable run does not always
 // raise its total energy past limits.energy_growth (gravity's part dominates a settling flow): the
@@ -18,6 +19,22 @@
 #include "mpm_sdem/core/world.hpp"
 
 namespace mpm_sdem {
+
+// The one rule for landing on an end time, used by every loop (Stepper, stepStable, runUntil):
+// the step to take towards end_time given the stable step dt lands exactly on end_time and
+// merges a sliver of a last step into the one before it (half of the remainder each).
+Real stepTowards(Real dt, Time end_time, Time time);
+// Whether a run landing its steps with stepTowards has reached end_time: within 1e-9 of it,
+// relative (the landed steps' sum may miss it by rounding, never by a step).
+bool reachedEnd(Time time, Time end_time);
+
+// A step as tests, validation cases and benchmarks take it: the world's stable step, landed on
+// end_time (stepTowards); with no end time, the stable step as chosen. The runner and the node
+// add the guards through Stepper.
+StepInfo stepStable(World& world, Time end_time = std::numeric_limits<Time>::infinity());
+// stepStable until end_time is reached (reachedEnd) or a step leaves the state non-finite; that
+// last step's info (a default StepInfo when already there).
+StepInfo runUntil(World& world, Time end_time);
 
 class StepGuard {
  public:

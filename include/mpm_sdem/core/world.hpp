@@ -71,17 +71,12 @@ struct WorldDef {
 
 // Whether the domain's periodic sides are well posed (left and right together, at least five
 // cells across, material alone): "" or why not. Checked by the scene parser and by World.
-std::string periodicProblem(const WorldDef& def);
+Problem periodicProblem(const WorldDef& def);
 
 // Whether a world of this domain, cell and bodies fits in memory (limits::memoryProblem, with
 // the bodies' points counted on their bounding boxes): "" or why not. Checked before anything
 // is allocated, by the scene parser and by World.
-std::string sizeProblem(const DomainDef& domain, Real cell_size,
-                        const std::vector<BodyDef>& bodies);
-
-// The step to take towards end_time given the stable step dt: lands exactly on end_time and
-// merges a sliver of a last step into the one before it (half of the remainder each).
-Real stepTowards(Real dt, Time end_time, Time time);
+Problem sizeProblem(const DomainDef& domain, Real cell_size, const std::vector<BodyDef>& bodies);
 
 // Which term set the time step.
 // kElement: the FEM bodies' elements (FemBodies::elementStep times kappa_1).

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "mpm_sdem/core/bounded_worker.hpp"
+#include "mpm_sdem/core/problem.hpp"
 #include "mpm_sdem/core/sample_clock.hpp"
 #include "mpm_sdem/core/world.hpp"
 #include "mpm_sdem/render/view.hpp"
@@ -49,7 +50,7 @@ void drawSnapshot(const Snapshot& snapshot, const RenderDef& def, cv::Mat& image
 void renderWorld(const World& world, const RenderDef& def, cv::Mat& image);
 
 // "" or why a video cannot be written there (limits::outputFileProblem: .avi, .mp4 or .mkv).
-std::string videoPathProblem(const std::string& path);
+Problem videoPathProblem(const std::string& path);
 
 // Writes frames every 1/fps s of simulation time, played back at fps: the video runs in
 // simulation time. The container follows the file name (.avi: MJPG, .mp4: mp4v, .mkv: FFV1).

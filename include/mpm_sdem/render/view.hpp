@@ -39,7 +39,7 @@ inline const char* colorByUnit(ColorBy c) {
 }
 
 // "" or why v cannot top a scale of c (limits::kScaleSpeed, kScalePressure; none for kind).
-inline std::string maxValueProblem(ColorBy c, Real v) {
+inline Problem maxValueProblem(ColorBy c, Real v) {
   if (c == ColorBy::kKind) return "applies only to color_by speed or pressure";
   return limits::rangeProblem(v,
                               c == ColorBy::kSpeed ? limits::kScaleSpeed : limits::kScalePressure);

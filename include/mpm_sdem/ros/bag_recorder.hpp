@@ -9,6 +9,7 @@
 #include <string>
 
 #include "mpm_sdem/core/bounded_worker.hpp"
+#include "mpm_sdem/core/problem.hpp"
 #include "mpm_sdem/core/sample_clock.hpp"
 #include "mpm_sdem/core/world.hpp"
 #include "mpm_sdem/ros/conversions.hpp"
@@ -32,7 +33,7 @@ struct RecordDef {
 };
 
 // "" or why a bag cannot be written there (limits::outputFileProblem: a .bag file).
-std::string bagPathProblem(const std::string& path);
+Problem bagPathProblem(const std::string& path);
 
 // Messages are made on the caller's thread (they read the world) and written by a thread of the
 // recorder's own, as `rosbag record` does: rosbag seeks and writes the file for every message,

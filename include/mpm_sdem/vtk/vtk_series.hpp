@@ -39,6 +39,8 @@
 #include <memory>
 #include <string>
 
+#include "mpm_sdem/core/problem.hpp"
+
 namespace mpm_sdem {
 
 class World;
@@ -51,7 +53,7 @@ constexpr int kCornerChords = 8;
 // "" or why a series cannot be written into dir: none given, a path that exists and is not a
 // directory, or a directory (or the nearest existing parent, where it will be made) that cannot
 // be written. Checked before a run starts.
-std::string vtkDirProblem(const std::string& dir);
+Problem vtkDirProblem(const std::string& dir);
 
 class VtkSeries {
  public:

@@ -56,14 +56,14 @@ class ContactSearch {
   std::vector<ContactPair>& pairs() { return pairs_; }
   const std::vector<ContactPair>& pairs() const { return pairs_; }
   long rebuilds() const { return rebuilds_; }
-
- private:
-  friend struct detail::CheckpointAccess;
-  // The pairs and where things stood at the last rebuild (the buckets are rebuilt with them).
+  // The checkpoint state of its owner's: the pairs and where things stood at the last rebuild
+  // (the buckets are rebuilt with them).
   template <class Archive>
   void stateIo(Archive& ar) {
     ar(x_built_, y_built_, bodies_built_, pairs_, rebuilds_, built_);
   }
+
+ private:
   bool needsRebuild(const Particles& P, const ContactBodies& B) const;
   void rebuild(const Particles& P, const ContactBodies& B);
 

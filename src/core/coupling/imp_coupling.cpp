@@ -1,9 +1,11 @@
 #include "coupling/imp_coupling.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "mpm/transfer.hpp"
 #include "mpm_sdem/core/coupling/restitution.hpp"
+#include "state_archive.hpp"
 
 namespace mpm_sdem {
 
@@ -217,6 +219,20 @@ void ImpCoupling::correctGridVelocity(CouplingStep& s) {
     on_material_ += c.force;
     ++active_;
   }
+}
+
+std::string ImpCoupling::settings() const {
+  char text[160];
+  std::snprintf(text, sizeof text, "contact radius %g m, Verlet distance %g m, k_n %g N/m",
+                def_.contact_radius, def_.verlet_distance, def_.normal_stiffness);
+  return text;
+}
+
+void ImpCoupling::saveState(cereal::BinaryOutputArchive& ar) {
+  search_.stateIo(ar);
+}
+void ImpCoupling::loadState(cereal::BinaryInputArchive& ar) {
+  search_.stateIo(ar);
 }
 
 }  // namespace mpm_sdem

@@ -47,18 +47,19 @@ class ImpCoupling final : public Coupling {
   void addGridForces(CouplingStep& s) override;
   // Multi-rate: the substeps of the springs and the bodies (see above).
   void correctGridVelocity(CouplingStep& s) override;
-  bool hasSprings() const override { return true; }
   bool correctsVelocities() const override { return subcycles(); }
   bool subcycles() const override {
     return def_.normal_integration == ContactIntegration::kSubcycled;
   }
   void bodiesChanged() override { search_.invalidate(); }
+  std::string settings() const override;
+  void saveState(cereal::BinaryOutputArchive& ar) override;
+  void loadState(cereal::BinaryInputArchive& ar) override;
 
   const std::vector<ContactPair>& contacts() const { return search_.pairs(); }
   long rebuilds() const { return search_.rebuilds(); }
 
  private:
-  friend struct detail::CheckpointAccess;
   // Eq. 43-46 for pair c with shape b at core distance d, the point at x with velocity v_centre
   // (its centre's, with affine the point's velocity gradient adds the part at the contact
   // point; without, it is the velocity at the contact point), over a step dt: the force

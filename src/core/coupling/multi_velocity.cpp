@@ -131,4 +131,8 @@ void MultiVelocityCoupling::correctGridVelocity(CouplingStep& s) {
   });
 }
 
+std::string MultiVelocityCoupling::settings() const {
+  return std::to_string(def_.block_points_per_cell) + " block points per cell side";
+}
+
 }  // namespace mpm_sdem

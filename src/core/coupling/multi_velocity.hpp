@@ -19,7 +19,8 @@ class MultiVelocityCoupling final : public Coupling {
   MultiVelocityCoupling(const CouplingDef& def, Real cell_size);
 
   void correctGridVelocity(CouplingStep& s) override;
-  bool hasSprings() const override { return false; }
+  std::string settings() const override;
+  // No state beyond the base's: its samples and patches are scratch.
   bool correctsVelocities() const override { return true; }
 
  private:

@@ -1,7 +1,10 @@
 #include "coupling/particle_surface.hpp"
 
+#include <cstdio>
+
 #include "coupling/contact_impulse.hpp"
 #include "mpm/transfer.hpp"
+#include "state_archive.hpp"
 
 namespace mpm_sdem {
 
@@ -135,6 +138,23 @@ void ParticleSurfaceCoupling::correctGridVelocity(CouplingStep& s) {
       ++active_;
     });
   });
+}
+
+std::string ParticleSurfaceCoupling::settings() const {
+  char text[96];
+  std::snprintf(text, sizeof text, "no contact stiffness, Verlet distance %g m",
+                def_.verlet_distance);
+  return text;
+}
+
+void ParticleSurfaceCoupling::saveState(cereal::BinaryOutputArchive& ar) {
+  search_.stateIo(ar);
+  ar(records_);
+}
+
+void ParticleSurfaceCoupling::loadState(cereal::BinaryInputArchive& ar) {
+  search_.stateIo(ar);
+  ar(records_);
 }
 
 }  // namespace mpm_sdem

@@ -19,9 +19,11 @@ class ParticleSurfaceCoupling final : public Coupling {
                           Real cell_size);
 
   void correctGridVelocity(CouplingStep& s) override;
-  bool hasSprings() const override { return false; }
   bool correctsVelocities() const override { return true; }
   void bodiesChanged() override { search_.invalidate(); }
+  std::string settings() const override;
+  void saveState(cereal::BinaryOutputArchive& ar) override;
+  void loadState(cereal::BinaryInputArchive& ar) override;
 
   struct Record {
     int particle = 0, block = 0;
@@ -40,7 +42,6 @@ class ParticleSurfaceCoupling final : public Coupling {
   const std::vector<Record>& contacts() const { return records_; }
 
  private:
-  friend struct detail::CheckpointAccess;
   ContactSearch search_;
   std::vector<Record> records_;
 };

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "mpm/transfer.hpp"
+#include "state_archive.hpp"
 
 namespace mpm_sdem {
 
@@ -351,6 +353,20 @@ void PartitionedCoupling::afterMaterialStep(CouplingStep& s) {
     segments_[k][1] = m;
     segments_.push_back({m, b});
   }
+}
+
+std::string PartitionedCoupling::settings() const {
+  char text[96];
+  std::snprintf(text, sizeof text, "boundary inset %g m, k_n %g N/m", def_.boundary_inset,
+                def_.normal_stiffness);
+  return text;
+}
+
+void PartitionedCoupling::saveState(cereal::BinaryOutputArchive& ar) {
+  stateIo(ar);
+}
+void PartitionedCoupling::loadState(cereal::BinaryInputArchive& ar) {
+  stateIo(ar);
 }
 
 }  // namespace mpm_sdem

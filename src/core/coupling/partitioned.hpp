@@ -28,7 +28,9 @@ class PartitionedCoupling final : public Coupling {
   void beforeStep(CouplingStep& s) override;
   void addGridForces(CouplingStep& s) override;
   void afterMaterialStep(CouplingStep& s) override;
-  bool hasSprings() const override { return true; }
+  std::string settings() const override;
+  void saveState(cereal::BinaryOutputArchive& ar) override;
+  void loadState(cereal::BinaryInputArchive& ar) override;
 
   // The wall: boundary particle positions (m), loads of the last step (N/m, on the material),
   // and segments between them, each with the material on its left.
@@ -40,7 +42,6 @@ class PartitionedCoupling final : public Coupling {
   Vec2 loadSum() const { return load_sum_; }
 
  private:
-  friend struct detail::CheckpointAccess;
   // The boundary particles and their wall (the segment buckets are rebuilt every step).
   template <class Archive>
   void stateIo(Archive& ar) {

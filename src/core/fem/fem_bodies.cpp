@@ -13,8 +13,8 @@ namespace {
 constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
 Problem rangeOf(const char* key, Real v, const limits::Range& r) {
-  std::string p = limits::rangeProblem(v, r);
-  return p.empty() ? Problem{} : Problem{key, p};
+  const Problem p = limits::rangeProblem(v, r);
+  return p.empty() ? p : p.under(key);
 }
 
 // The rotation of a triangle's deformation gradient, R of F = R S with S symmetric (2D polar
@@ -39,8 +39,8 @@ const char* femModelName(FemModel m) {
 }
 
 Problem femBodyProblem(const FemBodyDef& d) {
-  if (std::string p = limits::nameProblem(d.name); !p.empty()) return {"name", p};
-  if (std::string p = meshProblem(d.mesh); !p.empty()) return {"mesh", p};
+  if (Problem p = limits::nameProblem(d.name); !p.empty()) return p.under("name");
+  if (Problem p = meshProblem(d.mesh); !p.empty()) return p.under("mesh");
   for (const Vec2& v : d.mesh.nodes) {
     for (int a = 0; a < 2; ++a)
       if (Problem p = rangeOf("outline", v[a], limits::kCoordinate); !p.empty()) return p;

@@ -24,7 +24,7 @@ std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> edgeUse(const Fe
 
 }  // namespace
 
-std::string meshProblem(const FemMesh& m) {
+Problem meshProblem(const FemMesh& m) {
   if (m.triangles.empty()) return "the mesh has no triangles";
   const int n = static_cast<int>(m.nodes.size());
   std::vector<char> used(m.nodes.size(), 0);

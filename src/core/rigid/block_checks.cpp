@@ -16,14 +16,15 @@ std::string num(Real v) {
 }
 
 Problem rangeOf(const char* key, Real v, const limits::Range& r) {
-  return {key, limits::rangeProblem(v, r)};
+  const Problem p = limits::rangeProblem(v, r);
+  return p.empty() ? p : p.under(key);
 }
 
 Problem outlineProblem(const BlockDef& d) {
   if (!d.discs.empty()) {
     if (!d.core.empty())
       return {"discs", "a cluster of discs has no core polygon: give discs or vertices, not both"};
-    if (std::string p = discsProblem(d.discs); !p.empty()) return {"discs", p};
+    if (Problem p = discsProblem(d.discs); !p.empty()) return p.under("discs");
     for (const Disc& disc : d.discs) {
       const Real r = std::hypot(disc.centre.x(), disc.centre.y());
       if (r > limits::kLength.max)
@@ -39,7 +40,7 @@ Problem outlineProblem(const BlockDef& d) {
       return {"vertices", "a core vertex lies " + num(r) + " m from the block origin; at most " +
                               num(limits::kLength.max) + " m"};
   }
-  if (std::string p = coreProblem(d.core); !p.empty()) return {"vertices", p};
+  if (Problem p = coreProblem(d.core); !p.empty()) return p.under("vertices");
   return rangeOf("rounding", d.rounding, limits::kLength);
 }
 
@@ -67,7 +68,7 @@ Problem twistProblem(const BlockDef& d, const Vec2& v, Real w) {
 }
 
 Problem blockProblem(const BlockDef& d, BlockContactModel model) {
-  if (std::string p = limits::nameProblem(d.name); !p.empty()) return {"name", p};
+  if (Problem p = limits::nameProblem(d.name); !p.empty()) return p.under("name");
   if (Problem p = outlineProblem(d); !p.empty()) return p;
   if (!d.position.allFinite() || !std::isfinite(d.angle))
     return {"position", "must be finite numbers (no NaN or infinity)"};

@@ -139,7 +139,7 @@ std::vector<Disc> fillWithDiscs(const Spheropolygon& outline, Real radius, Real 
   return discs;
 }
 
-std::string discsProblem(const std::vector<Disc>& discs) {
+Problem discsProblem(const std::vector<Disc>& discs) {
   if (discs.empty()) return "a cluster needs at least one disc";
   if (discs.size() > static_cast<std::size_t>(kMaxClusterDiscs))
     return "a cluster has at most " + std::to_string(kMaxClusterDiscs) + " discs, got " +

@@ -80,7 +80,7 @@ void makeCounterClockwise(std::vector<Vec2>& core) {
   if (twice_area < 0) std::reverse(core.begin(), core.end());
 }
 
-std::string coreProblem(const std::vector<Vec2>& core) {
+Problem coreProblem(const std::vector<Vec2>& core) {
   const int n = static_cast<int>(core.size());
   if (n < 1) return "a block needs at least one core vertex (one vertex makes a disk)";
   if (n > kMaxBlockVertices) {

@@ -13,28 +13,23 @@ const char* sphKernelName(SphKernel k) {
   return k == SphKernel::kWendlandC2 ? "wendland_c2" : "cubic_spline";
 }
 
-Problem sphProblem(const SphDef& d, Real cell_size, bool stress_first, bool grid_coupling) {
+Problem sphProblem(const SphDef& d, Real cell_size, bool stress_first) {
   // h_s in [0.5, 1.5] cells: the kernel reaches 2 h_s, and the tiles (3 cells) are its cell list.
   const Real hs = d.smoothing_length > 0 ? d.smoothing_length : cell_size;
   const limits::Range cells{0.5 * cell_size, 0.5 * Tiles::kSize * cell_size * (1 + 1e-12), "m"};
-  if (std::string p = limits::rangeProblem(hs, cells); !p.empty())
+  if (Problem p = limits::rangeProblem(hs, cells); !p.empty())
     return {"smoothing_length",
-            p + " (0.5 to 1.5 cells: the kernel reaches twice it, and the grid's tiles of 3 "
+            p.message +
+                " (0.5 to 1.5 cells: the kernel reaches twice it, and the grid's tiles of 3 "
                 "cells are its cell list)"};
-  if (std::string p = limits::rangeProblem(d.viscosity_alpha, limits::kArtificialViscosity);
-      !p.empty())
-    return {"viscosity_alpha", p};
-  if (std::string p = limits::rangeProblem(d.viscosity_beta, limits::kArtificialViscosity);
-      !p.empty())
-    return {"viscosity_beta", p};
+  if (Problem p = limits::rangeProblem(d.viscosity_alpha, limits::kArtificialViscosity); !p.empty())
+    return p.under("viscosity_alpha");
+  if (Problem p = limits::rangeProblem(d.viscosity_beta, limits::kArtificialViscosity); !p.empty())
+    return p.under("viscosity_beta");
   if (!stress_first)
     return {"regions",
             "SPH particles need solver.stress_update: usf (their stress is updated with the "
             "material points' before the forces)"};
-  if (grid_coupling)
-    return {"regions",
-            "coupling.scheme multi_velocity and partitioned meet bodies on the grid, which does "
-            "not move SPH particles; use imp, imp_grid or particle_surface"};
   return {};
 }
 

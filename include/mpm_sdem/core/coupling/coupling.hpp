@@ -10,9 +10,11 @@
 
 #include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "mpm_sdem/core/coupling/contact_bodies.hpp"
+#include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/mpm/grid.hpp"
 #include "mpm_sdem/core/mpm/kernels.hpp"
 #include "mpm_sdem/core/mpm/particles.hpp"
@@ -20,6 +22,11 @@
 #include "mpm_sdem/core/mpm/tiles.hpp"
 #include "mpm_sdem/core/sph/sph.hpp"
 #include "mpm_sdem/core/types.hpp"
+
+namespace cereal {
+class BinaryOutputArchive;
+class BinaryInputArchive;
+}  // namespace cereal
 
 namespace mpm_sdem {
 
@@ -34,7 +41,37 @@ enum class CouplingScheme {
   kPartitioned,      // seed 003 Algorithm 1: blocks meet a wall of segments through boundary
                      // particles; the wall forces go to the MPM side as point loads
 };
-const char* couplingSchemeName(CouplingScheme s);
+
+// What a scheme is and what it can meet: stated once per scheme (coupling.cpp) and asked by the
+// scene parser, World, the runner and the checkpoint.
+struct SchemeTraits {
+  CouplingScheme scheme;
+  const char* name;  // as a scene names it (coupling.scheme)
+  // Its contacts are springs (normal_stiffness, tangential_stiffness), which bound the step
+  // (seed 000 eq. 51, second term) unless they are subcycled.
+  bool springs;
+  // Its springs are the IMPs' (seed 000 sec. 4): stiffness_per 'length' and a normal_integration
+  // other than 'explicit' apply.
+  bool imp_springs;
+  // FEM bodies are among the bodies it can meet: not when it needs a block's interior lattice
+  // (multi_velocity) or builds a wall of its own from the material's outline (partitioned).
+  bool meets_fem_bodies;
+  // SPH particles are among the material it can meet: not when it meets bodies on the grid,
+  // which does not move SPH particles (multi_velocity, partitioned).
+  bool meets_sph_particles;
+  // A block may be added after the first step: not when its wall is built from the material's
+  // initial outline (partitioned).
+  bool takes_later_blocks;
+};
+// Every scheme, in the order a scene's choices list them.
+const std::vector<SchemeTraits>& couplingSchemes();
+const SchemeTraits& schemeTraits(CouplingScheme s);
+inline const char* couplingSchemeName(CouplingScheme s) {
+  return schemeTraits(s).name;
+}
+// Whether scheme s can meet what a world holds: empty, or the problem under coupling.scheme
+// naming what it cannot meet and the schemes that can.
+Problem schemeProblem(CouplingScheme s, bool fem_bodies, bool sph_particles);
 
 // What the IMP spring constants are given for.
 enum class SpringBasis {
@@ -106,7 +143,7 @@ class Coupling {
   // After the points moved.
   virtual void afterMaterialStep(CouplingStep&) {}
   // True when contacts are springs, which bound the time step (seed 000 eq. 51, second term).
-  virtual bool hasSprings() const = 0;
+  bool hasSprings() const { return schemeTraits(def_.scheme).springs; }
   // True when correctGridVelocity changes nodal velocities (the walls are then applied again).
   virtual bool correctsVelocities() const { return false; }
   // True when the springs take substeps inside the material's step (they do not bound it) and
@@ -115,6 +152,12 @@ class Coupling {
   // A body was added or removed: the shapes are numbered afresh (rebuild what is indexed by
   // them; shape keys still name the ones that stayed).
   virtual void bodiesChanged() {}
+  // Its settings as the runner's banner states them (with the defaults resolved, units).
+  virtual std::string settings() const = 0;
+  // The state it carries from step to step beyond the base's (scratch is rebuilt), written and
+  // read by the checkpoint in this order (src/core/state_archive.hpp); none by default.
+  virtual void saveState(cereal::BinaryOutputArchive&) {}
+  virtual void loadState(cereal::BinaryInputArchive&) {}
 
   CouplingScheme scheme() const { return def_.scheme; }
   // Settings with defaults resolved (r_p, V_d, inset in metres).

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "mpm_sdem/core/problem.hpp"
 #include "mpm_sdem/core/types.hpp"
 
 namespace mpm_sdem {
@@ -19,7 +20,7 @@ struct FemMesh {
 // "" when the mesh can be simulated, else why not: no triangles, a node number out of range, a
 // triangle that is clockwise or degenerate (area below 1e-12 of its longest edge squared), a
 // node no triangle uses, an edge shared by more than two triangles.
-std::string meshProblem(const FemMesh& mesh);
+Problem meshProblem(const FemMesh& mesh);
 
 // The edges that belong to one triangle only, each oriented as its triangle runs
 // (counter-clockwise: the body on the left, the outward normal on the right), with the node

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "mpm_sdem/core/problem.hpp"
 #include "mpm_sdem/core/rigid/spheropolygon.hpp"
 #include "mpm_sdem/core/types.hpp"
 
@@ -34,6 +35,6 @@ std::vector<Disc> fillWithDiscs(const Spheropolygon& outline, Real radius, Real 
 // "" when the discs make an acceptable cluster: 1 to kMaxClusterDiscs, finite centres, radii
 // positive and finite. Otherwise a sentence saying what is wrong.
 constexpr int kMaxClusterDiscs = 4096;
-std::string discsProblem(const std::vector<Disc>& discs);
+Problem discsProblem(const std::vector<Disc>& discs);
 
 }  // namespace mpm_sdem

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "mpm_sdem/core/problem.hpp"
 #include "mpm_sdem/core/types.hpp"
 
 namespace mpm_sdem {
@@ -31,7 +32,7 @@ MassProperties spheropolygonMass(const std::vector<Vec2>& core, Real rounding, R
 // Empty when the core is acceptable for a block: 1 to 8 vertices, finite, a convex
 // counter-clockwise polygon with positive area when there are 3 or more, no repeated vertex.
 // Otherwise a sentence saying what is wrong.
-std::string coreProblem(const std::vector<Vec2>& core);
+Problem coreProblem(const std::vector<Vec2>& core);
 
 // Orders a convex polygon counter-clockwise (reverses a clockwise one).
 void makeCounterClockwise(std::vector<Vec2>& core);

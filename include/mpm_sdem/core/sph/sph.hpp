@@ -49,10 +49,9 @@ struct SphDef {
 };
 
 // Why a world of this cell size cannot take d (empty when it can), naming the key: the smoothing
-// length's range, the viscosity factors', a stress update other than first (stress_first), and
-// a coupling scheme that meets bodies through the grid alone (grid_coupling: multi_velocity,
-// partitioned), which an SPH particle does not follow. The one check, for the scene parser and
-// World.
-Problem sphProblem(const SphDef& d, Real cell_size, bool stress_first, bool grid_coupling);
+// length's range, the viscosity factors', and a stress update other than first (stress_first).
+// The one check, for the scene parser and World; whether the coupling scheme meets SPH
+// particles is schemeProblem's (coupling.hpp).
+Problem sphProblem(const SphDef& d, Real cell_size, bool stress_first);
 
 }  // namespace mpm_sdem
