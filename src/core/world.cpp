@@ -12,7 +12,7 @@
 #include "mpm_sdem/core/mpm/constitutive.hpp"
 #include "mpm_sdem/core/rigid/block_checks.hpp"
 #include "parallel.hpp"
-#include "sph/sph_step.hpp"
+#include "sph/sph_stages.hpp"
 
 namespace mpm_sdem {
 
@@ -173,25 +173,25 @@ World::World(const WorldDef& def) : def_(def) {
 }
 
 void World::initSph() {
-  const SphDef& d = def_.sph;
   const Problem problem =
-      sphProblem(d, def_.cell_size, def_.solver.stress_update == StressUpdate::kUsf);
+      sphProblem(def_.sph, def_.cell_size, def_.solver.stress_update == StressUpdate::kUsf);
   if (!problem.empty()) throw std::invalid_argument("sph." + problem.text());
   if (const Problem p = schemeProblem(def_.coupling.scheme, false, true); !p.empty())
     throw std::invalid_argument(p.text());
-  const Real R = 2 * (d.smoothing_length > 0 ? d.smoothing_length : def_.cell_size);
-  sph_ = std::make_unique<detail::SphState>();
-  sph_->settings = {d.kernel, R, d.viscosity_alpha, d.viscosity_beta, d.corrected_gradient};
-  sph_->sph_body.assign(def_.bodies.size(), 0);
-  for (int b : d.bodies) {
-    if (b < 0 || b >= static_cast<int>(def_.bodies.size()))
-      throw std::invalid_argument("sph.bodies names no body");
-    sph_->sph_body[b] = 1;
-  }
-  sph_->columns.resize(particles_.size());
-  detail::assignKinds(d.regions, sph_->sph_body, particles_);
-  tiles_.binByKind(particles_, grid_);  // the SPH ranges for the first step's bound
-  tiles_.activate();
+  sph_ = detail::startSph(sphWorld());
+}
+
+detail::SphWorld World::sphWorld() {
+  return {particles_,
+          grid_,
+          tiles_,
+          params_,
+          def_.solver,
+          def_.sph,
+          static_cast<int>(def_.bodies.size()),
+          def_.domain.min,
+          def_.domain.max,
+          profile_};
 }
 
 CouplingDef World::resolvedCoupling() const {
@@ -400,11 +400,8 @@ TimeStepChoice World::stepBound(Real cfl, Real kappa2) const {
   // 2D Laplacian at kappa_1 = 0.5).
   if (viscous_dt_ < choice.dt / cfl) choice = {cfl * viscous_dt_, StepLimit::kViscous};
   if (sph_) {
-    // The SPH particles' signal speed over their smoothing length h_s = R / 2.
-    const Real fastest_sph =
-        detail::sphSignalSpeed(particles_, tiles_, sph_->settings, params_, sph_->mu_max);
-    const Real dt = cfl * sph_->settings.smoothingLength() / fastest_sph;
-    if (fastest_sph > 0 && dt < choice.dt) choice = {dt, StepLimit::kSph};
+    const Real dt = detail::sphStableStep(*sph_, particles_, tiles_, params_, cfl);
+    if (dt < choice.dt) choice = {dt, StepLimit::kSph};
   }
   if (fem_ && cfl * fem_->elementStep() < choice.dt)
     choice = {cfl * fem_->elementStep(), StepLimit::kElement};
@@ -470,12 +467,13 @@ StepInfo World::step(Real dt) {
   if (def_.solver.stress_update == StressUpdate::kUsf) {
     // The SPH particles' velocity gradient and stress first: it needs no grid, and the band's
     // particles lend the grid their affine velocity (transfer.hpp) and their stress.
-    if (sph_) sphStress(stress_lag_);
+    if (sph_) detail::sphStress(*sph_, sphWorld(), stress_lag_);
     particleToGrid(true, false);
     foldPeriodic({&grid_.mass, &grid_.mom_x, &grid_.mom_y});
     gridVelocity(0, false);
     stressAndInternalForce(stress_lag_);  // and the side walls' load
-    if (sph_) sphForces();                // before any point moves: the pairs are read at x^n
+    if (sph_)
+      detail::sphForces(*sph_, sphWorld());  // before any point moves: the pairs are read at x^n
     spreadPointLoads();
     stage(&Coupling::addGridForces);
     foldPeriodic({&grid_.force_x, &grid_.force_y, &sidewall_load_});
@@ -484,7 +482,7 @@ StepInfo World::step(Real dt) {
     stage(&Coupling::correctGridVelocity);
     if (corrected) correctedWalls(kick);
     gridToParticle(dt, info);
-    if (sph_) sphMove(dt, kick, info);
+    if (sph_) detail::sphMove(*sph_, sphWorld(), dt, kick, info.clamped, info.finite);
     stress_lag_ = dt;
   } else {
     particleToGrid(true, true);
@@ -602,42 +600,9 @@ void World::spreadPointLoads() {
 }
 
 void World::binParticles() {
-  if (sph_) return binWithSph();
+  if (sph_) return detail::binWithSph(*sph_, sphWorld());
   StageTimer timer(profile_, Stage::kSort);
   tiles_.bin(particles_, grid_);
-}
-
-void World::binWithSph() {
-  {
-    StageTimer timer(profile_, Stage::kSph);
-    detail::assignKinds(def_.sph.regions, sph_->sph_body, particles_);
-  }
-  {
-    StageTimer timer(profile_, Stage::kSort);
-    tiles_.binByKind(particles_, grid_);
-  }
-  StageTimer timer(profile_, Stage::kSph);
-  detail::markBand(particles_, grid_, def_.solver.kernel, tiles_, sph_->stamp, ++sph_->now);
-  tiles_.activate();
-}
-
-void World::sphStress(Real stress_dt) {
-  StageTimer timer(profile_, Stage::kSph);
-  detail::sphVelocityGradient(particles_, tiles_, grid_, sph_->settings, params_, stress_dt,
-                              sph_->columns);
-}
-
-void World::sphForces() {
-  StageTimer timer(profile_, Stage::kSph);
-  sph_->mu_max = detail::sphAcceleration(particles_, tiles_, grid_, sph_->settings, params_,
-                                         def_.solver.gravity, sph_->columns);
-}
-
-void World::sphMove(Real dt, Real kick, StepInfo& info) {
-  StageTimer timer(profile_, Stage::kSph);
-  const detail::G2PSettings s{def_.solver.pic_fraction, dt, def_.domain.min, def_.domain.max};
-  detail::sphKickDrift(particles_, tiles_, sph_->columns, kick, def_.solver.damping, s,
-                       info.clamped, info.finite);
 }
 
 template <class F>

@@ -29,6 +29,7 @@ namespace mpm_sdem {
 
 namespace detail {
 struct SphState;
+struct SphWorld;
 }  // namespace detail
 
 struct TimeStepDef {
@@ -214,13 +215,10 @@ class World {
   // bodies meet.
   void linkContactBodies();
   void spreadPointLoads();
-  // Seed 001's SPH particles (sph_step.hpp): kinds and the band before the grid sums, then
-  // their velocity gradient and stress, their accelerations, and their move.
+  // Seed 001's SPH particles: their checks and state; the parts of the world their stages
+  // (sph/sph_stages.hpp) read and change.
   void initSph();
-  void binWithSph();
-  void sphStress(Real stress_dt);
-  void sphForces();
-  void sphMove(Real dt, Real kick, StepInfo& info);
+  detail::SphWorld sphWorld();
   // Everything solid the material meets: the rigid blocks, the FEM bodies, both (the set), or
   // nullptr.
   ContactBodies* contactBodies() const {

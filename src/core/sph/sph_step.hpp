@@ -1,7 +1,7 @@
 // The SPH side of seed 001's coupled step: particle kinds, the transition band, and the SPH sums
 // for the velocity gradient (eq. 2.9), the stress (the MPM side's constitutive models) and the
-// momentum equation (eq. 2.6-2.8). Internal header of the core library; World calls these in
-// its step (see world.cpp).
+// momentum equation (eq. 2.6-2.8). Internal header of the core library; sph_stages.hpp calls these
+// for World's step.
 #pragma once
 
 #include <cstdint>
