@@ -19,7 +19,7 @@ MPM_SDEM_PACKAGES=(
   python3-rostest libgtest-dev libbox2d-dev libopencv-dev libeigen3-dev libyaml-cpp-dev
   libbenchmark-dev libhwy-dev libcgal-dev libcereal-dev zlib1g-dev libvtk9-dev
   rviz xvfb python3-pil python3-numpy python3-matplotlib
-  parallel mkdocs
+  parallel mkdocs doxygen
   clang libclang-rt-14-dev libomp-14-dev
   # What Debian's rosdep data resolves package.xml's ROS keys to beyond the above (`rosdep check`
   # in test/rosdep_check.sh), rosdep itself, and rospack/rosrun for the README's commands.

@@ -1,6 +1,7 @@
-// Several kinds of contact bodies as one (the rigid blocks and the FEM bodies): their shapes one
-// kind after another, every question passed to the kind that owns the shape. World hands the
-// schemes a kind directly when the scene has one only, so a set costs nothing then.
+/// \file
+/// Several kinds of contact bodies as one (the rigid blocks and the FEM bodies): their shapes one
+/// kind after another, every question passed to the kind that owns the shape. World hands the
+/// schemes a kind directly when the scene has one only, so a set costs nothing then.
 #pragma once
 
 #include <vector>
@@ -9,12 +10,15 @@
 
 namespace mpm_sdem {
 
+/// Several ContactBodies (the blocks and the FEM bodies) answered as one, their shapes numbered
+/// one after the other.
 class ContactSet final : public ContactBodies {
  public:
-  // The members are not owned and must outlive the set; their bodies' keys must differ (the
-  // blocks' use 44 bits, the FEM bodies' have bit 62 set). Call refresh() when a member's shapes
-  // change in number.
+  /// The members are not owned and must outlive the set; their bodies' keys must differ (the
+  /// blocks' use 44 bits, the FEM bodies' have bit 62 set). Call refresh() when a member's shapes
+  /// change in number.
   explicit ContactSet(std::vector<ContactBodies*> members);
+  /// Takes the members' shapes afresh (after a member's bodies came or went).
   void refresh();
 
   int shapeCount() const override { return first_.back(); }
@@ -70,8 +74,8 @@ class ContactSet final : public ContactBodies {
   int local(int s) const { return s - first_[member(s)]; }
 
   std::vector<ContactBodies*> members_;
-  std::vector<int> first_;       // members' first shapes, then the total
-  std::vector<int> first_body_;  // members' first body numbers
+  std::vector<int> first_;       ///< members' first shapes, then the total
+  std::vector<int> first_body_;  ///< members' first body numbers
 };
 
 }  // namespace mpm_sdem

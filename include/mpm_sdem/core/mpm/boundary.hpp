@@ -1,4 +1,5 @@
-// Domain walls, imposed on the grid velocity of the nodes on and beyond each domain side.
+/// \file
+/// Domain walls, imposed on the grid velocity of the nodes on and beyond each domain side.
 #pragma once
 
 #include <cmath>
@@ -7,19 +8,20 @@
 
 namespace mpm_sdem {
 
-// kPeriodic: the left and right sides together (a point leaving one enters by the other; nodes
-// one domain width apart are one node), for a uniform flow in x such as a periodic chute.
+/// kPeriodic: the left and right sides together (a point leaving one enters by the other; nodes
+/// one domain width apart are one node), for a uniform flow in x such as a periodic chute.
 enum class WallType { kSticky, kSlip, kFriction, kPeriodic };
 
+/// One side of the domain: its kind of wall and, for a frictional one, its friction.
 struct WallDef {
-  WallType type = WallType::kSlip;
-  Real friction = 0;  // Coulomb coefficient, kFriction only
+  WallType type = WallType::kSlip;  ///< sticky, slip, frictional or periodic
+  Real friction = 0;                ///< Coulomb coefficient, kFriction only
 };
 
-// n is the unit normal pointing out of the domain (into the wall). Material moving away from the
-// wall is left alone (it may separate); moving into it, the normal velocity is removed and, for a
-// Coulomb wall, the tangential speed is reduced by friction * |normal velocity removed| without
-// reversing (the impulse form of Coulomb friction on a grid node).
+/// n is the unit normal pointing out of the domain (into the wall). Material moving away from the
+/// wall is left alone (it may separate); moving into it, the normal velocity is removed and, for a
+/// Coulomb wall, the tangential speed is reduced by friction * |normal velocity removed| without
+/// reversing (the impulse form of Coulomb friction on a grid node).
 inline void applyWall(const WallDef& wall, Real n_x, Real n_y, Real& v_x, Real& v_y) {
   if (wall.type == WallType::kPeriodic) return;
   if (wall.type == WallType::kSticky) {

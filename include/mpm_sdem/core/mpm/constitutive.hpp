@@ -1,6 +1,7 @@
-// Constitutive updates as small pure functions of one material point (plane strain, tension
-// positive). The stress keeps its out-of-plane component sigma_zz, which plane strain makes
-// non-zero and which enters the invariants of the Drucker-Prager criterion.
+/// \file
+/// Constitutive updates as small pure functions of one material point (plane strain, tension
+/// positive). The stress keeps its out-of-plane component sigma_zz, which plane strain makes
+/// non-zero and which enters the invariants of the Drucker-Prager criterion.
 #pragma once
 
 #include <cmath>
@@ -10,18 +11,25 @@
 
 namespace mpm_sdem {
 
+/// A plane-strain Cauchy stress (Pa), tension positive: the in-plane components and sigma_zz.
 struct Stress {
-  Real xx = 0, yy = 0, xy = 0, zz = 0;  // Pa
+  ///@{
+  /// Pa
+  Real xx = 0, yy = 0, xy = 0, zz = 0;
+  ///@}
 };
 
-// L_ij = d v_i / d x_j (1/s).
+/// L_ij = d v_i / d x_j (1/s).
 struct VelocityGradient {
+  ///@{
+  /// 1/s
   Real xx = 0, xy = 0, yx = 0, yy = 0;
+  ///@}
 };
 
-// Hypoelastic update with the Jaumann rate over a time dt (seed 000 eq. 21-25 with C of eq. 36):
-// sigma += dt (C : D + W sigma - sigma W), D and W the symmetric and skew parts of L. Plane
-// strain: D_zz = 0, so sigma_zz changes only through lambda tr(D).
+/// Hypoelastic update with the Jaumann rate over a time dt (seed 000 eq. 21-25 with C of eq. 36):
+/// sigma += dt (C : D + W sigma - sigma W), D and W the symmetric and skew parts of L. Plane
+/// strain: D_zz = 0, so sigma_zz changes only through lambda tr(D).
 inline Stress jaumannElasticUpdate(const MaterialParams& m, const Stress& s,
                                    const VelocityGradient& L, Real dt) {
   const Real dxx = L.xx * dt, dyy = L.yy * dt, dxy = Real(0.5) * (L.xy + L.yx) * dt;
@@ -35,39 +43,43 @@ inline Stress jaumannElasticUpdate(const MaterialParams& m, const Stress& s,
   return r;
 }
 
-// Stress invariants of seed 000 eq. 33-34: mean stress sigma_m and tau = sqrt(J2).
+/// Stress invariants of seed 000 eq. 33-34: mean stress sigma_m and tau = sqrt(J2).
 inline Real meanStress(const Stress& s) {
   return (s.xx + s.yy + s.zz) / 3;
 }
+/// tau = sqrt(J2) (Pa).
 inline Real equivalentShear(const Stress& s) {
   const Real m = meanStress(s);
   const Real ax = s.xx - m, ay = s.yy - m, az = s.zz - m;
   return std::sqrt(Real(0.5) * (ax * ax + ay * ay + az * az) + s.xy * s.xy);
 }
 
-// What the outputs show (the node's clouds, pictures, ParaView files), one definition for all:
-// the pressure -sigma_m (compression positive, Pa) and the von Mises stress sqrt(3 J2) (Pa).
+/// What the outputs show (the node's clouds, pictures, ParaView files), one definition for all:
+/// the pressure -sigma_m (compression positive, Pa) and the von Mises stress sqrt(3 J2) (Pa).
 inline Real pressure(const Stress& s) {
   return -meanStress(s);
 }
+/// The von Mises stress sqrt(3 J2) (Pa).
 inline Real vonMises(const Stress& s) {
   return std::sqrt(Real(3)) * equivalentShear(s);
 }
 
+/// Which surface a stress update returned to, if any.
 enum class PlasticMode { kElastic, kShear, kTension };
 
+/// What a stress update did: stayed elastic, or returned to the shear or tension surface.
 struct PlasticReturn {
-  PlasticMode mode = PlasticMode::kElastic;
-  Real multiplier = 0;  // shear: Delta lambda of the return (dimensionless strain increment)
+  PlasticMode mode = PlasticMode::kElastic;  ///< elastic, or the surface returned to
+  Real multiplier = 0;  ///< shear: Delta lambda of the return (dimensionless strain increment)
 };
 
-// Drucker-Prager with tension cut-off (seed 000 eq. 31-35, Fig. 2), return mapping of the trial
-// stress in the (sigma_m, tau) plane. Shear failure returns along the non-associated flow
-// potential g = tau + q_psi sigma_m: tau drops by G dl and sigma_m by K q_psi dl, with
-// dl = f^s / (G + K q_phi q_psi), so the plastic volume strain is q_psi dl (dilation angle).
-// Beyond the cut-off the line h = 0 through the corner (sigma^t, tau^P) with slope
-// alpha^P = sqrt(1 + q_phi^2) - q_phi splits shear returns from tensile returns; a tensile return
-// sets sigma_m = sigma^t and caps tau at the corner.
+/// Drucker-Prager with tension cut-off (seed 000 eq. 31-35, Fig. 2), return mapping of the trial
+/// stress in the (sigma_m, tau) plane. Shear failure returns along the non-associated flow
+/// potential g = tau + q_psi sigma_m: tau drops by G dl and sigma_m by K q_psi dl, with
+/// dl = f^s / (G + K q_phi q_psi), so the plastic volume strain is q_psi dl (dilation angle).
+/// Beyond the cut-off the line h = 0 through the corner (sigma^t, tau^P) with slope
+/// alpha^P = sqrt(1 + q_phi^2) - q_phi splits shear returns from tensile returns; a tensile return
+/// sets sigma_m = sigma^t and caps tau at the corner.
 inline PlasticReturn druckerPragerReturn(const MaterialParams& m, Stress& s) {
   PlasticReturn out;
   const Real sm = meanStress(s);
@@ -101,22 +113,22 @@ inline PlasticReturn druckerPragerReturn(const MaterialParams& m, Stress& s) {
   return out;
 }
 
-// The mu(I) friction coefficient of Jop, Forterre & Pouliquen 2006 at inertial number I.
+/// The mu(I) friction coefficient of Jop, Forterre & Pouliquen 2006 at inertial number I.
 inline Real muOfI(const MaterialParams& m, Real I) {
   return m.mu_s + m.mu_span * I / (I + m.i0);
 }
 
-// A granular point's stress after the step (issue 41), from its Jaumann trial stress s and its
-// new volume ratio J (Dunatunga & Kamrin 2015, sec. 2-3, in rate form):
-// - J >= 1, looser than the critical packing: separated, no stress.
-// - Dense: pressure p = K ln(1 / J), from J itself so that it cannot drift; the trial deviator
-//   s* with shear stress tau* = sqrt(J2). Below mu_s p the point is elastic. Above, it flows at
-//   the plastic shear rate gamma_dot = (tau* - tau) / (G dt) (a shear stress relaxes by G per
-//   unit engineering shear strain), with tau = mu(I) p and I = gamma_dot d sqrt(rho_s / p).
-//   With x = tau* - tau, a = tau* - mu_s p and c = I_0 G dt sqrt(p) / (d sqrt(rho_s)) this is
-//   x^2 + (c - a + (mu_2 - mu_s) p) x - a c = 0, whose non-negative root is taken in closed form:
-//   no iteration, and no bound on dt from the rate dependence. The deviator is scaled back
-//   radially (isochoric flow, no dilatancy).
+/// A granular point's stress after the step, from its Jaumann trial stress s and its
+/// new volume ratio J (Dunatunga & Kamrin 2015, sec. 2-3, in rate form):
+/// - J >= 1, looser than the critical packing: separated, no stress.
+/// - Dense: pressure p = K ln(1 / J), from J itself so that it cannot drift; the trial deviator
+///   s* with shear stress tau* = sqrt(J2). Below mu_s p the point is elastic. Above, it flows at
+///   the plastic shear rate gamma_dot = (tau* - tau) / (G dt) (a shear stress relaxes by G per
+///   unit engineering shear strain), with tau = mu(I) p and I = gamma_dot d sqrt(rho_s / p).
+///   With x = tau* - tau, a = tau* - mu_s p and c = I_0 G dt sqrt(p) / (d sqrt(rho_s)) this is
+///   x^2 + (c - a + (mu_2 - mu_s) p) x - a c = 0, whose non-negative root is taken in closed form:
+///   no iteration, and no bound on dt from the rate dependence. The deviator is scaled back
+///   radially (isochoric flow, no dilatancy).
 inline void granularReturn(const MaterialParams& m, Stress& s, Real J, Real dt) {
   if (!(J < 1)) {
     s = Stress{};
@@ -140,16 +152,16 @@ inline void granularReturn(const MaterialParams& m, Stress& s, Real J, Real dt) 
   s.xy *= scale;
 }
 
-// Tait's pressure at volume ratio J, p = (K / gamma) (J^-gamma - 1), cut off at the tension the
-// fluid sustains (Pa, compression positive).
+/// Tait's pressure at volume ratio J, p = (K / gamma) (J^-gamma - 1), cut off at the tension the
+/// fluid sustains (Pa, compression positive).
 inline Real taitPressure(const MaterialParams& m, Real J) {
   const Real p = m.bulk / m.tait_gamma * (std::pow(J, -m.tait_gamma) - 1);
   return std::fmax(p, -m.tension);
 }
 
-// A fluid's stress at volume ratio J under velocity gradient L: -p I + 2 eta D', D' the deviator
-// of the plane-strain rate of deformation (D_zz = 0, so sigma_zz carries -2 eta tr(D) / 3). Not
-// incremental: the pressure is a function of J alone, so no error accumulates in it.
+/// A fluid's stress at volume ratio J under velocity gradient L: -p I + 2 eta D', D' the deviator
+/// of the plane-strain rate of deformation (D_zz = 0, so sigma_zz carries -2 eta tr(D) / 3). Not
+/// incremental: the pressure is a function of J alone, so no error accumulates in it.
 inline Stress fluidStress(const MaterialParams& m, Real J, const VelocityGradient& L) {
   const Real p = taitPressure(m, J);
   const Real third = (L.xx + L.yy) / 3;
@@ -158,10 +170,10 @@ inline Stress fluidStress(const MaterialParams& m, Real J, const VelocityGradien
           -p - eta2 * third};
 }
 
-// Recoverable (elastic) energy density of a stress state (J/m^3, per current volume). Solids:
-// sigma_m^2 / (2K) + J2 / (2G). A fluid stores the work of its pressure, int_J^1 p dJ' per
-// reference volume, with J recovered from p = -sigma_m (viscous stress has no mean part); a point
-// held at the tension cut-off is counted at the cut-off's J.
+/// Recoverable (elastic) energy density of a stress state (J/m^3, per current volume). Solids:
+/// sigma_m^2 / (2K) + J2 / (2G). A fluid stores the work of its pressure, int_J^1 p dJ' per
+/// reference volume, with J recovered from p = -sigma_m (viscous stress has no mean part); a point
+/// held at the tension cut-off is counted at the cut-off's J.
 inline Real elasticEnergyDensity(const MaterialParams& m, const Stress& s) {
   if (m.model == MaterialModel::kFluid) {
     const Real g = m.tait_gamma;

@@ -1,4 +1,5 @@
-// Materials: user-facing definitions and the derived constants the constitutive update reads.
+/// \file
+/// Materials: user-facing definitions and the derived constants the constitutive update reads.
 #pragma once
 
 #include <cmath>
@@ -9,88 +10,102 @@
 
 namespace mpm_sdem {
 
+/// A material's constitutive model (scene key materials[].model).
 enum class MaterialModel {
-  kLinearElastic,
-  kDruckerPrager,
-  // Weakly compressible fluid (seed 002 sec. 4.3-4.4 model water this way): pressure from the
-  // volume ratio by Tait's equation, Newtonian viscosity, and a tension cut-off.
+  kLinearElastic,  ///< Hooke's law in rate form (seed 000 eq. 30)
+  kDruckerPrager,  ///< seed 000 eq. 31-35: elastic-perfectly plastic with a tension cut-off
+  /// Weakly compressible fluid (seed 002 sec. 4.3-4.4 model water this way): pressure from the
+  /// volume ratio by Tait's equation, Newtonian viscosity, and a tension cut-off.
   kFluid,
-  // Dense granular flow (issue 41): the mu(I) rheology of Jop, Forterre & Pouliquen 2006 with
-  // the dense and separated states of Dunatunga & Kamrin 2015. The scene's density is the
-  // critical (random close) packing: a point looser than it (J > 1) has separated and carries
-  // no stress; packed (J <= 1) its pressure is K ln(1 / J) and its shear stress at most
-  // mu(I) p. Elasticity is only the dense state's stiffness.
+  /// Dense granular flow: the mu(I) rheology of Jop, Forterre & Pouliquen 2006 with
+  /// the dense and separated states of Dunatunga & Kamrin 2015. The scene's density is the
+  /// critical (random close) packing: a point looser than it (J > 1) has separated and carries
+  /// no stress; packed (J <= 1) its pressure is K ln(1 / J) and its shear stress at most
+  /// mu(I) p. Elasticity is only the dense state's stiffness.
   kGranular,
 };
 
-// What a scene declares for a material. Elasticity is given as bulk and shear moduli; the scene
-// layer converts Young's modulus and Poisson's ratio (K = E / (3 (1 - 2 nu)), G = E / (2 (1 +
-// nu))).
+/// What a scene declares for a material. Elasticity is given as bulk and shear moduli; the scene
+/// layer converts Young's modulus and Poisson's ratio (K = E / (3 (1 - 2 nu)), G = E / (2 (1 +
+/// nu))).
 struct MaterialDef {
-  std::string name;
-  MaterialModel model = MaterialModel::kLinearElastic;
-  Real density = 0;        // kg/m^3 (plane strain: per unit thickness)
-  Real bulk_modulus = 0;   // Pa
-  Real shear_modulus = 0;  // Pa
-  // Drucker-Prager only (seed 000 eq. 31-35).
-  Real friction_angle = 0;    // rad
-  Real dilation_angle = 0;    // rad, 0 <= psi <= phi
-  Real cohesion = 0;          // Pa
-  Real tensile_strength = 0;  // Pa, tension cut-off sigma^t (capped at the cone apex)
-  // Volume ratio J = V / V0 above which the grains have lost contact with each other: the
-  // point carries no stress and no elastic wave until it is packed again (the disconnected
-  // phase of a cohesionless granular continuum, Dunatunga and Kamrin 2015). Keeps a free-falling
-  // stream from bounding the step by the stiffness of a density it no longer has. 0: off.
+  std::string name;                                     ///< as bodies name it
+  MaterialModel model = MaterialModel::kLinearElastic;  ///< the constitutive model
+  Real density = 0;        ///< kg/m^3 (plane strain: per unit thickness)
+  Real bulk_modulus = 0;   ///< Pa
+  Real shear_modulus = 0;  ///< Pa
+  /// Drucker-Prager only (seed 000 eq. 31-35).
+  Real friction_angle = 0;    ///< rad
+  Real dilation_angle = 0;    ///< rad, 0 <= psi <= phi
+  Real cohesion = 0;          ///< Pa
+  Real tensile_strength = 0;  ///< Pa, tension cut-off sigma^t (capped at the cone apex)
+  /// Volume ratio J = V / V0 above which the grains have lost contact with each other: the
+  /// point carries no stress and no elastic wave until it is packed again (the disconnected
+  /// phase of a cohesionless granular continuum, Dunatunga and Kamrin 2015). Keeps a free-falling
+  /// stream from bounding the step by the stiffness of a density it no longer has. 0: off.
   Real separation_volume_ratio = 0;
-  // Granular only (mu(I), Jop et al. 2006): mu = mu_s + (mu_2 - mu_s) / (I_0 / I + 1) with the
-  // inertial number I = gamma_dot d / sqrt(p / rho_s), rho_s = density / solid_fraction the
-  // grains' own density.
-  Real mu_s = 0;            // static friction coefficient (dimensionless)
-  Real mu_2 = 0;            // limiting friction coefficient at large I, >= mu_s
-  Real inertial_i0 = 0;     // I_0 (dimensionless)
-  Real grain_diameter = 0;  // d (m)
-  Real solid_fraction = 0;  // phi of the critical packing (dimensionless)
-  // Fluid only. Pressure p = (K / gamma) (J^-gamma - 1) with K = rho0 c0^2 in bulk_modulus
-  // (Tait's equation; gamma = 7 for water), never below -tensile_strength (the tension the fluid
-  // sustains before it cavitates: seed 002 keeps water's surface smooth with 6 kPa); deviatoric
-  // stress 2 eta D' (plane strain, no bulk viscosity). c0 may be an artificial sound speed:
-  // density errors scale as the Mach number squared (diagnostics' max_mach).
-  Real tait_exponent = 7;  // gamma (dimensionless)
-  Real viscosity = 0;      // eta (Pa s)
+  /// Granular only (mu(I), Jop et al. 2006): mu = mu_s + (mu_2 - mu_s) / (I_0 / I + 1) with the
+  /// inertial number I = gamma_dot d / sqrt(p / rho_s), rho_s = density / solid_fraction the
+  /// grains' own density.
+  Real mu_s = 0;            ///< static friction coefficient (dimensionless)
+  Real mu_2 = 0;            ///< limiting friction coefficient at large I, >= mu_s
+  Real inertial_i0 = 0;     ///< I_0 (dimensionless)
+  Real grain_diameter = 0;  ///< d (m)
+  Real solid_fraction = 0;  ///< phi of the critical packing (dimensionless)
+  /// Fluid only. Pressure p = (K / gamma) (J^-gamma - 1) with K = rho0 c0^2 in bulk_modulus
+  /// (Tait's equation; gamma = 7 for water), never below -tensile_strength (the tension the fluid
+  /// sustains before it cavitates: seed 002 keeps water's surface smooth with 6 kPa); deviatoric
+  /// stress 2 eta D' (plane strain, no bulk viscosity). c0 may be an artificial sound speed:
+  /// density errors scale as the Mach number squared (diagnostics' max_mach).
+  Real tait_exponent = 7;  ///< gamma (dimensionless)
+  Real viscosity = 0;      ///< eta (Pa s)
 };
 
-// The steepest friction angle a Drucker-Prager material may ask for (rad). Eq. 35's cone matches
-// Mohr-Coulomb in plane strain only when the plastic flow is associated; with less dilation the
-// out-of-plane stress settles where the plastic flow has no out-of-plane part, and the in-plane
-// angle the flowing material holds is asin(q_phi) (flowingFrictionAngle). q_phi never exceeds
-// sqrt(3)/2, so no material flows at an angle above 60 deg: friction_angle 80 deg flowed like
-// 58.9 deg. Angles up to this limit are accepted and their flowing angle documented.
+/// The steepest friction angle a Drucker-Prager material may ask for (rad). Eq. 35's cone matches
+/// Mohr-Coulomb in plane strain only when the plastic flow is associated; with less dilation the
+/// out-of-plane stress settles where the plastic flow has no out-of-plane part, and the in-plane
+/// angle the flowing material holds is asin(q_phi) (flowingFrictionAngle). q_phi never exceeds
+/// sqrt(3)/2, so no material flows at an angle above 60 deg: friction_angle 80 deg flowed like
+/// 58.9 deg. Angles up to this limit are accepted and their flowing angle documented.
 constexpr Real kMaxFrictionAngle = M_PI / 3;
-// The in-plane friction angle of the flowing material without dilation: asin(q_phi(phi)), e.g.
-// 28.7 deg for 30, 40.9 for 45, 50.8 for 60 (rad in, rad out).
+/// The in-plane friction angle of the flowing material without dilation: asin(q_phi(phi)), e.g.
+/// 28.7 deg for 30, 40.9 for 45, 50.8 for 60 (rad in, rad out).
 Real flowingFrictionAngle(Real friction_angle);
 
-// Derived constants, computed once. Kept small: the constitutive loop reads one per particle.
+/// Derived constants, computed once. Kept small: the constitutive loop reads one per particle.
 struct MaterialParams {
-  MaterialModel model = MaterialModel::kLinearElastic;
-  Real bulk = 0, shear = 0, lame = 0;    // K, G, lambda = K - 2G/3 (Pa)
-  Real q_phi = 0, k_phi = 0, q_psi = 0;  // seed 000 eq. 35 and its dilatant analogue
-  Real tension = 0;                      // effective tension cut-off (Pa)
-  // Constants of the Drucker-Prager return, computed once: the corner shear stress
-  // k_phi - q_phi sigma^t (Pa), the slope alpha^P of the line that splits shear from tensile
-  // returns, and 1 / (G + K q_phi q_psi) (1/Pa).
+  MaterialModel model = MaterialModel::kLinearElastic;  ///< as the definition
+  ///@{
+  /// K, G, lambda = K - 2G/3 (Pa)
+  Real bulk = 0, shear = 0, lame = 0;
+  ///@}
+  ///@{
+  /// seed 000 eq. 35 and its dilatant analogue
+  Real q_phi = 0, k_phi = 0, q_psi = 0;
+  ///@}
+  Real tension = 0;  ///< effective tension cut-off (Pa)
+  ///@{
+  /// Constants of the Drucker-Prager return, computed once: the corner shear stress
+  /// k_phi - q_phi sigma^t (Pa), the slope alpha^P of the line that splits shear from tensile
+  /// returns, and 1 / (G + K q_phi q_psi) (1/Pa).
   Real tau_corner = 0, alpha_p = 0, inv_return_modulus = 0;
-  Real modulus_over_density = 0;  // (K + 4G/3) / rho0: squared P-wave speed at J = 1
-  Real separation = std::numeric_limits<Real>::infinity();  // J above which: no stress
-  Real tait_gamma = 7, viscosity = 0;                       // fluid only
-  // Granular only: mu_s, mu_2 - mu_s, I_0, and d sqrt(rho_s) (so that I = gamma_dot
-  // inertial_scale / sqrt(p)).
+  ///@}
+  Real modulus_over_density = 0;  ///< (K + 4G/3) / rho0: squared P-wave speed at J = 1
+  Real separation = std::numeric_limits<Real>::infinity();  ///< J above which: no stress
+  ///@{
+  /// fluid only
+  Real tait_gamma = 7, viscosity = 0;
+  ///@}
+  ///@{
+  /// Granular only: mu_s, mu_2 - mu_s, I_0, and d sqrt(rho_s) (so that I = gamma_dot
+  /// inertial_scale / sqrt(p)).
   Real mu_s = 0, mu_span = 0, i0 = 0, inertial_scale = 0;
+  ///@}
 };
 
-// Squared wave speed of a point of volume ratio J (m^2/s^2), the CFL term of seed 000 eq. 51:
-// a solid's constant modulus over the current density rho0 / J; Tait's dp/drho =
-// c0^2 J^(1 - gamma) for a fluid; none when the grains have separated.
+/// Squared wave speed of a point of volume ratio J (m^2/s^2), the CFL term of seed 000 eq. 51:
+/// a solid's constant modulus over the current density rho0 / J; Tait's dp/drho =
+/// c0^2 J^(1 - gamma) for a fluid; none when the grains have separated.
 inline Real squaredWaveSpeed(const MaterialParams& m, Real J) {
   if (J > m.separation) return 0;
   if (m.model == MaterialModel::kFluid)
@@ -98,6 +113,7 @@ inline Real squaredWaveSpeed(const MaterialParams& m, Real J) {
   return m.modulus_over_density * J;
 }
 
+/// The derived constants of a definition.
 MaterialParams makeMaterialParams(const MaterialDef& def);
 
 }  // namespace mpm_sdem

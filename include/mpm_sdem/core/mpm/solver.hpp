@@ -1,5 +1,6 @@
-// The MPM solver's choices (seed 000 sec. 2): kernel, velocity transfer, stress update order,
-// gravity and local damping; part of WorldDef, read by the point sweeps.
+/// \file
+/// The MPM solver's choices (seed 000 sec. 2): kernel, velocity transfer, stress update order,
+/// gravity and local damping; part of WorldDef, read by the point sweeps.
 #pragma once
 
 #include "mpm_sdem/core/mpm/kernels.hpp"
@@ -7,31 +8,33 @@
 
 namespace mpm_sdem {
 
-// Grid-to-particle velocity transfer (seed 000 eq. 26-31). kAsflip: APIC's affine matrix with
-// FLIP's velocity increment (Fei et al. 2021's ASFLIP, its blend at 1 and the points moved by
-// the grid's velocity): no share of the velocity is lost per transfer.
+/// Grid-to-particle velocity transfer (seed 000 eq. 26-31). kAsflip: APIC's affine matrix with
+/// FLIP's velocity increment (Fei et al. 2021's ASFLIP, its blend at 1 and the points moved by
+/// the grid's velocity): no share of the velocity is lost per transfer.
 enum class TransferScheme { kPic, kFlip, kApic, kAsflip };
-// Whether the points carry APIC's affine matrix B to and from the grid.
+/// Whether the points carry APIC's affine matrix B to and from the grid.
 constexpr bool carriesAffine(TransferScheme t) {
   return t == TransferScheme::kApic || t == TransferScheme::kAsflip;
 }
-// Update stress first (seed 000 sec. 2.2) or last.
+/// Update stress first (seed 000 sec. 2.2) or last.
 enum class StressUpdate { kUsf, kUsl };
 
+/// The solver's choices (scene section `solver`).
 struct SolverDef {
-  KernelType kernel = KernelType::kQuadraticBSpline;
-  TransferScheme transfer = TransferScheme::kApic;
-  Real pic_fraction = 0.01;  // alpha of eq. 28 (1 = PIC, 0 = FLIP); kFlip only
-  // kAsflip only: the time over which a point's departure from the grid's velocity field decays
-  // (s), blended by exp(-dt / time) per step so that the loss does not depend on the step and
-  // momentum stays exact (one factor for every point). 0: never (pure ASFLIP). A granular
-  // deposit needs it: nothing else takes the agitation of points that carry no stress.
+  KernelType kernel = KernelType::kQuadraticBSpline;  ///< the grid's shape functions
+  TransferScheme transfer = TransferScheme::kApic;    ///< how velocities go back to the points
+  Real pic_fraction = 0.01;  ///< alpha of eq. 28 (1 = PIC, 0 = FLIP); kFlip only
+  /// kAsflip only: the time over which a point's departure from the grid's velocity field decays
+  /// (s), blended by exp(-dt / time) per step so that the loss does not depend on the step and
+  /// momentum stays exact (one factor for every point). 0: never (pure ASFLIP). A granular
+  /// deposit needs it: nothing else takes the agitation of points that carry no stress.
   Real asflip_relaxation_time = 0;
-  StressUpdate stress_update = StressUpdate::kUsf;
-  Vec2 gravity{0, -9.81};  // m/s^2
-  // Local non-viscous (Cundall) damping factor in [0, 1): each nodal force component is reduced
-  // by damping * |F| against the node's velocity. It removes kinetic energy without changing
-  // the static equilibrium; for settling quasi-static states only (0 = off).
+  StressUpdate stress_update =
+      StressUpdate::kUsf;  ///< stress before (USF) or after (USL) the grid update
+  Vec2 gravity{0, -9.81};  ///< m/s^2
+  /// Local non-viscous (Cundall) damping factor in [0, 1): each nodal force component is reduced
+  /// by damping * |F| against the node's velocity. It removes kinetic energy without changing
+  /// the static equilibrium; for settling quasi-static states only (0 = off).
   Real damping = 0;
 };
 

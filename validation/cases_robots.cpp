@@ -1,0 +1,342 @@
+// Worlds of the robot cases: the driven wheel and the blade against Reece's equation.
+#include "cases.hpp"
+#include "mpm_sdem/core/stepper.hpp"
+
+#include "mpm_sdem/mesh/mesher.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "cases_common.hpp"
+
+namespace mpm_sdem::cases {
+
+namespace {
+
+int wheelIndex(const std::vector<BlockDef>& blocks) {
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+    if (blocks[i].name == "wheel") return static_cast<int>(i);
+  throw std::invalid_argument("the wheel rig needs a block named 'wheel'");
+}
+
+}  // namespace
+
+void setWheelRig(WorldDef& def, Real slip, Real load) {
+  BlockDef& wheel = def.blocks[wheelIndex(def.blocks)];
+  wheel.density *= load / (blockMass(wheel).mass * def.solver.gravity.norm());
+  const Real rim_speed = std::abs(wheel.drive.angular_velocity) * wheel.rounding;
+  wheel.drive.velocity.x() = (1 - slip) * rim_speed;
+}
+
+WheelRun runWheel(World& w, Real t_end) {
+  const int wheel = wheelIndex(w.def().blocks);
+  const Real radius = w.def().blocks[wheel].rounding;
+  const Real spin = w.def().blocks[wheel].drive.angular_velocity;
+  Real top = -std::numeric_limits<Real>::infinity();
+  for (const BodyDef& b : w.def().bodies)
+    if (b.name == "bed") top = b.shape.max.y();
+  WheelRun out;
+  out.radius = radius;
+  Real sum2 = 0;
+  int n = 0;
+  while (w.time() < t_end - 1e-12) {
+    stepStable(w, t_end);
+    const Blocks& B = *w.blocks();
+    const Real sinkage = top - (B.state(wheel).position.y() - radius);
+    out.final_sinkage = sinkage;
+    if (w.time() < t_end / 2) continue;
+    const Blocks::Load& c = B.coupling()[wheel];
+    out.pull += c.force.x();
+    sum2 += c.force.x() * c.force.x();
+    out.torque -= std::copysign(c.torque, spin);  // the motor's, in the sense of the spin
+    out.sinkage += sinkage;
+    ++n;
+  }
+  out.pull /= n;
+  out.torque /= n;
+  out.sinkage /= n;
+  out.pull_spread = std::sqrt(std::fmax(sum2 / n - out.pull * out.pull, Real(0)));
+  return out;
+}
+
+namespace {
+constexpr Real kBladeSand = 1500;  // kg/m^3
+}  // namespace
+
+MaterialDef bladeSand(const Blade& c) {
+  MaterialDef m;
+  m.name = "sand";
+  m.density = kBladeSand;
+  const Real E = c.young_modulus, nu = c.poisson_ratio;
+  m.bulk_modulus = E / (3 * (1 - 2 * nu));
+  m.shear_modulus = E / (2 * (1 + nu));
+  m.model = MaterialModel::kDruckerPrager;
+  m.friction_angle = c.friction_angle * M_PI / 180;
+  // The granular sand flows at the same in-plane angle (bladeFrictionAngle); grains of 1 mm.
+  return c.sand == Blade::Sand::kGranular ? matchedGranular(m, 0.001) : m;
+}
+
+Real bladeFrictionAngle(const Blade& c) {
+  const MaterialDef m = bladeSand(c);
+  return m.model == MaterialModel::kGranular ? std::asin(m.mu_s)
+                                             : flowingFrictionAngle(m.friction_angle);
+}
+
+WorldDef excavatorBlade(const Blade& c) {
+  const Real h = c.cell_size, H = c.bed, d = c.depth;
+  const Real alpha = c.rake * M_PI / 180;
+  const Real t = c.thickness, a = c.rounding;
+  const Real face = 0.05;     // x of the blade's front face at the free surface (m)
+  const Real top = H + 0.08;  // the blade's upper end (m)
+  WorldDef def;
+  def.domain.min = Vec2(0, 0);
+  def.domain.max = Vec2(std::round(0.4 / h) * h, std::round((top + 0.04) / h) * h);
+  def.domain.bottom.type = WallType::kSticky;
+  def.cell_size = h;
+  def.solver.damping = c.damping;
+  def.materials.push_back(bladeSand(c));
+  // The blade: a parallelogram core, its lower edge horizontal at a above the cut (the rounded
+  // outline's lowest line at H - d), its front edge along u = (-cos alpha, sin alpha) and a
+  // normal thickness t - 2a; the outline is that grown by a.
+  const Vec2 n(std::sin(alpha), std::cos(alpha));  // outward normal of the front face
+  const Real y0 = H - d + a, y1 = top - a, run = (y1 - y0) / std::tan(alpha);
+  const Real width = (t - 2 * a) / std::sin(alpha);  // horizontal width of the core
+  // The front edge grown by a passes through (face, H): where its core edge starts at y0.
+  const Real x_front = face - a * n.x() + (H - y0 - a * n.y()) / std::tan(alpha);
+  std::vector<Vec2> core = {Vec2(x_front, y0), Vec2(x_front - run, y1),
+                            Vec2(x_front - width - run, y1), Vec2(x_front - width, y0)};
+  makeCounterClockwise(core);
+  Vec2 centre = Vec2::Zero();
+  for (const Vec2& v : core) centre += v / 4;
+  BlockDef blade;
+  blade.name = "blade";
+  blade.type = BodyType::kKinematic;
+  blade.position = centre;
+  for (const Vec2& v : core) blade.core.push_back(v - centre);
+  blade.rounding = a;
+  blade.density = 7850;  // steel (a kinematic block's mass is not used)
+  blade.friction = c.friction;
+  blade.restitution = 0.2;
+  blade.velocity = Vec2(c.speed, 0);
+  def.blocks.push_back(blade);
+  // The layer: full ahead of the blade's grown front edge, cut to H - d behind it.
+  auto faceAt = [&](Real y) { return face - (y - H) / std::tan(alpha); };
+  BodyDef bed;
+  bed.name = "bed";
+  bed.shape.type = ShapeType::kPolygon;
+  bed.shape.vertices = {
+      Vec2(0, 0),         Vec2(def.domain.max.x(), 0), Vec2(def.domain.max.x(), H),
+      Vec2(faceAt(H), H), Vec2(faceAt(H - d), H - d),  Vec2(0, H - d)};
+  bed.points_per_cell = c.points_per_cell;
+  def.bodies.push_back(bed);
+  def.coupling.scheme = CouplingScheme::kImp;
+  // Springs per metre of contact, so that the blade's face is equally stiff at every cell size:
+  // the pressure at the edge of an 8 cm cut (gamma d K_p, 4 kPa on a smooth blade, 7 kPa on a
+  // rough one) closes them by 0.08 and 0.15 mm, an eighth of the point spacing at 2.5 mm cells.
+  def.coupling.stiffness_per = SpringBasis::kPerLength;
+  // Contact disks of half the point spacing: a face's points then cover it edge to edge, and
+  // no point reaches further than its own share of the material. The default reach (h / sqrt(2)
+  // at 2 x 2 points per cell, eq. 45) lets a point the blade meets inside the layer feel it from
+  // 7 mm away at 1 cm cells: the blade cuts that much deeper and thicker (with the edge 5 cells
+  // deep, 3.6 instead of 2.55 times Reece's force, measured when this case was first set up,
+  // with local damping and no initial stress).
+  def.coupling.contact_radius = 0.5 * h / c.points_per_cell;
+  def.coupling.normal_stiffness = 5e7;
+  def.coupling.tangential_stiffness = 2.5e7;
+  return def;
+}
+
+BladePush pushBlade(World& w, const Blade& c, Real travel) {
+  BladePush out;
+  const auto t0 = std::chrono::steady_clock::now();
+  const Blocks& B = *w.blocks();
+  Particles& P = w.particles();
+  out.points = P.size();
+  if (c.geostatic) {
+    // The layer's weight as its initial stress (sigma_yy = -gamma z below the top of each
+    // point's column of the lattice, sigma_xx = sigma_zz = K0 sigma_yy with the elastic
+    // K0 = nu / (1 - nu) of a laterally confined layer), so that gravity does not start it
+    // ringing as a sudden load would (to twice the static stress, undamped).
+    const MaterialDef& m = w.def().materials[0];
+    const Real nu =
+        (3 * m.bulk_modulus - 2 * m.shear_modulus) / (2 * (3 * m.bulk_modulus + m.shear_modulus));
+    const Real k0 = nu / (1 - nu), g = -w.def().solver.gravity.y();
+    const Real s = c.cell_size / c.points_per_cell;
+    std::map<long, Real> top;
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      const long col = std::lround(P.x[p] / s - 0.5);
+      auto it = top.find(col);
+      if (it == top.end() || it->second < P.y[p]) top[col] = P.y[p];
+    }
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      const Real z = top[std::lround(P.x[p] / s - 0.5)] + s / 2 - P.y[p];
+      P.syy[p] = -m.density * g * z;
+      P.sxx[p] = P.szz[p] = k0 * P.syy[p];
+      P.sxy[p] = 0;
+      if (m.model == MaterialModel::kGranular) {
+        // The granular pressure is K ln(1 / J), a function of the volume ratio: the point is
+        // given the J of that stress (sigma_m = K ln J), its unstressed volume V0 = V / J so that
+        // its volume V0 J stays the lattice's.
+        const Real J = std::exp((P.sxx[p] + P.syy[p] + P.szz[p]) / (3 * m.bulk_modulus));
+        P.J[p] = J;
+        P.volume0[p] /= J;
+      }
+    }
+  }
+  const Real x0 = B.state(0).position.x(), sample = travel / 200;
+  Real next = sample, sum_h = 0, sum_v = 0, span = 0;
+  while (true) {
+    // The commanded speed, eased in over `ramp` as (1 - cos(pi t / ramp)) / 2: a blade started
+    // at once sends a compression wave of rho c v into the layer (c = 30 m/s: 2.2 kPa at 5 cm/s,
+    // as much as the passive pressure at the edge of a 4 cm cut).
+    const Real ease = w.time() < c.ramp ? (1 - std::cos(M_PI * w.time() / c.ramp)) / 2 : 1;
+    w.setBlockVelocity(B.id(0), Vec2(c.speed * ease, 0), 0);
+    const TimeStepChoice choice = w.chooseTimeStep();
+    const Real dt = choice.dt;
+    w.step(dt);
+    ++out.steps;
+    if (choice.limit == StepLimit::kContact) ++out.contact_steps;
+    // The force the material put on the blade in this step, weighted by the step.
+    sum_h += -B.coupling()[0].force.x() * dt;
+    sum_v += B.coupling()[0].force.y() * dt;
+    span += dt;
+    const Real x = B.state(0).position.x() - x0;
+    if (x < next - 1e-12) continue;
+    out.displacement.push_back(x);
+    out.horizontal.push_back(sum_h / span);
+    out.vertical.push_back(sum_v / span);
+    sum_h = sum_v = span = 0;
+    next += sample;
+    if (x >= travel - 1e-12) break;
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+Reece reece(Real alpha, Real phi, Real delta) {
+  // Equilibrium of the wedge (weight W = gamma d^2 (cot alpha + cot beta) / 2 per metre; the
+  // blade's force P at delta to its normal; the reaction on the failure plane at phi to its
+  // normal) gives P = W / (cos(alpha + delta) + sin(alpha + delta) cot(beta + phi)). The soil
+  // fails on the plane that needs the least P: N_gamma is minimised over beta, by a scan of
+  // 0.01 deg and a golden-section refinement around its best point.
+  auto n_gamma = [&](Real beta) {
+    const Real den = std::cos(alpha + delta) + std::sin(alpha + delta) / std::tan(beta + phi);
+    return den > 0 ? (1 / std::tan(alpha) + 1 / std::tan(beta)) / (2 * den)
+                   : std::numeric_limits<Real>::infinity();
+  };
+  const Real step = 0.01 * M_PI / 180;
+  Real best = step;
+  for (Real b = step; b < M_PI / 2; b += step)
+    if (n_gamma(b) < n_gamma(best)) best = b;
+  Real lo = best - step, hi = best + step;
+  const Real g = (std::sqrt(5.0) - 1) / 2;
+  for (int i = 0; i < 60; ++i) {
+    const Real m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo);
+    if (n_gamma(m1) < n_gamma(m2))
+      hi = m2;
+    else
+      lo = m1;
+  }
+  Reece r;
+  r.beta = (lo + hi) / 2;
+  r.n_gamma = n_gamma(r.beta);
+  r.horizontal = r.n_gamma * std::sin(alpha + delta);
+  r.vertical = -r.n_gamma * std::cos(alpha + delta);
+  return r;
+}
+
+Real reeceHorizontal(const Blade& c) {
+  const Real phi = bladeFrictionAngle(c);
+  const Reece r = reece(c.rake * M_PI / 180, phi, std::atan(c.friction));
+  return kBladeSand * 9.81 * c.depth * c.depth * r.horizontal;
+}
+
+Real wedgeRise(const Blade& c) {
+  const Real alpha = c.rake * M_PI / 180;
+  const Reece r = reece(alpha, bladeFrictionAngle(c), std::atan(c.friction));
+  return std::sin(alpha) * std::sin(r.beta) / std::sin(alpha + r.beta);
+}
+
+BladeForce bladeForce(const BladePush& p, Real depth, Real from, Real to) {
+  BladeForce out;
+  std::vector<Real> x, f;
+  Real v = 0;
+  for (std::size_t i = 0; i < p.displacement.size(); ++i) {
+    const Real s = p.displacement[i] / depth;
+    if (s < from - 1e-9 || s > to + 1e-9) continue;
+    x.push_back(p.displacement[i]);
+    f.push_back(p.horizontal[i]);
+    v += p.vertical[i];
+    out.peak = std::max(out.peak, p.horizontal[i]);
+  }
+  const Real n = static_cast<Real>(x.size());
+  if (n < 3) return out;
+  Real mx = 0, mf = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    mx += x[i] / n;
+    mf += f[i] / n;
+  }
+  Real sxx = 0, sxf = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    sxx += (x[i] - mx) * (x[i] - mx);
+    sxf += (x[i] - mx) * (f[i] - mf);
+  }
+  out.slope = sxf / sxx;
+  out.onset = mf - out.slope * mx;
+  out.mean = mf;
+  out.vertical = v / n;
+  // The samples' scatter about the line is correlated from one sample to the next (the force
+  // rises and falls over several of them): the standard errors use the effective number of
+  // independent samples n (1 - r) / (1 + r), r the residuals' lag-one autocorrelation.
+  std::vector<Real> e(x.size());
+  Real see = 0, lag = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    e[i] = f[i] - out.onset - out.slope * x[i];
+    see += e[i] * e[i];
+    if (i > 0) lag += e[i] * e[i - 1];
+  }
+  const Real r = see > 0 ? std::clamp<Real>(lag / see, 0, 0.98) : 0;
+  const Real n_eff = std::max<Real>(3, n * (1 - r) / (1 + r));
+  const Real s2 = see / (n - 2) * (n / n_eff);  // residual variance, per independent sample
+  out.onset_error = std::sqrt(s2 * (1 / n + mx * mx / sxx));
+  Real sff = 0;
+  for (const Real fi : f) sff += (fi - mf) * (fi - mf);
+  out.mean_error = std::sqrt(sff / (n - 1) / n_eff);
+  return out;
+}
+
+PowerLaw powerLaw(const std::vector<Real>& x, const std::vector<Real>& y,
+                  const std::vector<Real>& y_error) {
+  Real sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const Real lx = std::log(x[i]), ly = std::log(y[i]);
+    const Real sigma = y_error[i] / y[i];  // error of log y
+    const Real w = 1 / (sigma * sigma);
+    sw += w;
+    sx += w * lx;
+    sy += w * ly;
+    sxx += w * lx * lx;
+    sxy += w * lx * ly;
+  }
+  const Real det = sw * sxx - sx * sx;
+  const Real k = (sw * sxy - sx * sy) / det, a = (sxx * sy - sx * sxy) / det;
+  // The errors given, or the scatter about the line where it is larger (chi^2 per degree of
+  // freedom above 1).
+  Real chi2 = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const Real r = (std::log(y[i]) - a - k * std::log(x[i])) / (y_error[i] / y[i]);
+    chi2 += r * r;
+  }
+  const Real dof = static_cast<Real>(x.size()) - 2;
+  const Real scale = dof > 0 ? std::max<Real>(1, chi2 / dof) : 1;
+  return {k, std::sqrt(scale * sw / det)};
+}
+
+}  // namespace mpm_sdem::cases
