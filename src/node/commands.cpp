@@ -19,7 +19,7 @@ void CommandQueue::post(Command command) {
   if (!closed_) items_.push_back({std::move(command), {}});
 }
 
-void CommandQueue::runPending(Simulation& sim) {
+void CommandQueue::runPending(SimLoop& sim) {
   std::deque<Item> batch;
   {
     std::lock_guard<std::mutex> lock(mutex_);

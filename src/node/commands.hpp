@@ -12,7 +12,7 @@
 
 namespace mpm_sdem::node {
 
-class Simulation;
+class SimLoop;
 
 struct Reply {
   bool success = false;
@@ -21,14 +21,14 @@ struct Reply {
 
 class CommandQueue {
  public:
-  using Command = std::function<Reply(Simulation&)>;
+  using Command = std::function<Reply(SimLoop&)>;
 
   // From a callback thread: queues the command and blocks until the loop has run or refused it.
   Reply call(Command command);
   // From a callback thread: queues without waiting (streamed commands); the reply is dropped.
   void post(Command command);
   // Loop thread, between steps: runs every queued command in arrival order.
-  void runPending(Simulation& sim);
+  void runPending(SimLoop& sim);
   // Loop thread, on exit: refuses what is queued and everything queued later.
   void close(const std::string& reason);
 

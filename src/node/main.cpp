@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
   ROS_INFO("~image and video colours: %s (%s)", render::colorByName(params.image.scale.color_by),
            params.image.scale.origin.c_str());
   try {
-    node::Simulation sim(nh, pnh, params, std::move(scene), text.str());
+    node::SimLoop sim(nh, pnh, params, std::move(scene), text.str());
     node::Services services(pnh, sim.commands());
     ros::AsyncSpinner spinner(1);  // callbacks queue commands; the loop below applies them
     spinner.start();

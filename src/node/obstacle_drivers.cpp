@@ -91,7 +91,7 @@ void ObstacleDrivers::onCmdVel(const std::string& name, const geometry_msgs::Twi
   // rule for the ones it cannot follow: ignored).
   const Vec2 v_body(t.linear.x, t.linear.y);
   const Real w = t.angular.z;
-  queue_.post([this, name, v_body, w](Simulation& s) -> Reply {
+  queue_.post([this, name, v_body, w](SimLoop& s) -> Reply {
     World& world = s.world();
     const auto it = std::find_if(commands_.begin(), commands_.end(),
                                  [&](const Command& c) { return c.name == name; });

@@ -10,7 +10,7 @@
 //   speed, with a warning naming it).
 // And the domain's walls: every kinematic block, however it is driven, stops at them (its
 // velocity towards a wall is cut, with a warning); a dynamic block that leaves the domain
-// pauses the loop (Simulation::advance).
+// pauses the loop (SimLoop::advance).
 // Blocks are held by id, so a removed block's drivers lapse with it.
 #pragma once
 

@@ -76,28 +76,28 @@ Services::Services(ros::NodeHandle& pnh, CommandQueue& queue) : queue_(queue) {
   servers_.push_back(pnh.advertiseService("list_obstacles", &Services::list, this));
   servers_.push_back(pnh.advertiseService("step", &Services::step, this));
   using Trigger = std_srvs::Trigger;
-  auto trigger = [this, &pnh](const char* name, Reply (Simulation::*f)()) {
+  auto trigger = [this, &pnh](const char* name, Reply (SimLoop::*f)()) {
     servers_.push_back(pnh.advertiseService<Trigger::Request, Trigger::Response>(
         name, [this, f](Trigger::Request&, Trigger::Response& res) {
-          return answer(res, queue_.call([f](Simulation& s) { return (s.*f)(); }));
+          return answer(res, queue_.call([f](SimLoop& s) { return (s.*f)(); }));
         }));
   };
-  trigger("pause", &Simulation::pause);
-  trigger("resume", &Simulation::resume);
-  trigger("reset", &Simulation::reset);
+  trigger("pause", &SimLoop::pause);
+  trigger("resume", &SimLoop::resume);
+  trigger("reset", &SimLoop::reset);
   // gazebo_ros's names, std_srvs/Empty: no reply to read, so a refusal is logged (answer()).
   using Empty = std_srvs::Empty;
-  auto empty = [this, &pnh](const char* name, Reply (Simulation::*f)()) {
+  auto empty = [this, &pnh](const char* name, Reply (SimLoop::*f)()) {
     servers_.push_back(pnh.advertiseService<Empty::Request, Empty::Response>(
         name, [this, f, name](Empty::Request&, Empty::Response&) {
-          const Reply r = queue_.call([f](Simulation& s) { return (s.*f)(); });
+          const Reply r = queue_.call([f](SimLoop& s) { return (s.*f)(); });
           if (!r.success) MPM_SDEM_WARN_THROTTLE(1, "~%s refused: %s", name, r.message.c_str());
           return true;
         }));
   };
-  empty("pause_physics", &Simulation::pause);
-  empty("unpause_physics", &Simulation::resume);
-  empty("reset_simulation", &Simulation::reset);
+  empty("pause_physics", &SimLoop::pause);
+  empty("unpause_physics", &SimLoop::resume);
+  empty("reset_simulation", &SimLoop::reset);
   servers_.push_back(pnh.advertiseService("get_obstacle_state", &Services::getState, this));
   servers_.push_back(pnh.advertiseService("apply_obstacle_wrench", &Services::applyWrench, this));
   servers_.push_back(
@@ -117,7 +117,7 @@ bool Services::spawn(mpm_sdem::SpawnObstacle::Request& req,
   // Every other value is judged by the world's rules, the scene file's (blockProblem).
   const BlockDef def = conversions::toBlockDef(req);
   const std::string twist = describe(req.twist);
-  return answer(res, queue_.call([def, twist](Simulation& s) -> Reply {
+  return answer(res, queue_.call([def, twist](SimLoop& s) -> Reply {
     World& w = s.world();
     const Problem problem = w.placementProblem(def, s.params().allow_overlap);
     const std::string name = limits::nameProblem(def.name).empty() ? def.name : "(bad name)";
@@ -141,7 +141,7 @@ bool Services::remove(mpm_sdem::RemoveObstacle::Request& req,
   if (const Problem p = limits::nameProblem(req.name); !p.empty())
     return answer(res, {false, "name " + p.message});
   const std::string name = req.name;
-  return answer(res, queue_.call([name](Simulation& s) -> Reply {
+  return answer(res, queue_.call([name](SimLoop& s) -> Reply {
     const BlockId id = findBlock(s.world(), name);
     if (id.isNull()) return {false, "no block named '" + name + "'"};
     s.world().removeBlock(id);
@@ -158,7 +158,7 @@ bool Services::setState(mpm_sdem::SetObstacleState::Request& req,
   if (const Problem p = limits::nameProblem(req.name); !p.empty())
     return answer(res, {false, "name " + p.message});
   const mpm_sdem::SetObstacleState::Request r = req;
-  return answer(res, queue_.call([r](Simulation& s) -> Reply {
+  return answer(res, queue_.call([r](SimLoop& s) -> Reply {
     World& w = s.world();
     const BlockId id = findBlock(w, r.name);
     if (id.isNull()) return {false, "no block named '" + r.name + "'"};
@@ -191,7 +191,7 @@ bool Services::setState(mpm_sdem::SetObstacleState::Request& req,
 
 bool Services::list(mpm_sdem::ListObstacles::Request&, mpm_sdem::ListObstacles::Response& res) {
   mpm_sdem::BlockStates states;
-  const Reply r = queue_.call([&states](Simulation& s) -> Reply {
+  const Reply r = queue_.call([&states](SimLoop& s) -> Reply {
     std_msgs::Header h;
     h.stamp = conversions::toRosTime(s.world().time());
     h.frame_id = s.params().fixed_frame;
@@ -210,7 +210,7 @@ bool Services::step(mpm_sdem::StepSimulation::Request& req,
   const long n = req.steps;
   std::uint64_t step = 0;  // where the steps start: the loop takes them after this answer
   double time = 0;
-  const Reply r = queue_.call([n, &step, &time](Simulation& s) -> Reply {
+  const Reply r = queue_.call([n, &step, &time](SimLoop& s) -> Reply {
     const Reply out = s.step(n);
     step = static_cast<std::uint64_t>(s.world().stepCount());
     time = s.world().time();
@@ -230,7 +230,7 @@ bool Services::getState(mpm_sdem::GetObstacleState::Request& req,
       return answer(res, {false, "reference_frame " + p.message});
   const std::string name = req.name, frame = req.reference_frame;
   mpm_sdem::GetObstacleState::Response out;
-  const Reply r = queue_.call([&](Simulation& s) -> Reply {
+  const Reply r = queue_.call([&](SimLoop& s) -> Reply {
     World& w = s.world();
     const BlockId id = findBlock(w, name);
     if (id.isNull()) return {false, "no block named '" + name + "'"};
@@ -304,7 +304,7 @@ bool Services::applyWrench(mpm_sdem::ApplyObstacleWrench::Request& req,
   if (req.duration == 0)
     return answer(res, {false, "duration must be > 0 s, or < 0 to hold until cleared"});
   const mpm_sdem::ApplyObstacleWrench::Request r = req;
-  return answer(res, queue_.call([r](Simulation& s) -> Reply {
+  return answer(res, queue_.call([r](SimLoop& s) -> Reply {
     const Reply out =
         s.drivers().addLoad(s.world(), r.name, Vec2(r.wrench.force.x, r.wrench.force.y),
                             Vec2(r.reference_point.x, r.reference_point.y), r.in_block_frame,
@@ -320,7 +320,7 @@ bool Services::clearWrenches(mpm_sdem::ClearObstacleWrenches::Request& req,
     if (const Problem p = limits::nameProblem(req.name); !p.empty())
       return answer(res, {false, "name " + p.message});
   const std::string name = req.name;
-  return answer(res, queue_.call([name](Simulation& s) -> Reply {
+  return answer(res, queue_.call([name](SimLoop& s) -> Reply {
     return s.drivers().clearLoads(s.world(), name);
   }));
 }
@@ -332,7 +332,7 @@ void Services::obstacleCommand(const mpm_sdem::ObstacleCommand::ConstPtr& msg) {
   }
   const std::string name = msg->name;
   const geometry_msgs::Twist twist = msg->twist;
-  queue_.post([name, twist](Simulation& s) -> Reply {
+  queue_.post([name, twist](SimLoop& s) -> Reply {
     const BlockId id = findBlock(s.world(), name);
     const Reply r = id.isNull() ? Reply{false, "no block named '" + name + "'"}
                                 : applyTwist(s.world(), id, twist);

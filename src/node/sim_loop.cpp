@@ -1,13 +1,10 @@
 #include "sim_loop.hpp"
 
-#include <omp.h>
-
-#include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <thread>
 
 #include "mpm_sdem/core/checkpoint.hpp"
-#include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/ros/checkpoint_source.hpp"
 
 namespace mpm_sdem::node {
@@ -23,38 +20,43 @@ std::string withSuffix(const std::string& path, int n) {
              : path.substr(0, dot) + tag + path.substr(dot);
 }
 
+// The video as one of the run's outputs: a frame of the first state and after every step (the
+// recorder keeps its own frame rate).
+class VideoOutput : public RunOutput {
+ public:
+  explicit VideoOutput(render::VideoRecorder& video) : video_(video) {}
+  void start(World& world, bool) override { video_.record(world); }
+  void step(World& world) override { video_.record(world); }
+
+ private:
+  render::VideoRecorder& video_;
+};
+
 }  // namespace
 
-Simulation::Simulation(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParams& params,
-                       Scene scene, std::string scene_text)
+SimLoop::SimLoop(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParams& params, Scene scene,
+                 std::string scene_text)
     : params_(params),
       scene_(std::move(scene)),
       scene_text_(std::move(scene_text)),
       world_(std::make_unique<World>(scene_.world)),
       drivers_(pnh, commands_, params_),
       publishers_(nh, pnh, params_, scene_text_, *world_),
-      stepper_(std::make_unique<Stepper>(*world_, scene_.limits.step_collapse)),
       paused_(params.start_paused) {
   if (!params_.resume.empty()) resumeFromCheckpoint();
-  logCommands();
-  if (params_.threads > 0)
-    omp_set_num_threads(params_.threads);
-  else
-    tuner_ = std::make_unique<ThreadTuner>(std::min(omp_get_max_threads(), limits::logicalCores()));
-  dt_ = world_->chooseTimeStep();
   drivers_.checkFollowers(*world_);
   if (const Problem p = publishers_.terrainProblem(*world_); !p.empty())
     throw std::runtime_error(p.text());
   drivers_.sync(*world_, true);
-  openRecordings();
+  startRun();
   publishers_.blocksChanged(*world_);
 }
 
-Simulation::~Simulation() {
+SimLoop::~SimLoop() {
   closeRecordings();
 }
 
-void Simulation::resumeFromCheckpoint() {
+void SimLoop::resumeFromCheckpoint() {
   CheckpointSource from;
   try {
     from = loadCheckpointSource(params_.resume);
@@ -69,41 +71,48 @@ void Simulation::resumeFromCheckpoint() {
     ROS_WARN("~resume: %s", w.c_str());
 }
 
-void Simulation::logCommands() {
-  // What requests, held loads and velocity commands do to the world, for re-simulation.
-  world_->setCommandLog([this](const WorldCommand& c) {
-    if (bag_) bag_->command(c);
-  });
+void SimLoop::startRun() {
+  RunDef def;
+  if (params_.end_action != EndAction::kContinue) def.end_time = scene_.end_time;
+  def.sample_interval = scene_.output.interval;  // for the Mach number's warning
+  def.step_collapse = scene_.limits.step_collapse;
+  // No energy guard (RunDef's infinite default): the obstacles users command do work on the
+  // material, and a run whose energy they raised is not unstable.
+  def.threads = params_.threads;
+  sim_ = std::make_unique<Simulation>(*world_, def);
+  openRecordings();
+  // A resumed run's first recordings continue those of the run it resumes.
+  if (const std::string p = sim_->start(!params_.resume.empty() && resets_ == 0); !p.empty())
+    ROS_ERROR("%s; that recording stops, the run goes on", p.c_str());
 }
 
-conversions::StatsInput Simulation::status() const {
+conversions::StatsInput SimLoop::status() const {
   conversions::StatsInput in;
-  in.dt = dt_;
+  in.dt = sim_->stableStep();
   in.paused = paused_ && pending_steps_ == 0;
   in.real_time_factor = real_time_.factor();
   in.profile = world_->profile();
   return in;
 }
 
-void Simulation::openRecordings() {
+void SimLoop::openRecordings() {
   if (!recording_) return;
-  const conversions::StatsInput in = status();
   // A resumed run's first recordings continue those of the run it resumes.
   const bool resumed = !params_.resume.empty() && resets_ == 0;
   if (params_.record) {
     bag_ = std::make_unique<BagRecorder>(withSuffix(params_.bag, resets_), params_.record_def,
                                          scene_text_, scene_.state_text);
     // The bag starts with the resumed bag's run up to the checkpoint.
-    if (resumed && !resumed_bag_.empty())
-      bag_->continueFrom(resumed_bag_, world_->time());
-    else
-      bag_->record(*world_, in);
+    const bool continued = resumed && !resumed_bag_.empty();
+    if (continued) bag_->continueFrom(resumed_bag_, world_->time());
+    outputs_.push_back(std::make_unique<BagOutput>(
+        *bag_, [this] { return status(); }, continued));
     ROS_INFO("recording to %s(.active while open)", bag_->path().c_str());
   }
   if (!params_.video.empty()) {
     video_ = std::make_unique<render::VideoRecorder>(withSuffix(params_.video, resets_),
                                                      params_.video_fps, params_.image, *world_);
-    video_->record(*world_);
+    outputs_.push_back(std::make_unique<VideoOutput>(*video_));
     ROS_INFO("writing video to %s", video_->path().c_str());
   }
   if (!params_.vtk_dir.empty()) {
@@ -113,27 +122,22 @@ void Simulation::openRecordings() {
     } catch (const std::exception& e) {
       throw std::runtime_error(std::string("parameter ~vtk/dir: ") + e.what());
     }
-    vtk_clock_ = SampleClock(1 / params_.vtk_interval);
+    outputs_.push_back(std::make_unique<VtkOutput>(*vtk_, 1 / params_.vtk_interval));
     ROS_INFO("writing ParaView files to %s (points.pvd, every %g s)", vtk_->dir().c_str(),
              params_.vtk_interval);
-    // The schedule starts with this frame, or goes on from the frames the run resumed left.
-    vtk_clock_.due(world_->time(), resumed);
-    if (!resumed) writeVtk();
   }
+  for (const auto& o : outputs_) sim_->attach(*o);
 }
 
-void Simulation::writeVtk() {
-  try {
-    vtk_->write(*world_);
-  } catch (const std::exception& e) {
-    ROS_ERROR("%s at t = %.6g s; no more ParaView frames in this run", e.what(), world_->time());
-    vtk_.reset();
+void SimLoop::closeRecordings() {
+  // Their ends: the bag's checkpoint of the state reached, to continue from, and the last
+  // ParaView frame, unless the state is not finite (as the runner).
+  if (sim_) {
+    if (const std::string p = sim_->finish(!unstable_); !p.empty())
+      ROS_ERROR("at t = %.6g s: %s", world_->time(), p.c_str());
   }
-}
-
-void Simulation::closeRecordings() {
+  outputs_.clear();
   if (bag_) {
-    if (!unstable_) bag_->checkpoint(*world_);  // the state reached, to continue from
     bag_->close();
     ROS_INFO("bag closed: %s (%ld messages, up to t = %.4f s)", bag_->path().c_str(),
              bag_->messageCount(), world_->time());
@@ -146,21 +150,18 @@ void Simulation::closeRecordings() {
     video_.reset();
   }
   if (vtk_) {
-    // The state the run ends in, unless it was the last frame or is not finite (as the runner).
-    if (!unstable_) writeVtk();
-    if (vtk_)
-      ROS_INFO("ParaView files: %s/points.pvd (%d frames, up to t = %.4f s)", vtk_->dir().c_str(),
-               vtk_->frames(), vtk_->lastTime());
+    ROS_INFO("ParaView files: %s/points.pvd (%d frames, up to t = %.4f s)", vtk_->dir().c_str(),
+             vtk_->frames(), vtk_->lastTime());
     vtk_.reset();
   }
 }
 
-void Simulation::restartPacing() {
+void SimLoop::restartPacing() {
   pace_wall_ = Clock::now();
   pace_sim_ = world_->time();
 }
 
-void Simulation::pace() {
+void SimLoop::pace() {
   if (!(params_.real_time_factor > 0)) return;
   // Sleep until the wall clock has caught up with the simulated time (divided by the factor).
   const auto target =
@@ -169,24 +170,25 @@ void Simulation::pace() {
   if (target > Clock::now()) std::this_thread::sleep_until(target);
 }
 
-void Simulation::logProgress(bool force) {
+void SimLoop::logProgress(bool force) {
   const auto now = Clock::now();
   if (!force && now - last_log_ < std::chrono::seconds(10)) return;
   last_log_ = now;
   ROS_INFO(
       "t = %.4f / %.4g s, step %ld, dt %.3g s (%s), %.3g x real time over the last %g s "
       "run, %d threads",
-      world_->time(), scene_.end_time, world_->stepCount(), dt_.dt, stepLimitName(dt_.limit),
-      real_time_.factor(), RealTimeMeter::kWindow, tuner_ ? tuner_->threads() : params_.threads);
+      world_->time(), scene_.end_time, world_->stepCount(), sim_->stableStep().dt,
+      stepLimitName(sim_->stableStep().limit), real_time_.factor(), RealTimeMeter::kWindow,
+      sim_->threads());
 }
 
-void Simulation::noteRequest(const std::string& what) {
+void SimLoop::noteRequest(const std::string& what) {
   char at[96];
   std::snprintf(at, sizeof at, " at step %ld, t = %.6g s", world_->stepCount(), world_->time());
   last_request_ = what + at;
 }
 
-void Simulation::fail(const std::string& what, Real dt) {
+void SimLoop::fail(const std::string& what, Real dt) {
   unstable_ = true;
   paused_ = true;
   pending_steps_ = 0;
@@ -195,11 +197,12 @@ void Simulation::fail(const std::string& what, Real dt) {
                                 : "The last request before it was " + last_request_ +
                                       "; call ~reset (a request like it will do the same).";
   ROS_ERROR("%s at step %ld, t = %.6g s (dt = %.3g s, %s); paused. %s", what.c_str(),
-            world_->stepCount(), world_->time(), dt, stepLimitName(dt_.limit), cause.c_str());
+            world_->stepCount(), world_->time(), dt, stepLimitName(sim_->stableStep().limit),
+            cause.c_str());
   publishers_.publish(*world_, status(), true);
 }
 
-void Simulation::pauseOutside(const std::string& what) {
+void SimLoop::pauseOutside(const std::string& what) {
   paused_ = true;
   pending_steps_ = 0;
   const std::string cause =
@@ -211,7 +214,7 @@ void Simulation::pauseOutside(const std::string& what) {
   publishers_.publish(*world_, status(), true);
 }
 
-void Simulation::publishWhilePaused() {
+void SimLoop::publishWhilePaused() {
   // /clock holds its time and ~stats (latched) stays fresh for late listeners.
   const auto now = Clock::now();
   if (now - last_idle_ < std::chrono::milliseconds(500)) return;
@@ -219,38 +222,27 @@ void Simulation::publishWhilePaused() {
   publishers_.publishIdle(*world_, status());
 }
 
-bool Simulation::advance() {
-  const auto start = Clock::now();
-  if (tuner_) tuner_->beforeStep();
-  const bool to_end = params_.end_action != EndAction::kContinue && !end_reached_;
-  const PlannedStep step =
-      to_end ? stepper_->plan(scene_.end_time) : stepper_->plan();  // no landing: runs on
-  dt_ = step.stable;
+bool SimLoop::advance() {
+  const RunStep step = sim_->advance([this](Real dt) { drivers_.beforeStep(*world_, dt); });
   if (!step.problem.empty()) {
-    fail(step.problem, dt_.dt);
+    fail(step.problem, step.dt > 0 ? step.dt : sim_->stableStep().dt);
     return false;
   }
-  drivers_.beforeStep(*world_, step.dt);
-  std::string problem;
-  const StepInfo info = stepper_->take(step, problem);
-  if (tuner_) tuner_->afterStep(std::chrono::duration<double>(Clock::now() - start).count());
-  if (!problem.empty()) {
-    fail(problem, step.dt);
-    return false;
-  }
+  if (!step.output_problem.empty())
+    ROS_ERROR("%s at t = %.6g s; that recording stops here, the run goes on",
+              step.output_problem.c_str(), world_->time());
+  if (!step.warning.empty()) ROS_WARN("%s", step.warning.c_str());
   real_time_.sample(world_->time());
-  if (bag_) bag_->record(*world_, status());
-  if (video_) video_->record(*world_);
-  if (vtk_ && vtk_clock_.due(world_->time())) writeVtk();
   publishers_.publish(*world_, status());
-  if (!info.block_problem.empty()) {
+  if (!step.info.block_problem.empty()) {
     // A dynamic block pushed or thrown out of the domain (kinematic ones stop at its walls):
     // the step is sound and recorded, but the block has left the material's grid.
-    pauseOutside(info.block_problem);
+    pauseOutside(step.info.block_problem);
     return false;
   }
-  if (to_end && reachedEnd(world_->time(), scene_.end_time)) {
+  if (params_.end_action != EndAction::kContinue && !end_reached_ && sim_->ended()) {
     end_reached_ = true;
+    sim_->setEndTime(std::numeric_limits<Time>::infinity());  // ~resume runs on past it
     logProgress(true);
     if (params_.end_action == EndAction::kShutdown) {
       ROS_INFO("reached the scene's end time %g s; shutting down (end_action: shutdown)",
@@ -267,7 +259,7 @@ bool Simulation::advance() {
   return true;
 }
 
-int Simulation::run(const volatile std::sig_atomic_t& stop) {
+int SimLoop::run(const volatile std::sig_atomic_t& stop) {
   last_log_ = Clock::now();
   restartPacing();
   publishers_.publish(*world_, status(), true);
@@ -276,8 +268,8 @@ int Simulation::run(const volatile std::sig_atomic_t& stop) {
       "(%s)%s",
       scene_.name.c_str(), world_->particles().size(),
       world_->blocks() ? world_->blocks()->count() : 0,
-      couplingSchemeName(world_->def().coupling.scheme), scene_.end_time, dt_.dt,
-      stepLimitName(dt_.limit), paused_ ? "; paused (call ~resume)" : "");
+      couplingSchemeName(world_->def().coupling.scheme), scene_.end_time, sim_->stableStep().dt,
+      stepLimitName(sim_->stableStep().limit), paused_ ? "; paused (call ~resume)" : "");
   while (!stop && ros::ok() && !shutdown_) {
     commands_.runPending(*this);
     const bool stepping = pending_steps_ > 0;
@@ -303,7 +295,7 @@ int Simulation::run(const volatile std::sig_atomic_t& stop) {
   return 0;
 }
 
-Reply Simulation::pause() {
+Reply SimLoop::pause() {
   if (pending_steps_ > 0) {
     const long left = pending_steps_;
     pending_steps_ = 0;
@@ -319,7 +311,7 @@ Reply Simulation::pause() {
                     ", t = " + std::to_string(world_->time()) + " s"};
 }
 
-Reply Simulation::resume() {
+Reply SimLoop::resume() {
   if (unstable_) return {false, "the state is non-finite; call ~reset first"};
   if (!paused_) return {true, "already running"};
   paused_ = false;
@@ -328,22 +320,20 @@ Reply Simulation::resume() {
   return {true, "resumed at step " + std::to_string(world_->stepCount())};
 }
 
-Reply Simulation::reset() {
+Reply SimLoop::reset() {
   const bool was_recording = bag_ || video_;
   closeRecordings();
+  sim_.reset();
   world_ = std::make_unique<World>(scene_.world);
-  stepper_ = std::make_unique<Stepper>(*world_, scene_.limits.step_collapse);
-  logCommands();
   ++resets_;
   unstable_ = false;
   end_reached_ = false;
   pending_steps_ = 0;
   last_request_.clear();
   real_time_.clear();
-  dt_ = world_->chooseTimeStep();
   drivers_.sync(*world_, true);  // held loads and commands end with the run they were for
   recording_ = params_.record_after_reset;
-  openRecordings();
+  startRun();
   publishers_.restart(*world_);
   publishers_.blocksChanged(*world_);
   publishers_.publish(*world_, status(), true);
@@ -358,7 +348,7 @@ Reply Simulation::reset() {
       "reset to t = 0 (spawned obstacles removed, held loads and velocity commands ended)" + note};
 }
 
-Reply Simulation::step(long n) {
+Reply SimLoop::step(long n) {
   if (!paused_) return {false, "~step works while paused; call ~pause first"};
   if (unstable_) return {false, "the state is non-finite; call ~reset first"};
   if (pending_steps_ > 0)
@@ -370,11 +360,10 @@ Reply Simulation::step(long n) {
                     " between commands; ~pause cancels them, ~stats shows the progress"};
 }
 
-void Simulation::blocksChanged() {
-  dt_ = world_->chooseTimeStep();
+void SimLoop::blocksChanged() {
+  sim_->blocksChanged();  // the step chosen again, the bag's static frames
   drivers_.sync(*world_);
   publishers_.blocksChanged(*world_);
-  if (bag_) bag_->blocksChanged(*world_);
   publishers_.publish(*world_, status(), true);
 }
 

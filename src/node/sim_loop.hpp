@@ -1,5 +1,6 @@
-// The simulation loop of the node: runs queued commands, steps the world, paces it to the wall
-// clock if asked, publishes, records. Everything touching the world happens on this thread.
+// The simulation loop of the node: runs queued commands, steps the world through its Simulation
+// (sim/simulation.hpp: the guards and the recordings as outputs), paces it to the wall clock if
+// asked, publishes. Everything touching the world happens on this thread.
 #pragma once
 
 #include <ros/ros.h>
@@ -8,28 +9,27 @@
 #include <csignal>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "mpm_sdem/core/real_time_meter.hpp"
-#include "mpm_sdem/core/sample_clock.hpp"
-#include "mpm_sdem/core/stepper.hpp"
-#include "mpm_sdem/core/thread_tuner.hpp"
 #include "mpm_sdem/render/render.hpp"
-#include "mpm_sdem/ros/bag_recorder.hpp"
+#include "mpm_sdem/ros/bag_output.hpp"
 #include "mpm_sdem/scene/scene.hpp"
-#include "mpm_sdem/vtk/vtk_series.hpp"
+#include "mpm_sdem/sim/simulation.hpp"
+#include "mpm_sdem/vtk/vtk_output.hpp"
 #include "node_params.hpp"
 #include "obstacle_drivers.hpp"
 #include "publishers.hpp"
 
 namespace mpm_sdem::node {
 
-class Simulation {
+class SimLoop {
  public:
   // Throws std::runtime_error when the bag or the video cannot be opened.
-  Simulation(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParams& params, Scene scene,
-             std::string scene_text);
-  ~Simulation();
+  SimLoop(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParams& params, Scene scene,
+          std::string scene_text);
+  ~SimLoop();
 
   // Runs until ROS shuts down, stop becomes non-zero or the scene ends with end_action
   // shutdown; closes the recordings. Returns the process exit status.
@@ -55,6 +55,8 @@ class Simulation {
   // One step and its outputs; false when the state became non-finite or the step collapsed
   // (the loop then pauses).
   bool advance();
+  // A new world's step loop (at the start and on a reset), its recordings attached and started.
+  void startRun();
   void fail(const std::string& what, Real dt);
   // A sound state with a block outside the domain: paused, saying what to do.
   void pauseOutside(const std::string& what);
@@ -64,10 +66,6 @@ class Simulation {
   void closeRecordings();
   // ~resume: the checkpoint into the world; throws std::runtime_error saying why it cannot.
   void resumeFromCheckpoint();
-  // The world's commands to the bag (its first recording, or after a reset).
-  void logCommands();
-  // A frame of the ParaView series; a frame that cannot be written ends the series, not the run.
-  void writeVtk();
   void restartPacing();
   void pace();
   void logProgress(bool force);
@@ -76,16 +74,16 @@ class Simulation {
   Scene scene_;
   std::string scene_text_;
   std::unique_ptr<World> world_;
+  std::unique_ptr<Simulation> sim_;  // of world_: made again with it on a reset
   std::string resumed_bag_;  // the bag the run resumed from, continued by the first recording
   CommandQueue commands_;
   ObstacleDrivers drivers_;
   Publishers publishers_;
+  // The recordings and their outputs (a failed one is dropped by sim_, closed here).
   std::unique_ptr<BagRecorder> bag_;
   std::unique_ptr<render::VideoRecorder> video_;
   std::unique_ptr<VtkSeries> vtk_;
-  SampleClock vtk_clock_;
-  TimeStepChoice dt_;
-  std::unique_ptr<Stepper> stepper_;  // of world_: made again with it on a reset
+  std::vector<std::unique_ptr<RunOutput>> outputs_;
   bool paused_ = false;
   bool end_reached_ = false;
   bool unstable_ = false;
@@ -98,7 +96,6 @@ class Simulation {
   Clock::time_point pace_wall_, last_log_, last_idle_;
   Real pace_sim_ = 0;
   RealTimeMeter real_time_;
-  std::unique_ptr<ThreadTuner> tuner_;  // with threads: 0
 };
 
 }  // namespace mpm_sdem::node

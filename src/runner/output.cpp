@@ -45,12 +45,14 @@ std::string timeSeriesHeader(const std::vector<MassGauge>& gauges) {
 
 }  // namespace
 
-TimeSeriesWriter::TimeSeriesWriter(const std::string& path, Real resume_after,
-                                   std::vector<MassGauge> gauges)
-    : gauges_(std::move(gauges)),
+TimeSeriesWriter::TimeSeriesWriter(const std::string& path, const Simulation& sim,
+                                   Real resume_after, std::vector<MassGauge> gauges)
+    : sim_(sim),
+      gauges_(std::move(gauges)),
       out_(openCsv(path, timeSeriesHeader(gauges_).c_str(), resume_after)) {}
 
-void TimeSeriesWriter::write(const World& w, const Diagnostics& d, const TimeStepChoice& dt) {
+void TimeSeriesWriter::sample(const World& w, const Diagnostics& d) {
+  const TimeStepChoice& dt = sim_.stableStep();
   out_ << w.time() << ',' << w.stepCount() << ',' << dt.dt << ',' << stepLimitName(dt.limit) << ','
        << d.kinetic << ',' << d.elastic << ',' << d.gravity << ',' << d.total() << ','
        << d.momentum.x() << ',' << d.momentum.y() << ',' << d.angular_momentum << ','
@@ -68,7 +70,7 @@ BlockSeriesWriter::BlockSeriesWriter(const std::string& path, Real resume_after)
                    "block_torque,block_contacts,min_x,max_x,min_y,max_y",
                    resume_after)) {}
 
-void BlockSeriesWriter::write(const World& w) {
+void BlockSeriesWriter::sample(const World& w, const Diagnostics&) {
   const Blocks& B = *w.blocks();
   for (int b = 0; b < B.count(); ++b) {
     const BlockState& s = B.state(b);
@@ -95,7 +97,7 @@ FemSeriesWriter::FemSeriesWriter(const std::string& nodes_path, const std::strin
       elements_(openCsv(elements_path, "time,body,name,element,sxx,syy,sxy,szz,von_mises",
                         resume_after)) {}
 
-void FemSeriesWriter::write(const World& w) {
+void FemSeriesWriter::sample(const World& w, const Diagnostics&) {
   const FemBodies& F = *w.femBodies();
   for (int b = 0; b < F.count(); ++b) {
     const std::string& name = F.def(b).name;
