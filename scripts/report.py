@@ -245,6 +245,8 @@ def plot_debris_snapshots(data, out):
         else:
             block = frame["blocks"].setdefault(r["what"], (float(r["id"]), []))
             block[1].append((100 * float(r["x"]), 100 * float(r["y"])))
+    if not frames:  # the fast run writes the header only
+        return None
     fig, panels = snapshot_panels(frames, 2.2)
     for ax, (t, frame) in panels:
         ax.scatter(frame["points"][0], frame["points"][1], s=1.0, c="#c2a060", linewidths=0)
@@ -388,6 +390,8 @@ def plot_water_gate_snapshots(data, out):
         frame = frames.setdefault(r["time"], {"water": ([], []), "gate": ([], [])})
         frame[r["what"]][0].append(100 * float(r["x"]))
         frame[r["what"]][1].append(100 * float(r["y"]))
+    if not frames:  # the fast run writes the header only
+        return None
     fig, panels = snapshot_panels(frames, 2.6)
     for ax, (t, frame) in panels:
         ax.scatter(*frame["water"], s=0.3, c="#3070c0", linewidths=0)

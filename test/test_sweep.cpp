@@ -350,3 +350,105 @@ TEST(SweepLocal, RunsGathersAndResumes) {
   EXPECT_NE(read(d / "err.txt").find("4 runs, 3 already done, 1 to run"), std::string::npos);
   EXPECT_EQ(results(), first);
 }
+
+namespace {
+
+// A CSV line's fields (quotes around a field that holds commas).
+std::vector<std::string> fields(const std::string& line) {
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (char c : line) {
+    if (c == '"')
+      quoted = !quoted;
+    else if (c == ',' && !quoted)
+      out.emplace_back();
+    else
+      out.back() += c;
+  }
+  return out;
+}
+
+// results.csv of the validation report without its wall_s column (8th), which differs per run.
+std::string withoutWallTimes(const std::string& text) {
+  std::stringstream in(text);
+  std::string out;
+  for (std::string line; std::getline(in, line);) {
+    const std::vector<std::string> f = fields(line);
+    for (std::size_t k = 0; k < f.size(); ++k)
+      if (k != 7) out += f[k] + "|";
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+// A validation sweep (the report's cases, scripts/validate): one run per case, in order, each
+// mpm_sdem_validate with that case; a sweep file that mixes in a scene's keys or names a case
+// badly is refused at its line.
+TEST(SweepFile, ValidationSweepRunsOneCaseEach) {
+  const fs::path d = tempDir("validation_file");
+  const SweepDef s =
+      loadSweep(write(d / "v.yaml", "name: v\nvalidation:\n  fast: true\n  cases: [bar, drop]\n"));
+  ASSERT_TRUE(s.validation.has_value());
+  const std::vector<SweepRun> runs = expandRuns(s);
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[0].id, "bar");
+  EXPECT_EQ(runs[1].validation_case, "drop");
+  Launch launch;
+  launch.out_dir = "/o";
+  launch.runner = "/b/mpm_sdem_run";
+  const std::string c = runCommand(s, runs[1], launch);
+  EXPECT_NE(c.find("'/b/mpm_sdem_validate' --cases 'drop' --fast --out '/o/runs/drop'"),
+            std::string::npos)
+      << c;
+  struct Case {
+    std::string text, expected;
+  };
+  const Case cases[] = {
+      {"name: v\nscene: x.yaml\nvalidation:\n  cases: [bar]\n",
+       "s.yaml:2:8: scene: a validation sweep runs mpm_sdem_validate's cases; remove scene"},
+      {"name: v\nvalidation:\n  cases: []\n", "validation.cases: expected a list of case names"},
+      {"name: v\nvalidation:\n  cases: [Bar]\n", "'Bar' is not a case name"},
+      {"name: v\nvalidation:\n  cases: [bar, bar]\n", "'bar' is listed twice"},
+      {"name: v\nvalidation:\n  fast: maybe\n  cases: [bar]\n", "validation.fast"},
+  };
+  for (const Case& k : cases) {
+    const std::string got = refusal(k.text);
+    EXPECT_NE(got.find(k.expected), std::string::npos) << k.text << "\ngot: " << got;
+  }
+}
+
+// Two fast cases through GNU parallel: the gathered data/results.csv holds what one
+// mpm_sdem_validate run of both cases writes (but the wall times; the sweep's order is its
+// list's, here that of mpm_sdem_validate --list as scripts/validate writes it), and a second
+// call runs neither again; a case whose run did not finish is run again.
+TEST(SweepLocal, ValidationCasesGatherAsOneRunAndResume) {
+  const fs::path d = tempDir("validation_local");
+  const std::string file =
+      write(d / "v.yaml", "name: v\nvalidation:\n  fast: true\n  cases: [drop, bar]\n");
+  const std::string sweep = std::string(MPM_SDEM_SWEEP) + " " + file + " --jobs 2 --out " +
+                            (d / "out").string() + " 2>" + (d / "err.txt").string();
+  ASSERT_EQ(std::system(sweep.c_str()), 0) << read(d / "err.txt");
+  EXPECT_NE(read(d / "err.txt").find("2 of 2 cases done"), std::string::npos)
+      << read(d / "err.txt");
+  const fs::path validate = fs::path(MPM_SDEM_SWEEP).parent_path() / "mpm_sdem_validate";
+  const std::string whole = validate.string() + " --fast --cases drop,bar --out " +
+                            (d / "whole").string() + " > /dev/null";
+  ASSERT_EQ(std::system(whole.c_str()), 0);
+  const std::string gathered = withoutWallTimes(read(d / "out" / "data" / "results.csv"));
+  EXPECT_EQ(gathered, withoutWallTimes(read(d / "whole" / "results.csv")));
+  EXPECT_GT(std::count(gathered.begin(), gathered.end(), '\n'), 5);
+  // Each case's series files beside it, as one run writes them.
+  for (const auto& e : fs::directory_iterator(d / "whole")) {
+    if (e.path().filename() != "summary.csv") {
+      EXPECT_TRUE(fs::exists(d / "out" / "data" / e.path().filename())) << e.path();
+    }
+  }
+  ASSERT_EQ(std::system(sweep.c_str()), 0);
+  EXPECT_NE(read(d / "err.txt").find("2 runs, 2 already done, 0 to run"), std::string::npos);
+  fs::remove(d / "out" / "runs" / "drop" / "summary.csv");
+  ASSERT_EQ(std::system(sweep.c_str()), 0);
+  EXPECT_NE(read(d / "err.txt").find("2 runs, 1 already done, 1 to run"), std::string::npos);
+  EXPECT_EQ(withoutWallTimes(read(d / "out" / "data" / "results.csv")), gathered);
+}

@@ -4,14 +4,20 @@
 //                       error (relative to the reference, or absolute when the reference is 0),
 //                       wall time of the run, settings, and the run's points and steps
 //                       (0 when not counted) for its particle-steps per second;
-//   <out>/<case>_*.csv  time series and sweeps for the plots.
+//   <out>/<case>_*.csv  time series and sweeps for the plots;
+//   <out>/summary.csv   written last: the exit status, the cases run and the wall time (a
+//                       sweep's run is done when it says status 0: scripts/validate runs each
+//                       case as a run of mpm_sdem_sweep, config/sweeps/ docs).
 // --fast runs every case at CI resolution (seconds); without it, at the seeds' resolution.
+// --list prints the cases' names, one per line.
 // Exit status 3 when a measured quantity is not a finite number (an unstable run).
 // Each case lives in validation/report/<topic>.cpp (its world in cases.hpp); this file holds the
 // list of cases and the command line.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <string>
 #include <utility>
@@ -24,6 +30,7 @@ using report::Options;
 using report::Results;
 
 int main(int argc, char** argv) {
+  const auto started = std::chrono::steady_clock::now();
   const std::vector<std::pair<const char*, std::function<void(const Options&, Results&)>>> all{
       {"collision", report::contact::collision},
       {"drop", report::contact::drop},
@@ -60,14 +67,18 @@ int main(int argc, char** argv) {
   std::string names;
   for (const auto& entry : all) names += (names.empty() ? "" : ",") + std::string(entry.first);
   auto usage = [&] {
-    std::fprintf(stderr, "usage: %s [--out DIR] [--fast] [--cases %s]\n", argv[0], names.c_str());
+    std::fprintf(stderr, "usage: %s [--out DIR] [--fast] [--cases %s] [--list]\n", argv[0],
+                 names.c_str());
     return 2;
   };
   Options o;
   std::vector<std::string> only;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--fast") {
+    if (a == "--list") {
+      for (const auto& entry : all) std::printf("%s\n", entry.first);
+      return 0;
+    } else if (a == "--fast") {
       o.fast = true;
     } else if (a == "--out" && i + 1 < argc) {
       o.out = argv[++i];
@@ -90,6 +101,7 @@ int main(int argc, char** argv) {
   }
   std::error_code ec;
   std::filesystem::create_directories(o.out, ec);
+  std::filesystem::remove(o.out + "/summary.csv", ec);  // a run is done only once it says so
   Results results(o.out + "/results.csv");
   if (!results.ok()) {
     std::fprintf(stderr, "cannot write %s/results.csv\n", o.out.c_str());
@@ -101,10 +113,13 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
     run(o, results);
   }
-  if (results.nonFinite() > 0) {
+  const int status = results.nonFinite() > 0 ? 3 : 0;
+  if (status != 0)
     std::fprintf(stderr, "%d quantities are not finite numbers (an unstable run)\n",
                  results.nonFinite());
-    return 3;
-  }
-  return 0;
+  std::ofstream(o.out + "/summary.csv")
+      << "status,cases,wall_s\n"
+      << status << ',' << (only.empty() ? all.size() : only.size()) << ','
+      << std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() << '\n';
+  return status;
 }

@@ -49,6 +49,15 @@ std::string capture(const std::string& command, int& status) {
 
 std::string runCommand(const SweepDef& sweep, const Run& run, const Launch& launch) {
   const std::string dir = runDir(launch.out_dir, run);
+  if (sweep.validation) {
+    // mpm_sdem_validate beside the runner, one case; its threads as a run's.
+    const std::string validate =
+        (fs::path(launch.runner).parent_path() / "mpm_sdem_validate").string();
+    return "OMP_NUM_THREADS=" + std::to_string(launch.threads_per_run) + " " + shellWord(validate) +
+           " --cases " + shellWord(run.validation_case) +
+           (sweep.validation->fast ? " --fast" : "") + " --out " + shellWord(dir) + " > " +
+           shellWord(dir + "/log.txt") + " 2>&1";
+  }
   std::string c = shellWord(launch.runner) + " " + shellWord(sweep.scene);
   for (const std::string& o : run.overrides) c += " --set " + shellWord(o);
   if (run.perturbation > 0) {
@@ -168,7 +177,10 @@ int submitSlurm(const SweepDef& sweep, const std::vector<Run>& pending, const La
   std::ofstream(dir / "jobs.txt") << "array " << id << "\ngather " << gather_id << "\n";
   std::cerr << "submitted " << pending.size() << " runs as array job " << id << ", gather job "
             << gather_id << " after it; watch with: squeue -j " << id << "," << gather_id
-            << "\nresults: " << launch.out_dir << "/results.csv, summary.csv\n";
+            << (sweep.validation ? "\ndata: " + launch.out_dir +
+                                       "/data (scripts/validate --gather "
+                                       "writes the report)\n"
+                                 : "\nresults: " + launch.out_dir + "/results.csv, summary.csv\n");
   return 0;
 }
 

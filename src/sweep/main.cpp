@@ -53,9 +53,14 @@ void plot(const std::string& out_dir) {
 
 int gatherAndReport(const SweepDef& sweep, const std::string& out_dir) {
   const Gathered g = gather(sweep, out_dir);
-  plot(out_dir);
-  std::cerr << g.done << " of " << g.runs << " runs done; " << out_dir << "/results.csv, "
-            << out_dir << "/summary.csv\n";
+  if (sweep.validation) {  // the report is scripts/validate's (report.py)
+    std::cerr << g.done << " of " << g.runs << " cases done; their data in " << out_dir
+              << "/data\n";
+  } else {
+    plot(out_dir);
+    std::cerr << g.done << " of " << g.runs << " runs done; " << out_dir << "/results.csv, "
+              << out_dir << "/summary.csv\n";
+  }
   for (std::size_t k = 0; k < g.problems.size() && k < 20; ++k)
     std::cerr << "  " << g.problems[k] << "\n";
   if (g.problems.size() > 20) std::cerr << "  ... and " << g.problems.size() - 20 << " more\n";

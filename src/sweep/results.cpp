@@ -148,7 +148,49 @@ double measureOutput(const std::string& run_dir, const Output& o) {
   return number(*found, path, o.column);
 }
 
+namespace {
+
+// A validation sweep's runs into DIR/data: every run's results.csv rows under one header, in the
+// cases' order, and their series files beside it (each case writes files of its own names), as
+// one mpm_sdem_validate run over all the cases would have written them.
+Gathered gatherValidation(const SweepDef& sweep, const std::string& out_dir) {
+  const std::vector<Run> runs = expandRuns(sweep);
+  Gathered g;
+  g.runs = static_cast<int>(runs.size());
+  const fs::path data = fs::path(out_dir) / "data";
+  fs::remove_all(data);
+  fs::create_directories(data);
+  std::ofstream results(data / "results.csv");
+  bool header = false;
+  for (const Run& r : runs) {
+    const fs::path dir = runDir(out_dir, r);
+    if (!runDone(dir.string())) {
+      g.problems.push_back(r.id + ": not done (" + (dir / "log.txt").string() + ")");
+      continue;
+    }
+    std::ifstream in(dir / "results.csv");
+    std::string line;
+    for (bool first = true; std::getline(in, line); first = false) {
+      if (first && header) continue;
+      results << line << '\n';
+      header = true;
+    }
+    for (const auto& e : fs::directory_iterator(dir)) {
+      const std::string name = e.path().filename().string();
+      if (e.is_regular_file() && e.path().extension() == ".csv" && name != "results.csv" &&
+          name != "summary.csv")
+        fs::copy_file(e.path(), data / name, fs::copy_options::overwrite_existing);
+    }
+    ++g.done;
+  }
+  if (!results) throw SweepError("cannot write " + (data / "results.csv").string());
+  return g;
+}
+
+}  // namespace
+
 Gathered gather(const SweepDef& sweep, const std::string& out_dir) {
+  if (sweep.validation) return gatherValidation(sweep, out_dir);
   const std::vector<Run> runs = expandRuns(sweep);
   const std::size_t n_out = sweep.outputs.size();
   Gathered g;

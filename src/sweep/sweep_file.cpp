@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -145,10 +146,35 @@ SweepDef loadSweep(const std::string& path) {
       throw SweepError(path + ":" + std::to_string(e.mark.line + 1) + ":" +
                        std::to_string(e.mark.column + 1) + ": not valid YAML: " + e.msg);
     }
-    MapReader top(
-        ctx, root, "",
-        {"name", "description", "scene", "set", "parameters", "combine", "ensemble", "outputs"});
+    MapReader top(ctx, root, "",
+                  {"name", "description", "scene", "set", "parameters", "combine", "ensemble",
+                   "outputs", "validation"});
     s.name = top.name("name");
+    if (top.has("validation")) {
+      // The report's cases, one run each: nothing of a scene's sweep applies.
+      for (const char* key : {"scene", "set", "parameters", "combine", "ensemble", "outputs"})
+        top.require(!top.has(key), key,
+                    "a validation sweep runs mpm_sdem_validate's cases; remove " +
+                        std::string(key) + " (or validation, for a scene's sweep)");
+      MapReader v(ctx, top.node("validation"), "validation", {"fast", "cases"});
+      ValidationCases cases;
+      cases.fast = v.boolean("fast", false);
+      const YAML::Node list = v.node("cases");
+      if (!list.IsSequence() || list.size() == 0)
+        ctx.fail(list, "validation.cases",
+                 "expected a list of case names (mpm_sdem_validate --list prints them)");
+      for (const auto& c : list) {
+        const std::string name = c.Scalar();
+        if (name.empty() ||
+            name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string::npos)
+          ctx.fail(c, "validation.cases", "'" + name + "' is not a case name (a-z, 0-9, _)");
+        if (std::find(cases.cases.begin(), cases.cases.end(), name) != cases.cases.end())
+          ctx.fail(c, "validation.cases", "'" + name + "' is listed twice");
+        cases.cases.push_back(name);
+      }
+      s.validation = std::move(cases);
+      return s;
+    }
     // The scene relative to the sweep file, so that a sweep and its scene travel together.
     fs::path scene = top.text("scene");
     if (scene.is_relative()) scene = fs::absolute(fs::path(path).parent_path() / scene);
@@ -268,6 +294,16 @@ std::vector<std::string> parameterKeys(const SweepDef& s) {
 }
 
 std::vector<Run> expandRuns(const SweepDef& s) {
+  if (s.validation) {
+    std::vector<Run> runs;
+    for (const std::string& name : s.validation->cases) {
+      Run r;
+      r.id = r.validation_case = name;
+      r.setting = static_cast<int>(runs.size());
+      runs.push_back(std::move(r));
+    }
+    return runs;
+  }
   // settings[k]: the values of every parameter key at setting k, in the order of keys().
   std::vector<std::vector<std::string>> settings(1);
   auto append = [](std::vector<std::string>& to, const std::vector<std::string>& values) {

@@ -51,11 +51,19 @@ struct Output {
   }
 };
 
+// A validation sweep: the report's cases (mpm_sdem_validate), one run per case, instead of a
+// scene's settings; what each measured is its folder's results.csv and series files.
+struct ValidationCases {
+  bool fast = false;               // the CI resolution (mpm_sdem_validate --fast)
+  std::vector<std::string> cases;  // mpm_sdem_validate --list names them
+};
+
 struct SweepDef {
   std::string name;
-  std::string source;              // the sweep file
-  std::string scene;               // the base scene, absolute
-  std::vector<std::string> fixed;  // key=value for every run
+  std::string source;                         // the sweep file
+  std::optional<ValidationCases> validation;  // set: a validation sweep (no scene, no outputs)
+  std::string scene;                          // the base scene, absolute
+  std::vector<std::string> fixed;             // key=value for every run
   std::vector<Parameter> parameters;
   bool zip = false;  // false: every combination; true: the k-th values together
   Ensemble ensemble;
@@ -71,6 +79,7 @@ struct Run {
   std::vector<std::string> values;     // one per parameter key
   std::vector<std::string> overrides;  // the fixed ones, then the parameters'
   double perturbation = 0;             // m
+  std::string validation_case;         // a validation sweep's run: its case (and id)
 };
 
 // Throws SweepError. Also loads the base scene at every setting, so that a value the scene

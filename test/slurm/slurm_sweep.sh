@@ -3,7 +3,8 @@
 # missing, starts a single-node cluster on this machine (its own munge key, slurmctld and slurmd
 # on the loopback address, configuration and state in a scratch folder), submits a sweep with
 # `mpm_sdem_sweep --backend slurm`, waits for the dependent gather job, and checks that the
-# gathered results.csv equals the local backend's (GNU parallel) but for the wall times.
+# gathered results.csv equals the local backend's (GNU parallel) but for the wall times; then the
+# same for a validation sweep of one fast case (scripts/validate --backend slurm).
 # usage: test/slurm/slurm_sweep.sh MPM_SDEM_SWEEP [SWEEP_FILE] [WORK_DIR]
 # (default sweep: test/data/sweep_4runs.yaml, four runs). Needs root or sudo for the packages and
 # the munge key. Exit 0 on equal results.
@@ -91,26 +92,50 @@ for _ in $(seq 100); do
 done
 sinfo -h -o "%P %D %t %C" || { cat "$work"/slurm*.log; exit 1; }
 
-"$sweep_bin" "$sweep_file" --backend slurm --out "$work/slurm_out"
-ids="$(awk '{print $2}' "$work/slurm_out/slurm/jobs.txt" | paste -sd,)"
-echo "waiting for jobs $ids"
-for _ in $(seq 600); do
-  [ -z "$(squeue -h -j "$ids" 2>/dev/null)" ] && break
-  sleep 1
-done
-if [ -n "$(squeue -h -j "$ids" 2>/dev/null)" ]; then
-  echo "FAIL: jobs $ids still queued after 600 s"; squeue; exit 1
-fi
-cat "$work/slurm_out/slurm/gather.out"
+# Submits a sweep file to Slurm into $work/$2 and waits for its array and gather jobs.
+submit_and_wait() {
+  "$sweep_bin" "$1" --backend slurm --out "$work/$2"
+  local ids
+  ids="$(awk '{print $2}' "$work/$2/slurm/jobs.txt" | paste -sd,)"
+  echo "waiting for jobs $ids"
+  for _ in $(seq 600); do
+    [ -z "$(squeue -h -j "$ids" 2>/dev/null)" ] && break
+    sleep 1
+  done
+  if [ -n "$(squeue -h -j "$ids" 2>/dev/null)" ]; then
+    echo "FAIL: jobs $ids still queued after 600 s"; squeue; exit 1
+  fi
+  cat "$work/$2/slurm/gather.out"
+}
+# Two CSV files equal but for their wall_s column (quoted fields may hold commas).
+same_but_wall() {
+  python3 - "$1" "$2" <<'PY'
+import csv, sys
+def rows(path):
+    with open(path, newline="") as f:
+        r = list(csv.reader(f))
+    w = r[0].index("wall_s")
+    return [row[:w] + row[w + 1:] for row in r]
+sys.exit(0 if rows(sys.argv[1]) == rows(sys.argv[2]) else 1)
+PY
+}
 
+submit_and_wait "$sweep_file" slurm_out
 "$sweep_bin" "$sweep_file" --backend local --out "$work/local_out" 2>"$work/local.err" ||
   { cat "$work/local.err"; exit 1; }
-# results.csv without the wall_s column.
-strip() { awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "wall_s") w = i }
-                   { out = ""; for (i = 1; i <= NF; ++i) if (i != w) out = out $i ","; print out }' "$1"; }
-if diff <(strip "$work/local_out/results.csv") <(strip "$work/slurm_out/results.csv"); then
-  echo "PASS: slurm and local results.csv agree ($(($(wc -l <"$work/slurm_out/results.csv") - 1)) runs)"
-  [ -n "${3:-}" ] || { cleanup; trap - EXIT; $sudo rm -rf "$work"; }  # a scratch folder of our own
-else
+if ! same_but_wall "$work/local_out/results.csv" "$work/slurm_out/results.csv"; then
   echo "FAIL: slurm and local results.csv differ"; exit 1
 fi
+echo "slurm and local results.csv agree ($(($(wc -l <"$work/slurm_out/results.csv") - 1)) runs)"
+
+# The validation report's cases as scripts/validate --backend slurm submits them: one fast case.
+printf 'name: v\nvalidation:\n  fast: true\n  cases: [bar]\n' >"$work/validation.yaml"
+submit_and_wait "$work/validation.yaml" validation_slurm
+"$sweep_bin" "$work/validation.yaml" --backend local --out "$work/validation_local" \
+  2>"$work/local.err" || { cat "$work/local.err"; exit 1; }
+if ! same_but_wall "$work/validation_local/data/results.csv" \
+  "$work/validation_slurm/data/results.csv"; then
+  echo "FAIL: slurm and local validation data differ"; exit 1
+fi
+echo "PASS: slurm and local agree (a sweep and a validation case)"
+[ -n "${3:-}" ] || { cleanup; trap - EXIT; $sudo rm -rf "$work"; }  # a scratch folder of our own
