@@ -20,6 +20,9 @@ void MultiVelocityCoupling::correctGridVelocity(CouplingStep& s) {
   const Real spacing = h_ / def_.block_points_per_cell;
   active_ = 0;
   on_material_.setZero();
+  // Blocks only: the scheme meets no FEM bodies (couplingSchemes(), refused before a step).
+  InteriorLattice* lattice = B.interiorLattice();
+  if (!lattice) return;
   const Real half_size = Real(0.5) / def_.block_points_per_cell;  // GIMP, in cells
   detail::withKernel(s.kernel, [&](auto k) {
     using K = decltype(k);
@@ -28,7 +31,7 @@ void MultiVelocityCoupling::correctGridVelocity(CouplingStep& s) {
       // The body's own points (its lattice, moved with it) and their nodal patch: every node
       // they touch.
       Real sample_mass = 0;
-      B.interiorPoints(b, spacing, samples_, sample_mass);
+      lattice->interiorPoints(b, spacing, samples_, sample_mass);
       Vec2 lo = samples_[0], hi = lo;
       for (const Vec2& x : samples_) {
         lo = lo.cwiseMin(x);

@@ -305,10 +305,6 @@ Real FemBodies::movedSince(int s, const BodyPose& then) const {
                   (coreVertices(s)[1] - then.other).norm());
 }
 
-void FemBodies::interiorPoints(int, Real, std::vector<Vec2>&, Real&) {
-  throw std::logic_error("FEM bodies have no interior lattice (grid-based coupling schemes)");
-}
-
 void FemBodies::internalForces() {
   // Eq. 20 per triangle: f_K = -A sigma grad N_K, with F = sum_K x_K (x) grad N_K. The
   // corotational form polar-decomposes F = R S, applies the linear law to eps = sym(S) - I and

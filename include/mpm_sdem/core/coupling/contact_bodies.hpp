@@ -32,6 +32,18 @@ struct Box {
   ///@}
 };
 
+/// Bodies with an area of their own, sampled by points for the grid-based multi-velocity scheme
+/// (seed 002 eq. 23): rigid blocks (Blocks).
+class InteriorLattice {
+ public:
+  virtual ~InteriorLattice() = default;
+  /// Points filling shape s's rounded outline on a lattice of the given spacing (m), where they
+  /// are now, and the mass of each (kg/m): the body's mass shared equally by all its points,
+  /// each point given to one of the body's shapes where they overlap. The lattice is laid once
+  /// and moves with the body.
+  virtual void interiorPoints(int s, Real spacing, std::vector<Vec2>& points, Real& mass_each) = 0;
+};
+
 /// Where a shape was, for telling how far it has moved since (the contact search's Verlet list):
 /// a rigid body's centre of mass and angle, or a deformable segment's two ends.
 struct BodyPose {
@@ -107,11 +119,10 @@ class ContactBodies {
   virtual BodyPose pose(int s) const = 0;
   virtual Real movedSince(int s, const BodyPose& then) const = 0;
   ///@}
-  /// Points filling the shape's rounded outline on a lattice of the given spacing, where they are
-  /// now, and the mass of each: the body's mass shared equally by all its points, each point
-  /// given to one of the body's shapes where they overlap (the grid-based multi-velocity scheme,
-  /// seed 002 eq. 23). The lattice is laid once and moves with the body.
-  virtual void interiorPoints(int s, Real spacing, std::vector<Vec2>& points, Real& mass_each) = 0;
+  /// The bodies' interior lattice (InteriorLattice), or null when they have none: FEM bodies'
+  /// segments enclose no area of their own, and the scheme that needs it (multi_velocity)
+  /// cannot meet them (couplingSchemes()).
+  virtual InteriorLattice* interiorLattice() { return nullptr; }
 
   ///@{
   /// The exchange with the material in a step of dt. beginCoupling clears what the material did

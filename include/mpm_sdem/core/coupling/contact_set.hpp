@@ -41,9 +41,6 @@ class ContactSet final : public ContactBodies {
   Real movedSince(int s, const BodyPose& then) const override {
     return at(s).movedSince(local(s), then);
   }
-  void interiorPoints(int s, Real spacing, std::vector<Vec2>& points, Real& mass_each) override {
-    at(s).interiorPoints(local(s), spacing, points, mass_each);
-  }
   void beginCoupling(Real dt) override;
   Vec2 trialVelocityAt(int s, const Vec2& x) const override {
     return at(s).trialVelocityAt(local(s), x);

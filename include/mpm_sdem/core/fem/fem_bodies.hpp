@@ -168,9 +168,6 @@ class FemBodies final : public ContactBodies {
   /// A segment's two ends (position, other) when asked.
   BodyPose pose(int s) const override;
   Real movedSince(int s, const BodyPose& then) const override;
-  /// Not defined for a segment (the grid-based schemes need a body's area): throws
-  /// std::logic_error. World refuses those schemes with FEM bodies.
-  void interiorPoints(int s, Real spacing, std::vector<Vec2>& points, Real& mass_each) override;
   /// Internal forces at the current positions (eq. 20) and the trial velocities: each free node's
   /// velocity after dt under them, gravity and damping (eq. 17); held nodes take their velocity.
   void beginCoupling(Real dt) override;

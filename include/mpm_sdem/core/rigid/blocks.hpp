@@ -128,7 +128,7 @@ struct BlockId {
 
 /// The rigid blocks: definitions, generational ids, state, Box2D bodies, their contacts with each
 /// other, and their ContactBodies answers to the coupling.
-class Blocks final : public ContactBodies {
+class Blocks final : public ContactBodies, public InteriorLattice {
  public:
   /// length_hint (m): the typical block size, used for Box2D's length scale when defs is empty.
   /// Throws std::invalid_argument on a block whose outline or values are unacceptable.
@@ -227,6 +227,7 @@ class Blocks final : public ContactBodies {
   Real maxDampingRatio() const override { return max_zeta_; }
   BodyPose pose(int s) const override;
   Real movedSince(int s, const BodyPose& then) const override;
+  InteriorLattice* interiorLattice() override { return this; }
   void interiorPoints(int s, Real spacing, std::vector<Vec2>& points, Real& mass_each) override;
   /// Clears coupling() and sets the trial velocities (a dynamic block falls for dt).
   void beginCoupling(Real dt) override;
