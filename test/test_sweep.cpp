@@ -388,13 +388,14 @@ std::string withoutWallTimes(const std::string& text) {
 // badly is refused at its line.
 TEST(SweepFile, ValidationSweepRunsOneCaseEach) {
   const fs::path d = tempDir("validation_file");
-  const SweepDef s =
-      loadSweep(write(d / "v.yaml", "name: v\nvalidation:\n  fast: true\n  cases: [bar, drop]\n"));
+  const SweepDef s = loadSweep(
+      write(d / "v.yaml", "name: v\nvalidation:\n  fast: true\n  cases: [bar, drop, wheel.1]\n"));
   ASSERT_TRUE(s.validation.has_value());
   const std::vector<SweepRun> runs = expandRuns(s);
-  ASSERT_EQ(runs.size(), 2u);
+  ASSERT_EQ(runs.size(), 3u);
   EXPECT_EQ(runs[0].id, "bar");
   EXPECT_EQ(runs[1].validation_case, "drop");
+  EXPECT_EQ(runs[2].id, "wheel.1");  // one run of a case split into runs
   Launch launch;
   launch.out_dir = "/o";
   launch.runner = "/b/mpm_sdem_run";
@@ -411,6 +412,9 @@ TEST(SweepFile, ValidationSweepRunsOneCaseEach) {
       {"name: v\nvalidation:\n  cases: []\n", "validation.cases: expected a list of case names"},
       {"name: v\nvalidation:\n  cases: [Bar]\n", "'Bar' is not a case name"},
       {"name: v\nvalidation:\n  cases: [bar, bar]\n", "'bar' is listed twice"},
+      {"name: v\nvalidation:\n  cases: [wheel.]\n", "'wheel.' is not a case name"},
+      {"name: v\nvalidation:\n  cases: [wheel.x]\n", "or one of its runs (name.N)"},
+      {"name: v\nvalidation:\n  cases: [.3]\n", "'.3' is not a case name"},
       {"name: v\nvalidation:\n  fast: maybe\n  cases: [bar]\n", "validation.fast"},
   };
   for (const Case& k : cases) {
@@ -430,8 +434,7 @@ TEST(SweepLocal, ValidationCasesGatherAsOneRunAndResume) {
   const std::string sweep = std::string(MPM_SDEM_SWEEP) + " " + file + " --jobs 2 --out " +
                             (d / "out").string() + " 2>" + (d / "err.txt").string();
   ASSERT_EQ(std::system(sweep.c_str()), 0) << read(d / "err.txt");
-  EXPECT_NE(read(d / "err.txt").find("2 of 2 cases done"), std::string::npos)
-      << read(d / "err.txt");
+  EXPECT_NE(read(d / "err.txt").find("2 of 2 runs done"), std::string::npos) << read(d / "err.txt");
   const fs::path validate = fs::path(MPM_SDEM_SWEEP).parent_path() / "mpm_sdem_validate";
   const std::string whole = validate.string() + " --fast --cases drop,bar --out " +
                             (d / "whole").string() + " > /dev/null";
@@ -451,4 +454,52 @@ TEST(SweepLocal, ValidationCasesGatherAsOneRunAndResume) {
   ASSERT_EQ(std::system(sweep.c_str()), 0);
   EXPECT_NE(read(d / "err.txt").find("2 runs, 1 already done, 1 to run"), std::string::npos);
   EXPECT_EQ(withoutWallTimes(read(d / "out" / "data" / "results.csv")), gathered);
+}
+
+// A case split into runs (mpm_sdem_validate --list --runs: one per resolution or member) as
+// separate runs of the sweep: its runs' tables joined under one header, and the ensembles' means
+// and spreads (debris_granular's combine step, run at the gather) equal to one run of the whole
+// cases but for the wall times; a run the case does not have is refused with the ones it has.
+TEST(SweepLocal, SplitCaseRunsGatherAndCombineAsOneRun) {
+  const fs::path d = tempDir("validation_split");
+  const fs::path validate = fs::path(MPM_SDEM_SWEEP).parent_path() / "mpm_sdem_validate";
+  const std::string list = validate.string() + " --fast --cases debris_granular,wheel,bar " +
+                           "--list --runs > " + (d / "runs.txt").string();
+  ASSERT_EQ(std::system(list.c_str()), 0);
+  EXPECT_EQ(read(d / "runs.txt"), "debris_granular.0\ndebris_granular.1\nwheel.0\nwheel.1\nbar\n");
+  const std::string file =
+      write(d / "v.yaml",
+            "name: v\nvalidation:\n  fast: true\n  cases: [debris_granular.0, debris_granular.1, "
+            "wheel.0, wheel.1]\n");
+  const std::string sweep = std::string(MPM_SDEM_SWEEP) + " " + file + " --jobs 2 --out " +
+                            (d / "out").string() + " 2>" + (d / "err.txt").string();
+  ASSERT_EQ(std::system(sweep.c_str()), 0) << read(d / "err.txt");
+  const std::string whole = validate.string() + " --fast --cases debris_granular,wheel --out " +
+                            (d / "whole").string() + " > /dev/null";
+  ASSERT_EQ(std::system(whole.c_str()), 0);
+  const std::string gathered = withoutWallTimes(read(d / "out" / "data" / "results.csv"));
+  EXPECT_EQ(gathered, withoutWallTimes(read(d / "whole" / "results.csv")));
+  EXPECT_EQ(std::count(gathered.begin(), gathered.end(), '\n'), 1 + 16 + 6);
+  EXPECT_EQ(read(d / "out" / "data" / "wheel_sweep.csv"), read(d / "whole" / "wheel_sweep.csv"));
+  // debris_granular.csv: one header, both members (its wall_s, 5th, differs per run).
+  auto members = [](const std::string& text) {
+    std::stringstream in(text);
+    std::string out;
+    for (std::string line; std::getline(in, line);) {
+      const std::vector<std::string> f = fields(line);
+      for (std::size_t k = 0; k < f.size(); ++k)
+        if (k != 4) out += f[k] + "|";
+      out += "\n";
+    }
+    return out;
+  };
+  const std::string table = members(read(d / "out" / "data" / "debris_granular.csv"));
+  EXPECT_EQ(table, members(read(d / "whole" / "debris_granular.csv")));
+  EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 3);
+  const std::string refused = validate.string() + " --fast --cases wheel.2 --out " +
+                              (d / "no").string() + " 2> " + (d / "refused.txt").string();
+  EXPECT_NE(std::system(refused.c_str()), 0);
+  EXPECT_NE(read(d / "refused.txt").find("wheel has runs wheel.0 to wheel.1 with --fast"),
+            std::string::npos)
+      << read(d / "refused.txt");
 }

@@ -51,11 +51,37 @@ void plot(const std::string& out_dir) {
               << " failed; it needs python3-matplotlib); the CSVs are complete\n";
 }
 
+// A validation sweep's split cases fit across their runs once all are gathered: their combine
+// step (mpm_sdem_validate --combine, beside this program) appends those rows to data/.
+bool combineValidation(const SweepDef& sweep, const std::string& out_dir) {
+  // The cases the sweep ran as separate runs (name.N), each once; a case run whole has combined
+  // its own.
+  std::string cases;
+  for (const std::string& run : sweep.validation->cases) {
+    const std::size_t dot = run.find('.');
+    if (dot == std::string::npos) continue;
+    const std::string name = run.substr(0, dot);
+    if (("," + cases + ",").find("," + name + ",") == std::string::npos)
+      cases += (cases.empty() ? "" : ",") + name;
+  }
+  if (cases.empty()) return true;
+  const std::string validate =
+      (fs::path(executable()).parent_path() / "mpm_sdem_validate").string();
+  const std::string log = out_dir + "/combine.log";
+  const std::string command = "'" + validate + "'" + (sweep.validation->fast ? " --fast" : "") +
+                              " --combine --cases " + cases + " --out '" + out_dir + "/data' > '" +
+                              log + "' 2>&1";
+  if (std::system(command.c_str()) == 0) return true;
+  std::cerr << "the split cases' combine step failed: " << log << "\n";
+  return false;
+}
+
 int gatherAndReport(const SweepDef& sweep, const std::string& out_dir) {
   const Gathered g = gather(sweep, out_dir);
+  bool combined = true;
   if (sweep.validation) {  // the report is scripts/validate's (report.py)
-    std::cerr << g.done << " of " << g.runs << " cases done; their data in " << out_dir
-              << "/data\n";
+    combined = g.done < g.runs || combineValidation(sweep, out_dir);  // only all runs combine
+    std::cerr << g.done << " of " << g.runs << " runs done; their data in " << out_dir << "/data\n";
   } else {
     plot(out_dir);
     std::cerr << g.done << " of " << g.runs << " runs done; " << out_dir << "/results.csv, "
@@ -64,7 +90,7 @@ int gatherAndReport(const SweepDef& sweep, const std::string& out_dir) {
   for (std::size_t k = 0; k < g.problems.size() && k < 20; ++k)
     std::cerr << "  " << g.problems[k] << "\n";
   if (g.problems.size() > 20) std::cerr << "  ... and " << g.problems.size() - 20 << " more\n";
-  return g.done == g.runs ? 0 : 3;
+  return g.done == g.runs && combined ? 0 : 3;
 }
 
 bool positive(const char* text, int& out) {

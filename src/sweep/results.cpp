@@ -150,9 +150,34 @@ double measureOutput(const std::string& run_dir, const Output& o) {
 
 namespace {
 
+// A run's series file onto the gathered one: a copy, or its rows below the same header.
+void appendSeries(const fs::path& from, const fs::path& to) {
+  std::ifstream in(from);
+  std::string header, line;
+  const bool exists = fs::exists(to);
+  if (!std::getline(in, header)) {  // an empty file stays one
+    if (!exists) std::ofstream(to).flush();
+    return;
+  }
+  if (exists) {
+    std::ifstream gathered(to);
+    std::string first;
+    std::getline(gathered, first);
+    if (first != header)
+      throw SweepError(from.string() + ": its header differs from " + to.string() +
+                       "'s, written by another run (two cases writing one file?)");
+  }
+  std::ofstream out(to, exists ? std::ios::app : std::ios::trunc);
+  if (!exists) out << header << '\n';
+  while (std::getline(in, line)) out << line << '\n';
+  if (!out) throw SweepError("cannot write " + to.string());
+}
+
 // A validation sweep's runs into DIR/data: every run's results.csv rows under one header, in the
-// cases' order, and their series files beside it (each case writes files of its own names), as
-// one mpm_sdem_validate run over all the cases would have written them.
+// cases' order, and their series files beside it (each case writes files of its own names; the
+// runs of a split case, name.0, name.1, ..., each write theirs with its rows alone, joined here
+// under their one header), as one mpm_sdem_validate run over all the cases would have written
+// them, but for a split case's combined rows (mpm_sdem_validate --combine adds them).
 Gathered gatherValidation(const SweepDef& sweep, const std::string& out_dir) {
   const std::vector<Run> runs = expandRuns(sweep);
   Gathered g;
@@ -175,12 +200,15 @@ Gathered gatherValidation(const SweepDef& sweep, const std::string& out_dir) {
       results << line << '\n';
       header = true;
     }
+    std::vector<fs::path> series;  // in name order: the same on every file system
     for (const auto& e : fs::directory_iterator(dir)) {
       const std::string name = e.path().filename().string();
       if (e.is_regular_file() && e.path().extension() == ".csv" && name != "results.csv" &&
           name != "summary.csv")
-        fs::copy_file(e.path(), data / name, fs::copy_options::overwrite_existing);
+        series.push_back(e.path());
     }
+    std::sort(series.begin(), series.end());
+    for (const fs::path& file : series) appendSeries(file, data / file.filename());
     ++g.done;
   }
   if (!results) throw SweepError("cannot write " + (data / "results.csv").string());

@@ -164,10 +164,17 @@ SweepDef loadSweep(const std::string& path) {
         ctx.fail(list, "validation.cases",
                  "expected a list of case names (mpm_sdem_validate --list prints them)");
       for (const auto& c : list) {
+        // A case, or one run of a case split into runs: name.N (mpm_sdem_validate --list --runs).
         const std::string name = c.Scalar();
-        if (name.empty() ||
-            name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string::npos)
-          ctx.fail(c, "validation.cases", "'" + name + "' is not a case name (a-z, 0-9, _)");
+        const std::size_t dot = name.find('.');
+        const std::string base = name.substr(0, dot);
+        if (base.empty() ||
+            base.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string::npos ||
+            (dot != std::string::npos &&
+             (dot + 1 == name.size() ||
+              name.find_first_not_of("0123456789", dot + 1) != std::string::npos)))
+          ctx.fail(c, "validation.cases",
+                   "'" + name + "' is not a case name (a-z, 0-9, _) or one of its runs (name.N)");
         if (std::find(cases.cases.begin(), cases.cases.end(), name) != cases.cases.end())
           ctx.fail(c, "validation.cases", "'" + name + "' is listed twice");
         cases.cases.push_back(name);

@@ -96,47 +96,83 @@ void siloDischarge(const Options& o, Results& r) {
 }
 
 // Issue 15: the silo's flow rate under refinement, per neck, at 7, 5, 3.5 and 2.5 mm cells
-// (2 x 2 points per cell, J_sep 1.27 as in siloDischarge), and the Beverloo exponent fitted at
-// each cell size over the necks that are at least six cells wide. Per neck, the observed order
-// p of the rate's convergence from the three finest sizes (h ratio 1.4 each) and the
-// Richardson-extrapolated rate q_h + (q_h - q_2h) / (1.4^p - 1) when the differences shrink.
-void siloConvergence(const Options& o, Results& r) {
+// (2 x 2 points per cell, J_sep 1.27 as in siloDischarge): one run per cell and neck (each its
+// own run of a split report, Options::part), its rate in silo_convergence.csv; then, from that
+// table (siloConvergenceFits), the Beverloo exponent fitted at each cell size over the necks
+// that are at least six cells wide, and per neck the observed order p of the rate's convergence
+// from the three finest sizes (h ratio 1.4 each) and the Richardson-extrapolated rate
+// q_h + (q_h - q_2h) / (1.4^p - 1) when the differences shrink.
+struct SiloRun {
+  Real h, neck;
+};
+std::vector<SiloRun> siloConvergenceRunList(bool fast) {
   const std::vector<Real> necks =
-      o.fast ? std::vector<Real>{0.05} : std::vector<Real>{0.02, 0.03, 0.04, 0.05, 0.06};
+      fast ? std::vector<Real>{0.05} : std::vector<Real>{0.02, 0.03, 0.04, 0.05, 0.06};
   const std::vector<Real> sizes =
-      o.fast ? std::vector<Real>{0.01, 0.007} : std::vector<Real>{0.007, 0.005, 0.0035, 0.0025};
+      fast ? std::vector<Real>{0.01, 0.007} : std::vector<Real>{0.007, 0.005, 0.0035, 0.0025};
+  std::vector<SiloRun> runs;
+  for (Real h : sizes)
+    for (Real neck : necks) runs.push_back({h, neck});
+  return runs;
+}
+int siloConvergenceRuns(bool fast) {
+  return static_cast<int>(siloConvergenceRunList(fast).size());
+}
+
+void siloConvergence(const Options& o, Results& r) {
+  const std::vector<SiloRun> runs = siloConvergenceRunList(o.fast);
   FILE* table = std::fopen((o.out + "/silo_convergence.csv").c_str(), "w");
   std::fprintf(table,
                "neck_m,cell_size_m,points,steps,rate_kg_s_m,beverloo_kg_s_m,window,wall_s\n");
-  std::vector<std::vector<Real>> rate(necks.size(), std::vector<Real>(sizes.size(), 0));
-  std::vector<LineFit> fits(sizes.size());
-  for (std::size_t k = 0; k < sizes.size(); ++k) {
-    for (std::size_t n = 0; n < necks.size(); ++n) {
-      const Real h = sizes[k], neck = necks[n];
-      WorldDef def = cases::silo(neck, h, 2);
-      def.materials[0].separation_volume_ratio = 1.27;
-      World w(def);
-      const auto t0 = std::chrono::steady_clock::now();
-      const cases::SiloFlow f = cases::siloFlow(w, o.fast ? 1.2 : 4.0);
-      const double wall = seconds(t0);
-      rate[n][k] = f.window_reached ? f.rate : std::numeric_limits<Real>::quiet_NaN();
-      std::fprintf(table, "%g,%g,%zu,%ld,%.6g,%.6g,%d,%.4g\n", neck, h, w.particles().size(),
-                   w.stepCount(), f.rate, cases::beverloo(neck), f.window_reached ? 1 : 0, wall);
-      std::fflush(table);
-      char q[96], settings[160];
-      std::snprintf(q, sizeof q, "mass flow rate, D0 %.0f cm, h %.1f mm (%.1f cells)", 100 * neck,
-                    1000 * h, neck / h);
-      std::snprintf(settings, sizeof settings, "%s t = %.2f-%.2f s",
-                    f.window_reached ? "fitted over" : "under 10% discharged: mean over",
-                    f.window_start, f.window_end);
-      r.add("silo_convergence", q, f.rate, cases::beverloo(neck), "kg/(s m)",
-            "seed 000 Fig. 16 (2D Beverloo, C 0.58, k_c 2.2)", wall, settings,
-            static_cast<long>(w.particles().size()), w.stepCount());
-      if (f.window_reached && neck >= 6 * h - 1e-9)
-        fits[k].add(std::log(cases::beverlooWidth(neck)), std::log(f.rate));
-    }
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    if (!o.runs(static_cast<int>(i))) continue;
+    const Real h = runs[i].h, neck = runs[i].neck;
+    WorldDef def = cases::silo(neck, h, 2);
+    def.materials[0].separation_volume_ratio = 1.27;
+    World w(def);
+    const auto t0 = std::chrono::steady_clock::now();
+    const cases::SiloFlow f = cases::siloFlow(w, o.fast ? 1.2 : 4.0);
+    const double wall = seconds(t0);
+    // The rate to every digit: the fits read it back (siloConvergenceFits).
+    std::fprintf(table, "%.17g,%.17g,%zu,%ld,%.17g,%.6g,%d,%.4g\n", neck, h, w.particles().size(),
+                 w.stepCount(), f.rate, cases::beverloo(neck), f.window_reached ? 1 : 0, wall);
+    std::fflush(table);
+    char q[96], settings[160];
+    std::snprintf(q, sizeof q, "mass flow rate, D0 %.0f cm, h %.1f mm (%.1f cells)", 100 * neck,
+                  1000 * h, neck / h);
+    std::snprintf(settings, sizeof settings, "%s t = %.2f-%.2f s",
+                  f.window_reached ? "fitted over" : "under 10% discharged: mean over",
+                  f.window_start, f.window_end);
+    r.add("silo_convergence", q, f.rate, cases::beverloo(neck), "kg/(s m)",
+          "seed 000 Fig. 16 (2D Beverloo, C 0.58, k_c 2.2)", wall, settings,
+          static_cast<long>(w.particles().size()), w.stepCount());
   }
   std::fclose(table);
+}
+
+void siloConvergenceFits(const Options& o, Results& r) {
+  const Table table(o.out + "/silo_convergence.csv");
+  std::vector<Real> necks, sizes;  // in the runs' order
+  for (const SiloRun& run : siloConvergenceRunList(o.fast)) {
+    if (std::find(sizes.begin(), sizes.end(), run.h) == sizes.end()) sizes.push_back(run.h);
+    if (std::find(necks.begin(), necks.end(), run.neck) == necks.end()) necks.push_back(run.neck);
+  }
+  auto index = [](const std::vector<Real>& v, Real x) {
+    for (std::size_t k = 0; k < v.size(); ++k)
+      if (std::abs(v[k] - x) < 1e-5 * x) return k;  // as printed
+    throw std::runtime_error("silo_convergence.csv: " + std::to_string(x) + " is not a run's");
+  };
+  std::vector<std::vector<Real>> rate(necks.size(), std::vector<Real>(sizes.size(), std::nan("")));
+  std::vector<LineFit> fits(sizes.size());
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    const Real h = table.at(i, "cell_size_m"), neck = table.at(i, "neck_m");
+    const bool window = table.at(i, "window") > 0;
+    const Real q = table.at(i, "rate_kg_s_m");
+    const std::size_t k = index(sizes, h), n = index(necks, neck);
+    rate[n][k] = window ? q : std::numeric_limits<Real>::quiet_NaN();
+    if (window && neck >= 6 * h - 1e-9)
+      fits[k].add(std::log(cases::beverlooWidth(neck)), std::log(q));
+  }
   for (std::size_t k = 0; k < sizes.size(); ++k) {
     if (fits[k].n < 3) continue;
     char q[96], settings[96];
@@ -147,7 +183,6 @@ void siloConvergence(const Options& o, Results& r) {
   }
   if (sizes.size() < 3) return;
   const std::size_t f = sizes.size() - 1;  // the finest
-  std::vector<Real> extrapolated;
   for (std::size_t n = 0; n < necks.size(); ++n) {
     const Real d1 = rate[n][f - 1] - rate[n][f - 2], d2 = rate[n][f] - rate[n][f - 1];
     const Real ratio = sizes[f - 1] / sizes[f];
@@ -369,42 +404,28 @@ void chuteFlow(const Options& o, Results& r) {
 // against the quasi-2D experiments' fits (Lube et al. 2005), with the farthest point (the thin
 // front) and the fastest point at the end; then a = 1 and 3 at 5 mm with rougher grains. Fast:
 // a = 1 at 1 cm.
-void columnCollapse(const Options& o, Results& r) {
-  const Real t_end = 3;
-  const char* source = "Lube et al. 2005 (quasi-2D fits)";
-  auto collapse = [&](const cases::GranularColumn& c, const char* settings, bool details) {
-    World w(cases::granularColumn(c));
-    const auto t0 = std::chrono::steady_clock::now();
-    const cases::ColumnDeposit d = cases::collapseColumn(w, c, t_end);
-    const double wall = seconds(t0);
-    const long points = static_cast<long>(w.particles().size()), steps = w.stepCount();
-    const std::string tag = std::string(", ") + settings;
-    const Real a = c.aspect;
-    r.add("column_collapse", "(L_inf - L0) / L0" + tag, (d.runout - c.length) / c.length,
-          cases::lubeRunout(a), "-", source, wall, settings, points, steps);
-    if (details)
-      r.add("column_collapse", "farthest point (L - L0) / L0" + tag,
-            (d.farthest - c.length) / c.length, cases::lubeRunout(a), "-", source, wall, settings,
-            points, steps);
-    r.add("column_collapse", "H_inf / L0" + tag, d.height / c.length, cases::lubeHeight(a), "-",
-          source, wall, settings, points, steps);
-    if (details)
-      r.add("column_collapse", "fastest point at the end" + tag, d.max_speed, 0, "m/s",
-            "at rest (below 0.01 m/s)", wall, settings, points, steps);
-  };
+// One run per column (each its own run of a split report, Options::part): aspect ratio, cell
+// and grains' friction, and the run's label.
+struct ColumnRun {
+  cases::GranularColumn column;
+  std::string settings;
+  bool details;  // the farthest and the fastest point too
+};
+std::vector<ColumnRun> columnRunList(bool fast) {
+  std::vector<ColumnRun> runs;
+  char settings[120];
   for (const Real a : {0.5, 1.0, 3.0, 8.0}) {
-    if (o.fast && a != 1.0) continue;
-    for (const Real h : o.fast ? std::vector<Real>{0.01} : std::vector<Real>{0.005, 0.0025}) {
+    if (fast && a != 1.0) continue;
+    for (const Real h : fast ? std::vector<Real>{0.01} : std::vector<Real>{0.005, 0.0025}) {
       cases::GranularColumn c;
       c.aspect = a;
       c.cell_size = h;
-      char settings[120];
       std::snprintf(settings, sizeof settings, "a %g, L0 10 cm, h %g mm, 1 mm beads, ASFLIP", a,
                     1000 * h);
-      collapse(c, settings, true);
+      runs.push_back({c, settings, true});
     }
   }
-  if (o.fast) return;
+  if (fast) return runs;
   // The deposit against the grains' friction (5 mm): Lube et al.'s sands, sugar, rice and
   // couscous are rougher than glass beads, and Balmforth & Kerswell 2005 (J. Fluid Mech. 538)
   // find the run-out's prefactor material-dependent.
@@ -413,10 +434,42 @@ void columnCollapse(const Options& o, Results& r) {
       cases::GranularColumn c;
       c.aspect = a;
       c.friction_angle = degrees * M_PI / 180;
-      char settings[120];
       std::snprintf(settings, sizeof settings, "a %g, mu_s tan %g deg, h 5 mm, ASFLIP", a, degrees);
-      collapse(c, settings, false);
+      runs.push_back({c, settings, false});
     }
+  }
+  return runs;
+}
+int columnCollapseRuns(bool fast) {
+  return static_cast<int>(columnRunList(fast).size());
+}
+
+void columnCollapse(const Options& o, Results& r) {
+  const Real t_end = 3;
+  const char* source = "Lube et al. 2005 (quasi-2D fits)";
+  const std::vector<ColumnRun> runs = columnRunList(o.fast);
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    if (!o.runs(static_cast<int>(i))) continue;
+    const cases::GranularColumn& c = runs[i].column;
+    const std::string& settings = runs[i].settings;
+    World w(cases::granularColumn(c));
+    const auto t0 = std::chrono::steady_clock::now();
+    const cases::ColumnDeposit d = cases::collapseColumn(w, c, t_end);
+    const double wall = seconds(t0);
+    const long points = static_cast<long>(w.particles().size()), steps = w.stepCount();
+    const std::string tag = ", " + settings;
+    const Real a = c.aspect;
+    r.add("column_collapse", "(L_inf - L0) / L0" + tag, (d.runout - c.length) / c.length,
+          cases::lubeRunout(a), "-", source, wall, settings, points, steps);
+    if (runs[i].details)
+      r.add("column_collapse", "farthest point (L - L0) / L0" + tag,
+            (d.farthest - c.length) / c.length, cases::lubeRunout(a), "-", source, wall, settings,
+            points, steps);
+    r.add("column_collapse", "H_inf / L0" + tag, d.height / c.length, cases::lubeHeight(a), "-",
+          source, wall, settings, points, steps);
+    if (runs[i].details)
+      r.add("column_collapse", "fastest point at the end" + tag, d.max_speed, 0, "m/s",
+            "at rest (below 0.01 m/s)", wall, settings, points, steps);
   }
 }
 

@@ -5,6 +5,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -16,17 +19,28 @@ namespace mpm_sdem::report {
 struct Options {
   std::string out = "validation_out";
   bool fast = false;
+  /// A case split into runs (one per resolution or member: its `parts` in validate.cpp) runs
+  /// only its run `part` (mpm_sdem_validate --cases name.part), or all of them when -1.
+  int part = -1;
+  /// Whether run i of a split case is to be run now.
+  bool runs(int i) const { return part < 0 || part == i; }
 };
 
 class Results {
  public:
-  explicit Results(const std::string& path) : f_(std::fopen(path.c_str(), "w")) {
-    if (f_)
+  /// Rows to `path`, a new file with its header, or appended to a report's (a split case's
+  /// combined rows, mpm_sdem_validate --combine).
+  explicit Results(const std::string& path, bool append = false)
+      : f_(std::fopen(path.c_str(), append ? "a" : "w")) {
+    if (f_ && !append)
       std::fprintf(
           f_, "case,quantity,value,reference,unit,source,error,wall_s,settings,points,steps\n");
   }
-  ~Results() {
+  ~Results() { close(); }
+  /// Ends the file (before it is read again).
+  void close() {
     if (f_) std::fclose(f_);
+    f_ = nullptr;
   }
   bool ok() const { return f_ != nullptr; }
   int nonFinite() const { return non_finite_; }
@@ -48,6 +62,42 @@ class Results {
  private:
   FILE* f_;
   int non_finite_ = 0;
+};
+
+// A case's numeric table as it wrote it (<out>/<case>*.csv, header and rows), read back by a
+// split case's combine step, which fits across the runs that wrote its rows.
+class Table {
+ public:
+  explicit Table(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error("cannot read " + path + " (were the case's runs gathered?)");
+    std::string line;
+    for (bool first = true; std::getline(in, line); first = false) {
+      std::vector<std::string> cells;
+      std::stringstream ss(line);
+      for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
+      if (first) {
+        header_ = cells;
+        continue;
+      }
+      std::vector<double> row;
+      for (const std::string& c : cells) row.push_back(std::stod(c));
+      if (row.size() != header_.size())
+        throw std::runtime_error(path + ": a row of " + std::to_string(row.size()) + " cells");
+      rows_.push_back(std::move(row));
+    }
+  }
+  std::size_t size() const { return rows_.size(); }
+  /// Row i's value in the column named `name`.
+  double at(std::size_t i, const std::string& name) const {
+    for (std::size_t c = 0; c < header_.size(); ++c)
+      if (header_[c] == name) return rows_.at(i)[c];
+    throw std::runtime_error("no column " + name);
+  }
+
+ private:
+  std::vector<std::string> header_;
+  std::vector<std::vector<double>> rows_;
 };
 
 // Every coupling scheme, in the order of coupling.hpp's table.
@@ -90,11 +140,14 @@ void stability(const Options& o, Results& r);
 namespace granular {
 void siloDischarge(const Options& o, Results& r);
 void siloConvergence(const Options& o, Results& r);
+void siloConvergenceFits(const Options& o, Results& r);
+int siloConvergenceRuns(bool fast);
 void siloGranular(const Options& o, Results& r);
 void siloGranularAsflip(const Options& o, Results& r);
 void compression(const Options& o, Results& r);
 void chuteFlow(const Options& o, Results& r);
 void columnCollapse(const Options& o, Results& r);
+int columnCollapseRuns(bool fast);
 }  // namespace granular
 namespace sph {
 void bar(const Options& o, Results& r);
@@ -105,6 +158,8 @@ void debris(const Options& o, Results& r);
 void debrisSweep(const Options& o, Results& r);
 void debrisEnsemble(const Options& o, Results& r);
 void debrisGranular(const Options& o, Results& r);
+void debrisGranularEnsembles(const Options& o, Results& r);
+int debrisGranularRuns(bool fast);
 void debrisSeed003(const Options& o, Results& r);
 void debrisTimeStep(const Options& o, Results& r);
 void debrisFlow(const Options& o, Results& r);
@@ -114,10 +169,12 @@ void femCantilever(const Options& o, Results& r);
 void femIncline(const Options& o, Results& r);
 void flexibleBarrier(const Options& o, Results& r);
 void waterGate(const Options& o, Results& r);
+int waterGateRuns(bool fast);
 }  // namespace fem
 namespace robots {
 void wheel(const Options& o, Results& r);
 void wheelGranular(const Options& o, Results& r);
+int wheelRuns(bool fast);
 void blade(const Options& o, Results& r);
 void bladeGranular(const Options& o, Results& r);
 }  // namespace robots

@@ -32,25 +32,33 @@ namespace mpm_sdem::report::robots {
 // T/(W R) against that bound and the sinkage; the 5 mm runs show the resolution's effect.
 // The wheel rig's sweep (slip x load x cell) with the scene's Drucker-Prager sand or, for issue
 // 41, the granular sand that flows where it does (cases::matchedGranular).
+// One run per slip, load and cell (each its own run of a split report, Options::part).
+struct WheelRun {
+  Real slip, load, h;
+};
+std::vector<WheelRun> wheelRunList(bool fast) {
+  if (fast) return {{0.1, 200, 0.01}, {0.7, 200, 0.01}};
+  std::vector<WheelRun> runs;
+  for (Real load : {200.0, 400.0})
+    for (Real slip : {0.0, 0.1, 0.2, 0.4, 0.7}) runs.push_back({slip, load, 0.01});
+  for (Real load : {200.0, 400.0})
+    for (Real slip : {0.0, 0.4, 0.7}) runs.push_back({slip, load, 0.005});
+  return runs;
+}
+int wheelRuns(bool fast) {
+  return static_cast<int>(wheelRunList(fast).size());
+}
+
 void wheelSweep(const Options& o, Results& r, bool granular) {
   const char* name = granular ? "wheel_granular" : "wheel";
-  struct Run {
-    Real slip, load, h;
-  };
-  std::vector<Run> runs;
+  const std::vector<WheelRun> runs = wheelRunList(o.fast);
   const Real t_end = o.fast ? 0.5 : 1.5;
-  if (o.fast) {
-    runs = {{0.1, 200, 0.01}, {0.7, 200, 0.01}};
-  } else {
-    for (Real load : {200.0, 400.0})
-      for (Real slip : {0.0, 0.1, 0.2, 0.4, 0.7}) runs.push_back({slip, load, 0.01});
-    for (Real load : {200.0, 400.0})
-      for (Real slip : {0.0, 0.4, 0.7}) runs.push_back({slip, load, 0.005});
-  }
   const std::string path = std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/wheel.yaml";
   FILE* sweep = std::fopen((o.out + "/" + name + "_sweep.csv").c_str(), "w");
   std::fprintf(sweep, "cell_m,load_n_m,slip,pull_n_m,pull_sd_n_m,torque_nm_m,sinkage_m\n");
-  for (const Run& run : runs) {
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    if (!o.runs(static_cast<int>(i))) continue;
+    const WheelRun& run = runs[i];
     Scene scene = loadScene(path, {"grid.cell_size=" + std::to_string(run.h)});
     cases::setWheelRig(scene.world, run.slip, run.load);
     const Real bound = std::tan(scene.world.materials[0].friction_angle);  // radians here
