@@ -59,7 +59,7 @@ const std::vector<Case>& allCases() {
       {"debris_seed003", report::debris::debrisSeed003},
       {"debris_timestep", report::debris::debrisTimeStep},
       {"debris_flow", report::debris::debrisFlow},
-      {"rolling", report::contact::rolling},
+      {"rolling", report::contact::rolling, report::contact::rollingRuns},
       {"chute", report::granular::chuteFlow},
       {"column_collapse", report::granular::columnCollapse, report::granular::columnCollapseRuns},
       {"debris_granular", report::debris::debrisGranular, report::debris::debrisGranularRuns,

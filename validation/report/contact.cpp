@@ -177,9 +177,60 @@ void contactSchemes(const Options& o, Results& r) {
 // Rotation under friction (issue 15): the thrown disk of cases::thrownDisk for every coupling
 // scheme and, with IMP, every transfer scheme; spin-up rate, rolling speed and the time rolling
 // starts against the rigid cylinder's 2 mu g / R, 2/3 v0 and v0 / (3 mu g).
+// One run per disk (each its own run of a split report, Options::part): every coupling scheme,
+// then IMP with the other transfers; at the report's resolution also IMP with the disk off the
+// grid's lines and every scheme at half the cell (how its error converges: multi_velocity's
+// nodal contact loses up to h / (4 mu R) of the friction's torque, a first-order error).
+struct RollingRun {
+  cases::ThrownDisk disk;
+  std::string name;
+};
+std::vector<RollingRun> rollingRunList(bool fast) {
+  // CI (fast): 5 cells per radius, an eighth of the cost; test_rolling checks the physics at
+  // the report's 10.
+  const Real h = fast ? 0.01 : cases::ThrownDisk().cell_size;
+  std::vector<RollingRun> runs;
+  for (CouplingScheme s : allSchemes()) {
+    cases::ThrownDisk c;
+    c.scheme = s;
+    c.cell_size = h;
+    runs.push_back({c, couplingSchemeName(s)});
+  }
+  const std::pair<TransferScheme, const char*> transfers[] = {
+      {TransferScheme::kFlip, "imp, FLIP (PIC fraction 0.01)"},
+      {TransferScheme::kPic, "imp, PIC"},
+      {TransferScheme::kAsflip, "imp, ASFLIP"}};
+  for (const auto& [t, name] : transfers) {
+    cases::ThrownDisk c;
+    c.transfer = t;
+    c.cell_size = h;
+    runs.push_back({c, name});
+  }
+  if (fast) return runs;
+  for (Real offset : {0.2, 0.4, 0.6, 0.8}) {
+    cases::ThrownDisk c;
+    c.offset = offset;
+    runs.push_back({c, "imp, offset " + std::to_string(offset).substr(0, 3)});
+  }
+  for (CouplingScheme s : allSchemes()) {
+    cases::ThrownDisk fine;
+    fine.cell_size = 0.0025;
+    fine.scheme = s;
+    runs.push_back({fine, std::string(couplingSchemeName(s)) + ", h 0.25 cm"});
+  }
+  return runs;
+}
+int rollingRuns(bool fast) {
+  return static_cast<int>(rollingRunList(fast).size());
+}
+
 void rolling(const Options& o, Results& r) {
   const Real g = 9.81, R = 0.05;
-  auto run = [&](const cases::ThrownDisk& c, const std::string& name) {
+  const std::vector<RollingRun> runs = rollingRunList(o.fast);
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    if (!o.runs(static_cast<int>(i))) continue;
+    const cases::ThrownDisk& c = runs[i].disk;
+    const std::string& name = runs[i].name;
     World w(cases::thrownDisk(c));
     const auto t0 = std::chrono::steady_clock::now();
     const cases::Rolling k = cases::rollDisk(w, c);
@@ -195,40 +246,6 @@ void rolling(const Options& o, Results& r) {
           source, wall, settings, points, steps);
     r.add("rolling", "rolling starts / (v0 / 3 mu g), " + name,
           k.roll_start / (c.v0 / (3 * c.mu * g)), 1, "-", source, wall, settings, points, steps);
-  };
-  // CI (fast): 5 cells per radius, an eighth of the cost; test_rolling checks the physics at
-  // the report's 10.
-  const Real h = o.fast ? 0.01 : cases::ThrownDisk().cell_size;
-  for (CouplingScheme s : allSchemes()) {
-    cases::ThrownDisk c;
-    c.scheme = s;
-    c.cell_size = h;
-    run(c, couplingSchemeName(s));
-  }
-  const std::pair<TransferScheme, const char*> transfers[] = {
-      {TransferScheme::kFlip, "imp, FLIP (PIC fraction 0.01)"},
-      {TransferScheme::kPic, "imp, PIC"},
-      {TransferScheme::kAsflip, "imp, ASFLIP"}};
-  for (const auto& [t, name] : transfers) {
-    cases::ThrownDisk c;
-    c.transfer = t;
-    c.cell_size = h;
-    run(c, name);
-  }
-  if (!o.fast) {
-    for (Real offset : {0.2, 0.4, 0.6, 0.8}) {
-      cases::ThrownDisk c;
-      c.offset = offset;
-      run(c, "imp, offset " + std::to_string(offset).substr(0, 3));
-    }
-    // Each scheme at half the cell size: how its error converges (multi_velocity's nodal
-    // contact loses up to h / (4 mu R) of the friction's torque, a first-order error).
-    for (CouplingScheme s : allSchemes()) {
-      cases::ThrownDisk fine;
-      fine.cell_size = 0.0025;
-      fine.scheme = s;
-      run(fine, std::string(couplingSchemeName(s)) + ", h 0.25 cm");
-    }
   }
 }
 

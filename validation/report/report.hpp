@@ -132,6 +132,7 @@ void drop(const Options& o, Results& r);
 void incline(const Options& o, Results& r);
 void contactSchemes(const Options& o, Results& r);
 void rolling(const Options& o, Results& r);
+int rollingRuns(bool fast);
 void clusters(const Options& o, Results& r);
 }  // namespace contact
 namespace hard_cases {
