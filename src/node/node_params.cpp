@@ -89,6 +89,13 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
            "a dictionary {block name: tf frame}, e.g. {blade: excavator/blade_link}", error) &&
       read(pnh, "follow_tf_time_constant", p.follow_tf_time_constant, "a number (s)", error) &&
       read(pnh, "follow_tf_max_speed", p.follow_tf_max_speed, "a number (m/s)", error) &&
+      read(pnh, "robot_links", p.robot_links, "a list of link names, e.g. [boom, stick, bucket]",
+           error) &&
+      read(pnh, "robot_description_param", p.robot_description_param, "a parameter name", error) &&
+      read(pnh, "robot_description_file", p.robot_description_file, "a URDF file path", error) &&
+      read(pnh, "robot_rounding", p.robot_rounding, "a number (m)", error) &&
+      read(pnh, "robot_friction", p.robot_friction, "a number", error) &&
+      read(pnh, "robot_tf_timeout", p.robot_tf_timeout, "a number (s)", error) &&
       read(pnh, "cloud_decimation", decimation, "a whole number >= 1", error) &&
       read(pnh, "image/width", p.image.width, "a whole number of pixels", error) &&
       read(pnh, "image/color_by", color, "speed, pressure or kind", error) &&
@@ -142,6 +149,18 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
                   limits::kSpeed.max, p.follow_tf_max_speed);
     return fail(m);
   }
+  if (!(p.robot_rounding > 0 && p.robot_rounding <= 0.1))
+    return fail("parameter ~robot_rounding must be in (0, 0.1] m, got " +
+                std::to_string(p.robot_rounding));
+  if (!(p.robot_friction >= 0 && p.robot_friction <= 10))
+    return fail("parameter ~robot_friction must be in [0, 10], got " +
+                std::to_string(p.robot_friction));
+  if (!(p.robot_tf_timeout >= 0 && p.robot_tf_timeout <= 3600))
+    return fail("parameter ~robot_tf_timeout must be in [0, 3600] s, got " +
+                std::to_string(p.robot_tf_timeout));
+  for (const std::string& link : p.robot_links)
+    if (const Problem f = frameProblem(link); !f.empty())
+      return fail("parameter ~robot_links: link " + f.message);
   for (const auto& [block, frame] : p.follow_tf) {
     if (const Problem n = limits::nameProblem(block); !n.empty())
       return fail("parameter ~follow_tf: block name " + n.message);

@@ -43,6 +43,16 @@ struct NodeParams {
   // m/s: the fastest a follower's points move. A frame that moves faster (a jump) is closed on
   // at this speed, with a warning naming it.
   double follow_tf_max_speed = 5;
+  // A robot's links as kinematic blocks following their tf frames (robot_links.hpp): the links
+  // (empty: none), the description (the parameter robot_description_param, as
+  // robot_state_publisher reads it, or a URDF file), the corners' rounding (m), the blocks'
+  // friction and how long to wait for the links' transforms at start (s of wall time).
+  std::vector<std::string> robot_links;
+  std::string robot_description_param = "robot_description";
+  std::string robot_description_file;
+  double robot_rounding = 0.002;
+  double robot_friction = 0.5;
+  double robot_tf_timeout = 10;
   render::RenderDef image;            // its scale set by chooseImageScale once the scene is read
   render::ViewRequest image_request;  // ~image/color_by and ~image/max_value, where given
   // Pacing: 0 runs as fast as possible; r > 0 keeps simulation time <= r * wall time.

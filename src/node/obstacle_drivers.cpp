@@ -35,6 +35,15 @@ ObstacleDrivers::ObstacleDrivers(ros::NodeHandle& pnh, CommandQueue& queue,
   }
 }
 
+void ObstacleDrivers::follow(const std::string& name, const std::string& frame) {
+  for (const Follower& f : followers_)
+    if (f.name == name) return;  // after a reset: the same link's block again
+  Follower f;
+  f.name = name;
+  f.frame = frame;
+  followers_.push_back(f);
+}
+
 void ObstacleDrivers::sync(const World& world, bool fresh) {
   if (fresh) loads_.clear();
   const Blocks* B = world.blocks();
@@ -58,7 +67,8 @@ void ObstacleDrivers::sync(const World& world, bool fresh) {
   }
   for (int i = 0; B && i < B->count(); ++i) {
     const BlockDef& d = B->def(i);
-    const bool follows = params_.follow_tf.count(d.name) > 0;
+    const bool follows = std::any_of(followers_.begin(), followers_.end(),
+                                     [&](const Follower& f) { return f.name == d.name; });
     const bool known = std::any_of(commands_.begin(), commands_.end(),
                                    [&](const Command& c) { return c.id == B->id(i); });
     if (d.type != BodyType::kKinematic || follows || known) continue;

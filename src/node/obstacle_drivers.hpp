@@ -52,6 +52,10 @@ class ObstacleDrivers {
                 bool in_block_frame, Real torque, Real duration);
   Reply clearLoads(const World& world, const std::string& name);  // "" clears all
 
+  // Loop thread: block `name` follows tf frame `frame` from now on (a robot's link,
+  // robot_links.hpp), as a ~follow_tf entry does; sync() finds its block.
+  void follow(const std::string& name, const std::string& frame);
+
   // The tf buffer (also for ~get_obstacle_state's reference frames).
   const tf2_ros::Buffer& tf() const { return tf_; }
 

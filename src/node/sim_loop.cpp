@@ -41,6 +41,7 @@ SimLoop::SimLoop(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParams& pa
       scene_text_(std::move(scene_text)),
       world_(std::make_unique<World>(scene_.world)),
       drivers_(pnh, commands_, params_),
+      robot_links_(nh, params_),
       publishers_(nh, pnh, params_, scene_text_, *world_),
       paused_(params.start_paused) {
   if (!params_.resume.empty()) resumeFromCheckpoint();
@@ -223,6 +224,7 @@ void SimLoop::publishWhilePaused() {
 }
 
 bool SimLoop::advance() {
+  if (robot_links_.spawnArrived(*world_, drivers_)) blocksChanged();
   const RunStep step = sim_->advance([this](Real dt) { drivers_.beforeStep(*world_, dt); });
   if (!step.problem.empty()) {
     fail(step.problem, step.dt > 0 ? step.dt : sim_->stableStep().dt);

@@ -21,6 +21,7 @@
 #include "node_params.hpp"
 #include "obstacle_drivers.hpp"
 #include "publishers.hpp"
+#include "robot_links.hpp"
 
 namespace mpm_sdem::node {
 
@@ -78,6 +79,7 @@ class SimLoop {
   std::string resumed_bag_;  // the bag the run resumed from, continued by the first recording
   CommandQueue commands_;
   ObstacleDrivers drivers_;
+  RobotLinks robot_links_;  // a robot description's links, spawned as their tf arrives
   Publishers publishers_;
   // The recordings and their outputs (a failed one is dropped by sim_, closed here).
   std::unique_ptr<BagRecorder> bag_;

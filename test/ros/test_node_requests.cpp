@@ -308,6 +308,7 @@ TEST(Requests, BadParametersStopTheNodeBeforeItSimulates) {
       fs::temp_directory_path() / ("mpm_sdem_bad_params_" + std::to_string(getpid()));
   fs::create_directories(dir / "a_directory.bag");
   const std::string scene = std::string(MPM_SDEM_SOURCE_DIR) + "/test/data/node_bed.yaml";
+  const std::string tool = std::string(MPM_SDEM_SOURCE_DIR) + "/test/data/tool.urdf";
   const std::vector<std::pair<std::string, std::string>> cases{
       {"_threads:=100000", "~threads"},
       {"_threads:=-1", "~threads"},
@@ -329,21 +330,35 @@ TEST(Requests, BadParametersStopTheNodeBeforeItSimulates) {
       {"_resume:=" + (dir / "none.bag").string(), "~resume " + (dir / "none.bag").string()},
       {"_resume:=" + dir.string(), "holds no checkpoint"},
       {"_vtk/dir:=/dev/null", "~vtk/dir: '/dev/null' exists and is not a directory"},
-      // A dictionary cannot be given as _name:=value: set on the server first (as a launch
-      // file's rosparam does), "follow_tf=" marking it here.
+      // A dictionary or a list cannot be given as _name:=value: set on the server first (as a
+      // launch file's rosparam does), "follow_tf=" or "robot_links=" marking it here.
       {"follow_tf={nobody: target}", "no block named 'nobody'"},
       {"follow_tf={post: target}", "'post' must be kinematic"},
-      {"follow_tf={box: /target}", "~follow_tf/box: frame"}};
+      {"follow_tf={box: /target}", "~follow_tf/box: frame"},
+      // ~robot_links: a link the description lacks, one without collision geometry, a mesh,
+      // no description, a bad rounding (before tf or a step).
+      {"robot_links=[nolink] _robot_description_file:=" + tool,
+       "link 'nolink' is not in the robot description"},
+      {"robot_links=[bare] _robot_description_file:=" + tool,
+       "link 'bare' has no collision geometry"},
+      {"robot_links=[mesh] _robot_description_file:=" + tool,
+       "link 'mesh': its collision is a mesh, which is not supported"},
+      {"robot_links=[tool]", "there is no robot description"},
+      {"robot_links=tool", "~robot_links must be a list of link names"},
+      {"_robot_rounding:=0", "~robot_rounding"}};
   int k = 0;
   for (const auto& [args, reason] : cases) {
     const fs::path log = dir / ("log" + std::to_string(k++));
     const std::string name = "bad" + std::to_string(k);
-    const bool dict = args.rfind("follow_tf=", 0) == 0;
-    const std::string set =
-        dict ? "rosparam set /" + name + "/follow_tf '" + args.substr(10) + "' && " : "";
+    // "key=VALUE _rest": VALUE set on the server (rosparam), _rest as arguments.
+    const bool dict = args.rfind("follow_tf=", 0) == 0 || args.rfind("robot_links=", 0) == 0;
+    const std::size_t eq = args.find('='), space = std::min(args.find(" _"), args.size());
+    const std::string set = dict ? "rosparam set /" + name + "/" + args.substr(0, eq) + " '" +
+                                       args.substr(eq + 1, space - eq - 1) + "' && "
+                                 : "";
+    const std::string rest = dict ? args.substr(space) : args;
     const std::string cmd = set + "timeout 30 " + MPM_SDEM_NODE + " __name:=" + name +
-                            " _scene:=" + scene + " " + (dict ? "" : args) + " >" + log.string() +
-                            " 2>&1";
+                            " _scene:=" + scene + " " + rest + " >" + log.string() + " 2>&1";
     const int status = std::system(cmd.c_str());
     ASSERT_TRUE(WIFEXITED(status)) << args;
     EXPECT_EQ(WEXITSTATUS(status), 1) << args << " (124: it hung)";

@@ -13,7 +13,9 @@
 #include <tf2_ros/transform_broadcaster.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <atomic>
 #include <cmath>
+#include <thread>
 
 #include "ros_helpers.hpp"
 
@@ -431,6 +433,60 @@ TEST(Robot, FirstWarningAtOnceThenThrottledInWallTime) {
   EXPECT_LT(n.stats.get().sim_time, 1.0);
   ros::WallDuration(5.5).sleep();
   EXPECT_EQ(log.count("holds still"), 2) << "at 0 and 5 s of wall time";
+}
+
+// ~robot_links: [tool] (test/data/tool.urdf on robot_description, robot_urdf.test): the link's
+// section by the plane (2 x 6 cm) is spawned as a kinematic block named after it once its frame
+// arrives on tf, and follows the frame down into the bed, its wrench from 0 in the air to the
+// bed's bearing load (asserted above 5 N/m; it reads about 1.2 kN/m with the blade's bottom 3 cm
+// into the bed and 1 cm above its sticky floor).
+TEST(Robot, UrdfLinkFollowsItsFrameIntoTheSand) {
+  test::NodeClient& n = *g_node;
+  test::Latest<geometry_msgs::WrenchStamped> wrench(n.nh, test::kNs + "obstacles/tool/wrench");
+  std::atomic<bool> stop{false};
+  // The frame at (-0.04, 0.10) until 0.5 s of simulation, then down at 5 cm/s to 0.04; sent
+  // before the node has a clock (stamps 0), as robot_state_publisher's would be.
+  auto height = [](double t) { return std::max(0.04, 0.10 - 0.05 * std::max(0.0, t - 0.5)); };
+  std::thread broadcaster([&] {
+    tf2_ros::TransformBroadcaster tf;
+    ros::Time last;
+    bool sent = false;
+    for (; !stop && ros::ok(); ros::WallDuration(0.02).sleep()) {
+      geometry_msgs::TransformStamped ts;
+      ts.header.stamp = ros::Time::now();
+      if (sent && ts.header.stamp == last) continue;  // tf2 warns of a repeated stamp
+      last = ts.header.stamp;
+      sent = true;
+      ts.header.frame_id = "world";
+      ts.child_frame_id = "tool";
+      ts.transform.translation.x = -0.04;
+      ts.transform.translation.y = height(ts.header.stamp.toSec());
+      ts.transform.rotation.w = 1;
+      tf.sendTransform(ts);
+    }
+  });
+  RigidBlockState tool;
+  const bool up =
+      waitFor([&] { return n.stats.get().sim_time > 0.3 && n.block("tool", tool); }, 30);
+  if (up) {
+    EXPECT_NEAR(tool.pose.position.x, -0.04, 2e-3);
+    EXPECT_NEAR(tool.pose.position.y, 0.10, 2e-3);
+    ASSERT_TRUE(waitFor([&] { return wrench.count() > 0; }, 10));
+    EXPECT_LT(std::hypot(wrench.get().wrench.force.x, wrench.get().wrench.force.y), 0.5);
+    EXPECT_EQ(wrench.get().header.frame_id, "mpm_sdem/tool");
+  }
+  const bool down = up && waitFor([&] { return n.stats.get().sim_time > 2.3; }, 30);
+  if (down) {
+    ASSERT_TRUE(n.block("tool", tool));
+    EXPECT_NEAR(tool.pose.position.y, 0.04, 2e-3);
+    EXPECT_GT(wrench.get().wrench.force.y, 5) << "the sand does not bear the tool";
+    std::printf("tool: %.2f N/m up at %.3f m (bottom 3 cm into the bed)\n",
+                wrench.get().wrench.force.y, tool.pose.position.y);
+  }
+  stop = true;
+  broadcaster.join();
+  ASSERT_TRUE(up) << "no block 'tool' by 0.3 s of simulation";
+  ASSERT_TRUE(down) << "the simulation did not reach 2.3 s";
 }
 
 int main(int argc, char** argv) {
