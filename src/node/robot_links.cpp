@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mpm_sdem/core/limits.hpp"
 #include "throttle.hpp"
 
 namespace mpm_sdem::node {
@@ -100,6 +101,16 @@ bool RobotLinks::spawnArrived(World& world, ObstacleDrivers& drivers) {
           "t = %.4f s",
           link.name.c_str(), b.block.name.c_str(), b.block.core.size(), b.block.rounding,
           world.time());
+    }
+    // A section so small that its springs' stable step would stop the clock (spawn_obstacle's
+    // check).
+    if (const TimeStepChoice dt = world.chooseTimeStep();
+        !link.failed && !ids.empty() && !(dt.dt >= limits::kMinTimeStep)) {
+      ROS_ERROR(
+          "~robot_links: link '%s' is left out: with it the time step would fall to %g s "
+          "(%s term); give it a larger collision solid",
+          link.name.c_str(), dt.dt, stepLimitName(dt.limit));
+      link.failed = true;
     }
     if (link.failed)
       for (const BlockId& id : ids) world.removeBlock(id);

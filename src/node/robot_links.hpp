@@ -28,10 +28,11 @@ class RobotLinks {
   // or the parameter. Nothing to do without ~robot_links.
   RobotLinks(const ros::NodeHandle& nh, const NodeParams& params);
 
-  // Loop thread, between steps: spawns the links whose blocks are not in the world and whose
-  // transforms have arrived; true when it added blocks (the caller's blocksChanged then). A link
-  // whose solids miss the plane, or whose blocks the world refuses, is named in an error and
-  // left out; one whose transform is late is named in a warning after ~robot_tf_timeout s.
+  // Loop thread, between steps and while paused: spawns the links whose blocks are not in the
+  // world and whose transforms have arrived; true when it added blocks (the caller's
+  // blocksChanged then). A link whose solids miss the plane, whose blocks the world refuses or
+  // with which the step would fall below limits::kMinTimeStep is named in an error and left out;
+  // one whose transform is late is named in a warning after ~robot_tf_timeout s.
   bool spawnArrived(World& world, ObstacleDrivers& drivers);
 
  private:

@@ -220,6 +220,8 @@ void SimLoop::publishWhilePaused() {
   const auto now = Clock::now();
   if (now - last_idle_ < std::chrono::milliseconds(500)) return;
   last_idle_ = now;
+  // A robot's links appear while paused too, as their transforms arrive.
+  if (robot_links_.spawnArrived(*world_, drivers_)) blocksChanged();
   publishers_.publishIdle(*world_, status());
 }
 
