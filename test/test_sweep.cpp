@@ -368,17 +368,22 @@ std::vector<std::string> fields(const std::string& line) {
   return out;
 }
 
-// results.csv of the validation report without its wall_s column (8th), which differs per run.
-std::string withoutWallTimes(const std::string& text) {
+// A CSV text without one column (a wall time, which differs per run).
+std::string withoutColumn(const std::string& text, std::size_t column) {
   std::stringstream in(text);
   std::string out;
   for (std::string line; std::getline(in, line);) {
     const std::vector<std::string> f = fields(line);
     for (std::size_t k = 0; k < f.size(); ++k)
-      if (k != 7) out += f[k] + "|";
+      if (k != column) out += f[k] + "|";
     out += "\n";
   }
   return out;
+}
+
+// results.csv of the validation report without its wall_s column (8th).
+std::string withoutWallTimes(const std::string& text) {
+  return withoutColumn(text, 7);
 }
 
 }  // namespace
@@ -482,19 +487,8 @@ TEST(SweepLocal, SplitCaseRunsGatherAndCombineAsOneRun) {
   EXPECT_EQ(std::count(gathered.begin(), gathered.end(), '\n'), 1 + 16 + 6);
   EXPECT_EQ(read(d / "out" / "data" / "wheel_sweep.csv"), read(d / "whole" / "wheel_sweep.csv"));
   // debris_granular.csv: one header, both members (its wall_s, 5th, differs per run).
-  auto members = [](const std::string& text) {
-    std::stringstream in(text);
-    std::string out;
-    for (std::string line; std::getline(in, line);) {
-      const std::vector<std::string> f = fields(line);
-      for (std::size_t k = 0; k < f.size(); ++k)
-        if (k != 4) out += f[k] + "|";
-      out += "\n";
-    }
-    return out;
-  };
-  const std::string table = members(read(d / "out" / "data" / "debris_granular.csv"));
-  EXPECT_EQ(table, members(read(d / "whole" / "debris_granular.csv")));
+  const std::string table = withoutColumn(read(d / "out" / "data" / "debris_granular.csv"), 4);
+  EXPECT_EQ(table, withoutColumn(read(d / "whole" / "debris_granular.csv"), 4));
   EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 3);
   const std::string refused = validate.string() + " --fast --cases wheel.2 --out " +
                               (d / "no").string() + " 2> " + (d / "refused.txt").string();
