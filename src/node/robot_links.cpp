@@ -1,5 +1,6 @@
 #include "robot_links.hpp"
 
+#include <ros/package.h>
 #include <ros/ros.h>
 #include <tf2_eigen/tf2_eigen.h>
 
@@ -34,6 +35,21 @@ std::string description(const ros::NodeHandle& nh, const NodeParams& p) {
   return text;
 }
 
+// A mesh's URI as rviz and gazebo read it: package://<package>/<file> under the package's
+// directory on the ROS package path, anything else as robot::meshFilePath takes it.
+std::string meshPath(const std::string& uri) {
+  const std::string scheme = "package://";
+  if (uri.compare(0, scheme.size(), scheme) != 0) return robot::meshFilePath(uri);
+  const std::string rest = uri.substr(scheme.size());
+  const std::size_t slash = rest.find('/');
+  const std::string package = rest.substr(0, slash);
+  const std::string directory = ros::package::getPath(package);
+  if (directory.empty())
+    throw robot::RobotError("mesh '" + uri + "' is in package '" + package +
+                            "', which is not on the ROS package path");
+  return directory + (slash == std::string::npos ? "" : rest.substr(slash));
+}
+
 robot::RobotObstaclesDef definition(const NodeParams& p, const std::string& link) {
   robot::RobotObstaclesDef def;
   def.links = {link};
@@ -47,7 +63,7 @@ robot::RobotObstaclesDef definition(const NodeParams& p, const std::string& link
 RobotLinks::RobotLinks(const ros::NodeHandle& nh, const NodeParams& params) : params_(params) {
   if (params.robot_links.empty()) return;
   try {
-    robot_ = std::make_unique<robot::RobotDescription>(description(nh, params));
+    robot_ = std::make_unique<robot::RobotDescription>(description(nh, params), meshPath);
     for (const std::string& link : params.robot_links) {
       robot_->check(definition(params, link));
       links_.push_back({link});

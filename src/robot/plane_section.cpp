@@ -42,8 +42,17 @@ Section polytopeSection(const std::vector<Eigen::Vector3d>& corners) {
   }
   std::vector<Kernel::Point_2> hull;
   CGAL::convex_hull_2(points.begin(), points.end(), std::back_inserter(hull));  // CCW
-  if (hull.size() < 3) return s;  // touches the plane along an edge or at a corner: no area
-  for (const Kernel::Point_2& p : hull) s.polygon.emplace_back(p.x(), p.y());
+  // The crossings of a face's diagonals lie on the section's edges, and rounding puts some a
+  // hair outside them: a corner that turns by less than 1e-9 rad is such a point, not a corner.
+  const std::size_t n = hull.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 a(hull[(i + n - 1) % n].x(), hull[(i + n - 1) % n].y());
+    const Vec2 b(hull[i].x(), hull[i].y()), c(hull[(i + 1) % n].x(), hull[(i + 1) % n].y());
+    const Vec2 ab = b - a, bc = c - b;
+    if (std::abs(ab.x() * bc.y() - ab.y() * bc.x()) > 1e-9 * ab.norm() * bc.norm())
+      s.polygon.push_back(b);
+  }
+  if (s.polygon.size() < 3) s.polygon.clear();  // touches the plane along an edge or at a corner
   return s;
 }
 
@@ -119,6 +128,11 @@ Section sectionByPlane(const Solid& solid, const Eigen::Isometry3d& pose) {
           corners.push_back(
               pose * Eigen::Vector3d(solid.radius * std::cos(a), solid.radius * std::sin(a), z));
       }
+      return polytopeSection(corners);
+    }
+    case Solid::Kind::kConvex: {
+      std::vector<Eigen::Vector3d> corners;
+      for (const Eigen::Vector3d& c : solid.corners) corners.push_back(pose * c);
       return polytopeSection(corners);
     }
     case Solid::Kind::kBox:

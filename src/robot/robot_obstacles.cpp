@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "mpm_sdem/core/rigid/spheropolygon.hpp"
+#include "mpm_sdem/robot/mesh_hull.hpp"
 #include "mpm_sdem/robot/plane_section.hpp"
 
 namespace mpm_sdem::robot {
@@ -22,7 +23,7 @@ Eigen::Isometry3d toIsometry(const urdf::Pose& p) {
 }
 
 // The solid of a collision element, or a RobotError naming the link.
-Solid solidOf(const urdf::Geometry& g, const std::string& link) {
+Solid solidOf(const urdf::Geometry& g, const std::string& link, const MeshPath& mesh_path) {
   Solid s;
   switch (g.type) {
     case urdf::Geometry::BOX: {
@@ -42,11 +43,19 @@ Solid solidOf(const urdf::Geometry& g, const std::string& link) {
       s.kind = Solid::Kind::kSphere;
       s.radius = static_cast<const urdf::Sphere&>(g).radius;
       return s;
-    case urdf::Geometry::MESH:
+    case urdf::Geometry::MESH: {
+      const auto& mesh = static_cast<const urdf::Mesh&>(g);
+      s.kind = Solid::Kind::kConvex;
+      try {
+        s.corners = meshHullCorners(mesh_path(mesh.filename),
+                                    Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z));
+      } catch (const std::exception& e) {  // RobotError from mesh_path, runtime_error
+        throw RobotError("link '" + link + "': its collision " + e.what());
+      }
+      return s;
+    }
     default:
-      throw RobotError("link '" + link +
-                       "': its collision is a mesh, which is not supported; give the link a box, "
-                       "cylinder or sphere collision");
+      throw RobotError("link '" + link + "': its collision geometry is of an unknown kind");
   }
 }
 
@@ -70,7 +79,17 @@ void keepCorners(std::vector<Vec2>& polygon, std::size_t n) {
 
 }  // namespace
 
-RobotDescription::RobotDescription(const std::string& urdf_xml) {
+std::string meshFilePath(const std::string& uri) {
+  const std::string file = "file://", package = "package://";
+  if (uri.compare(0, file.size(), file) == 0) return uri.substr(file.size());
+  if (uri.compare(0, package.size(), package) == 0)
+    throw RobotError("mesh '" + uri +
+                     "' is in a ROS package, which only the node can find (give the file's path)");
+  return uri;
+}
+
+RobotDescription::RobotDescription(const std::string& urdf_xml, MeshPath mesh_path)
+    : mesh_path_(std::move(mesh_path)) {
   model_ = urdf::parseURDF(urdf_xml);
   if (!model_)
     throw RobotError(
@@ -91,47 +110,50 @@ Eigen::Isometry3d RobotDescription::restPose(const std::string& link) const {
   return t;
 }
 
-namespace {
+// A collision solid and where it sits in its link's frame.
+struct RobotDescription::Collision {
+  Solid solid;
+  Eigen::Isometry3d origin;
+};
 
-// A link's collision elements with geometry; RobotError naming it when it has none or the
-// description lacks it.
-std::vector<urdf::CollisionSharedPtr> collisionsOf(const urdf::ModelInterface& model,
-                                                   const std::string& name) {
-  urdf::LinkConstSharedPtr link = model.getLink(name);
+// A link's collision elements with geometry; RobotError naming it when it has none, the
+// description lacks it or a solid cannot be made.
+std::vector<RobotDescription::Collision> RobotDescription::collisionsOf(
+    const std::string& name) const {
+  urdf::LinkConstSharedPtr link = model_->getLink(name);
   if (!link)
-    throw RobotError("link '" + name + "' is not in the robot description of '" + model.getName() +
-                     "'");
-  std::vector<urdf::CollisionSharedPtr> collisions;
+    throw RobotError("link '" + name + "' is not in the robot description of '" +
+                     model_->getName() + "'");
+  std::vector<urdf::CollisionSharedPtr> elements;
   for (const urdf::CollisionSharedPtr& c : link->collision_array)
-    if (c && c->geometry) collisions.push_back(c);
-  if (collisions.empty() && link->collision && link->collision->geometry)
-    collisions.push_back(link->collision);
-  if (collisions.empty())
+    if (c && c->geometry) elements.push_back(c);
+  if (elements.empty() && link->collision && link->collision->geometry)
+    elements.push_back(link->collision);
+  if (elements.empty())
     throw RobotError("link '" + name + "' has no collision geometry to meet the material");
-  for (const urdf::CollisionSharedPtr& c : collisions) solidOf(*c->geometry, name);  // supported
-  return collisions;
+  std::vector<Collision> out;
+  for (const urdf::CollisionSharedPtr& c : elements)
+    out.push_back({solidOf(*c->geometry, name, mesh_path_), toIsometry(c->origin)});
+  return out;
 }
 
-}  // namespace
-
 void RobotDescription::check(const RobotObstaclesDef& def) const {
-  for (const std::string& name : def.links) collisionsOf(*model_, name);
+  for (const std::string& name : def.links) collisionsOf(name);
 }
 
 std::vector<LinkBlock> RobotDescription::obstacles(const RobotObstaclesDef& def,
                                                    const LinkPose& pose) const {
   std::vector<LinkBlock> out;
   for (const std::string& name : def.links) {
-    const std::vector<urdf::CollisionSharedPtr> collisions = collisionsOf(*model_, name);
+    const std::vector<Collision> collisions = collisionsOf(name);
     const Eigen::Isometry3d frame = pose(name);
     // The link's frame as follow_tf sees it: its origin and its yaw in the plane.
     const Vec2 origin(frame.translation().x(), frame.translation().y());
     const double angle = std::atan2(frame.linear()(1, 0), frame.linear()(0, 0));
     double nearest = std::numeric_limits<double>::infinity();
     int made = 0;
-    for (const urdf::CollisionSharedPtr& c : collisions) {
-      const Solid solid = solidOf(*c->geometry, name);
-      Section section = sectionByPlane(solid, frame * toIsometry(c->origin));
+    for (const Collision& c : collisions) {
+      Section section = sectionByPlane(c.solid, frame * c.origin);
       if (section.empty()) {
         nearest = std::min(nearest, section.gap);
         continue;

@@ -335,14 +335,18 @@ TEST(Requests, BadParametersStopTheNodeBeforeItSimulates) {
       {"follow_tf={nobody: target}", "no block named 'nobody'"},
       {"follow_tf={post: target}", "'post' must be kinematic"},
       {"follow_tf={box: /target}", "~follow_tf/box: frame"},
-      // ~robot_links: a link the description lacks, one without collision geometry, a mesh,
+      // ~robot_links: a link the description lacks, one without collision geometry, a missing mesh
+      // (its package found, the file not; its package not found),
       // no description, a bad rounding (before tf or a step).
       {"robot_links=[nolink] _robot_description_file:=" + tool,
        "link 'nolink' is not in the robot description"},
       {"robot_links=[bare] _robot_description_file:=" + tool,
        "link 'bare' has no collision geometry"},
       {"robot_links=[mesh] _robot_description_file:=" + tool,
-       "link 'mesh': its collision is a mesh, which is not supported"},
+       "mpm_sdem/none.stl' cannot be opened (no such file?)"},
+      {"robot_links=[elsewhere] _robot_description_file:=" + tool,
+       "link 'elsewhere': its collision mesh 'package://no_such_package/m.stl' is in package "
+       "'no_such_package', which is not on the ROS package path"},
       {"robot_links=[tool]", "there is no robot description"},
       {"robot_links=tool", "~robot_links must be a list of link names"},
       {"_robot_rounding:=0", "~robot_rounding"}};

@@ -14,13 +14,15 @@
 namespace mpm_sdem::robot {
 
 /// One convex collision solid in its own frame (URDF's conventions: a box centred on the
-/// origin, a cylinder along z centred on the origin, a sphere at the origin), SI.
+/// origin, a cylinder along z centred on the origin, a sphere at the origin; a mesh's convex
+/// hull by its corners), SI.
 struct Solid {
-  enum class Kind { kBox, kCylinder, kSphere };
+  enum class Kind { kBox, kCylinder, kSphere, kConvex };
   Kind kind = Kind::kBox;
-  Eigen::Vector3d size{0, 0, 0};  ///< box: full edge lengths (m)
-  double radius = 0;              ///< cylinder and sphere (m)
-  double length = 0;              ///< cylinder, along its z (m)
+  Eigen::Vector3d size{0, 0, 0};         ///< box: full edge lengths (m)
+  double radius = 0;                     ///< cylinder and sphere (m)
+  double length = 0;                     ///< cylinder, along its z (m)
+  std::vector<Eigen::Vector3d> corners;  ///< convex: the hull's corners (m; mesh_hull.hpp)
 };
 
 /// The section of a solid by the plane z = 0: a convex polygon (counter-clockwise, in the

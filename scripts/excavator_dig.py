@@ -1,0 +1,99 @@
+#!/usr/bin/python3
+"""One dig of the planar excavator (urdf/excavator.urdf): sensor_msgs/JointState on joint_states
+for robot_state_publisher, whose tf the node's ~robot_links follow.
+
+The dig is a path of the bucket's hinge (the wrist) and the bucket's angle in the plane, in
+simulated time: wait above the sand while the node spawns the links, push the teeth about 7 cm
+into the bed, drag the bucket towards the cab, curl it and lift it. Between waypoints the wrist
+moves along a straight line with a smooth start and stop; the boom and stick angles follow from
+the two-link inverse kinematics (elbow up), the bucket's from its angle less theirs.
+
+Parameters (SI; defaults are the URDF's):
+  ~pivot [0.1, 0.3] m: the boom's joint in the plane; ~boom 0.5 m, ~stick 0.35 m: lengths;
+  ~rate 50 Hz of simulated time; ~start 0 s: the path's time zero in simulated time;
+  ~waypoints: [[t s, wrist x m, wrist y m, bucket angle deg], ...], times increasing.
+"""
+import math
+
+import rospy
+from sensor_msgs.msg import JointState
+
+# t (s), wrist x, y (m), bucket angle (deg, from +x, counter-clockwise): the bucket's teeth are
+# 0.15 m from the wrist along its angle; the bed's surface is at y = 0.15 m.
+DIG = [
+    [0.0, 0.80, 0.36, -90],   # above the sand, teeth 6 cm clear
+    [0.6, 0.80, 0.36, -90],   # (the links spawn once tf has them)
+    [1.6, 0.80, 0.23, -100],  # in: teeth at y = 0.082, 6.8 cm deep
+    [3.2, 0.52, 0.23, -70],   # drag towards the cab, teeth about 6 cm deep
+    [4.0, 0.48, 0.25, 10],    # curl
+    [4.8, 0.48, 0.42, 20],    # lift
+]
+
+
+def inverse_kinematics(pivot, boom, stick, wrist, bucket_angle):
+    """Joint angles (rad) that put the wrist at `wrist` with the bucket at `bucket_angle`."""
+    x, y = wrist[0] - pivot[0], wrist[1] - pivot[1]
+    d2 = x * x + y * y
+    cos_elbow = (d2 - boom * boom - stick * stick) / (2 * boom * stick)
+    if abs(cos_elbow) > 1:
+        raise ValueError("wrist (%.3f, %.3f) is out of the arm's reach" % tuple(wrist))
+    elbow = -math.acos(cos_elbow)  # negative: the stick folds down, the elbow stays up
+    shoulder = math.atan2(y, x) - math.atan2(stick * math.sin(elbow),
+                                             boom + stick * math.cos(elbow))
+    return shoulder, elbow, bucket_angle - shoulder - elbow
+
+
+def wrist_at(waypoints, t):
+    """The wrist's position and the bucket's angle (deg) at time t along the waypoints."""
+    if t <= waypoints[0][0]:
+        return waypoints[0][1:3], waypoints[0][3]
+    for a, b in zip(waypoints, waypoints[1:]):
+        if t <= b[0]:
+            s = (t - a[0]) / (b[0] - a[0])
+            s = s * s * (3 - 2 * s)  # smooth start and stop
+            return [a[i] + s * (b[i] - a[i]) for i in (1, 2)], a[3] + s * (b[3] - a[3])
+    return waypoints[-1][1:3], waypoints[-1][3]
+
+
+def main():
+    rospy.init_node("excavator_dig")
+    pivot = rospy.get_param("~pivot", [0.1, 0.3])
+    boom = rospy.get_param("~boom", 0.5)
+    stick = rospy.get_param("~stick", 0.35)
+    rate_hz = rospy.get_param("~rate", 50.0)
+    start = rospy.get_param("~start", 0.0)
+    waypoints = rospy.get_param("~waypoints", DIG)
+    for (a, b) in zip(waypoints, waypoints[1:]):
+        if not b[0] > a[0]:
+            rospy.logfatal("~waypoints: times must increase (%g then %g)", a[0], b[0])
+            return 1
+    # Every waypoint's straight segment inside the reach, checked before moving.
+    for w in waypoints:
+        try:
+            inverse_kinematics(pivot, boom, stick, w[1:3], math.radians(w[3]))
+        except ValueError as e:
+            rospy.logfatal("~waypoints at t = %g s: %s", w[0], e)
+            return 1
+    pub = rospy.Publisher("joint_states", JointState, queue_size=10)
+    msg = JointState(name=["boom_joint", "stick_joint", "bucket_joint"])
+    rate = rospy.Rate(rate_hz)
+    last = None
+    while not rospy.is_shutdown():
+        now = rospy.Time.now()
+        if now != last and not now.is_zero():  # one message per tick of the simulated clock
+            wrist, angle = wrist_at(waypoints, now.to_sec() - start)
+            msg.header.stamp = now
+            msg.position = list(inverse_kinematics(pivot, boom, stick, wrist, math.radians(angle)))
+            pub.publish(msg)
+            last = now
+        try:
+            rate.sleep()
+        except rospy.ROSTimeMovedBackwardsException:  # the node's ~reset: start again
+            last = None
+        except rospy.ROSInterruptException:  # shut down
+            break
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
