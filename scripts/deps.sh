@@ -18,7 +18,8 @@ MPM_SDEM_PACKAGES=(
   python3-rostopic python3-rosservice python3-rosnode python3-rosparam rosout librostest-dev
   python3-rostest libgtest-dev libbox2d-dev libopencv-dev libeigen3-dev libyaml-cpp-dev
   libbenchmark-dev libhwy-dev libcgal-dev libcereal-dev zlib1g-dev libvtk9-dev
-  liburdfdom-dev libtf2-eigen-dev
+  liburdfdom-dev libtf2-eigen-dev libroslib-dev python3-roslib python3-rospy
+  ros-robot-state-publisher librobot-state-publisher-dev
   rviz xvfb python3-pil python3-numpy python3-matplotlib
   parallel mkdocs doxygen
   clang libclang-rt-14-dev libomp-14-dev

@@ -15,7 +15,10 @@
 
 #include <atomic>
 #include <cmath>
+#include <mutex>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "ros_helpers.hpp"
 
@@ -540,6 +543,37 @@ TEST(Robot, ExcavatorDigsTheSand) {
       before, peak, heaped_before, heaped);
   EXPECT_GT(peak, 108) << "the sand barely resists the bucket";
   EXPECT_GT(heaped, 40) << "the dig moved no sand";
+}
+
+// The closed-loop example (launch/blade_force_control.launch, scripts/blade_force_controller.py,
+// set point 100 N/m): the blade sinks from 1 cm above the sand until the sand's horizontal force
+// on it reaches the set point, then holds it while the heap ahead grows. Settled: from 3 s to
+// 6 s of simulation, the force averaged over each 0.5 s (50 of the node's wrenches; a single
+// step's load is noisy) within 10% of the set point.
+TEST(Robot, BladeForceControllerSettlesAtTheSetPoint) {
+  test::NodeClient& n = *g_node;
+  const double set_point = 100.0;
+  std::mutex m;
+  std::vector<std::pair<double, double>> samples;  // (simulated time, force against the motion)
+  ros::Subscriber sub = n.nh.subscribe<geometry_msgs::WrenchStamped>(
+      test::kNs + "obstacles/blade/wrench", 200,
+      [&](const geometry_msgs::WrenchStamped::ConstPtr& w) {
+        std::lock_guard<std::mutex> l(m);
+        samples.emplace_back(w->header.stamp.toSec(), -w->wrench.force.x);
+      });
+  ASSERT_TRUE(waitFor([&] { return n.stats.get().sim_time > 6.0; }, 120))
+      << "the simulation did not reach 6 s";
+  std::lock_guard<std::mutex> l(m);
+  for (double from = 3.0; from < 6.0 - 1e-9; from += 0.5) {
+    double sum = 0;
+    int count = 0;
+    for (const auto& [t, f] : samples)
+      if (t >= from && t < from + 0.5) sum += f, ++count;
+    ASSERT_GT(count, 20) << "too few wrenches from " << from << " s";
+    std::printf("blade force %.2f-%.2f s: %.1f N/m (%d wrenches)\n", from, from + 0.5, sum / count,
+                count);
+    EXPECT_NEAR(sum / count, set_point, 0.1 * set_point) << "from " << from << " s";
+  }
 }
 
 int main(int argc, char** argv) {
