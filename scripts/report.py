@@ -69,6 +69,10 @@ CASES = [
                        "in-plane flowing angle, at the Drucker-Prager stiffness (E 1 MPa) and a "
                        "soft dense state (50 kPa): forces against Reece, exponent in d, steps and "
                        "wall time per simulated second", True),
+    ("intrusion", "Issue 44: a 5 cm plate pushed and dragged through the blade's sand at six "
+                  "angles, three depths and five speeds against resistive force theory (Li, "
+                  "Zhang & Goldman 2013: one scale factor zeta) and dynamic RFT's v^2 term; "
+                  "refinement 1 cm to 2.5 mm", True),
     ("fem_cantilever", "Seed 002 sec. 2.3: an FEM cantilever (plane-strain linear triangles, "
                        "corotational) under its own weight against Euler-Bernoulli, three meshes",
      True),

@@ -526,4 +526,54 @@ ColumnDeposit collapseColumn(World& w, const GranularColumn& c, Real t_max);
 Real lubeRunout(Real aspect);
 Real lubeHeight(Real aspect);
 
+// Issue 44: a plate intruding into the blade's sand (Drucker-Prager, 1500 kg/m^3, E = 1 MPa,
+// phi = 35 deg; bladeSand), against resistive force theory (RFT: Li, Zhang & Goldman 2013,
+// Science 339): each element of a plate at depth |z| moving in a granular bed feels a stress
+// alpha(beta, gamma) |z|, a function only of the plate's angle beta and the direction of its
+// motion gamma; for a flat plate of length L (per metre of width, plane strain) whose centre is
+// at depth z_c, F = alpha z_c L. beta: the plate's long axis from +x, counter-clockwise (deg);
+// gamma: the motion's angle below +x (90 straight down; 0 along +x). The layer starts under its
+// own weight (layerWeightAsStress), the plate above it.
+struct Plate {
+  Real angle = 0;          // beta (deg)
+  Real direction = 90;     // gamma (deg), 0 to 90
+  Real speed = 0.1;        // m/s along the motion
+  Real depth = 0.06;       // gamma = 0: the centre's depth while dragged (m; reached straight down)
+  Real reach = 0.09;       // gamma > 0: the centre's depth where the motion stops (m)
+  Real length = 0.05;      // L (m)
+  Real thickness = 0.005;  // across its faces, rounding included (m)
+  Real rounding = 0.002;   // m
+  Real friction = 0.3;     // plate-sand Coulomb coefficient (steel, as the blade's)
+  Real cell_size = 0.005;  // m
+  Real bed = 0.2;          // the layer's depth (m)
+  Real width = 0.5;        // the domain's (m)
+};
+WorldDef plateIntrusion(const Plate& c);
+// The plate's motion: for gamma > 0 from its start along gamma until its centre is `reach` deep;
+// for gamma = 0 straight down to `depth` (not sampled), then 3 L along +x. Samples every mm of
+// motion: the centre's depth below the layer's initial surface and the material's force on the
+// plate (N/m, x along +x, z upwards), averaged over the steps since the last sample.
+struct PlateRun {
+  std::vector<Real> travel, depth, fx, fz;  // m, m, N/m, N/m
+  long steps = 0;
+  std::size_t points = 0;
+  Real seconds = 0;  // wall
+};
+PlateRun movePlate(World& w, const Plate& c);
+// The depth below the surface at which the plate is just covered: L |sin beta| / 2 + t / 2 (m).
+Real plateCovered(const Plate& c);
+// RFT's generic stresses per unit depth (Li et al. 2013, eq. S2-S3: the first terms of a Fourier
+// series in 2 beta and gamma, fitted to nine media; N/cm^3 = 1e6 N/m^3, to be scaled by one
+// factor zeta per medium): alpha_z upwards, alpha_x against the motion's +x (a plate moving in
+// +x feels F_x = -alpha_x |z| L). beta and gamma in rad, gamma > 0 downwards.
+struct RftStress {
+  Real x = 0, z = 0;  // N/m^3 at zeta = 1
+};
+RftStress rftGeneric(Real beta, Real gamma);
+// The layer's weight as its initial stress (sigma_yy = -gamma z below the top of each point's
+// column of the lattice of spacing `spacing`, sigma_xx = sigma_zz = K0 sigma_yy with the elastic
+// K0 = nu / (1 - nu) of a laterally confined layer), so that gravity does not start it ringing
+// as a sudden load would (to twice the static stress, undamped). Material 0's.
+void layerWeightAsStress(World& w, Real spacing);
+
 }  // namespace mpm_sdem::cases

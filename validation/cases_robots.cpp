@@ -153,43 +153,41 @@ WorldDef excavatorBlade(const Blade& c) {
   return def;
 }
 
+void layerWeightAsStress(World& w, Real spacing) {
+  Particles& P = w.particles();
+  const MaterialDef& m = w.def().materials[0];
+  const Real nu =
+      (3 * m.bulk_modulus - 2 * m.shear_modulus) / (2 * (3 * m.bulk_modulus + m.shear_modulus));
+  const Real k0 = nu / (1 - nu), g = -w.def().solver.gravity.y();
+  const Real s = spacing;
+  std::map<long, Real> top;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const long col = std::lround(P.x[p] / s - 0.5);
+    auto it = top.find(col);
+    if (it == top.end() || it->second < P.y[p]) top[col] = P.y[p];
+  }
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const Real z = top[std::lround(P.x[p] / s - 0.5)] + s / 2 - P.y[p];
+    P.syy[p] = -m.density * g * z;
+    P.sxx[p] = P.szz[p] = k0 * P.syy[p];
+    P.sxy[p] = 0;
+    if (m.model == MaterialModel::kGranular) {
+      // The granular pressure is K ln(1 / J), a function of the volume ratio: the point is
+      // given the J of that stress (sigma_m = K ln J), its unstressed volume V0 = V / J so that
+      // its volume V0 J stays the lattice's.
+      const Real J = std::exp((P.sxx[p] + P.syy[p] + P.szz[p]) / (3 * m.bulk_modulus));
+      P.J[p] = J;
+      P.volume0[p] /= J;
+    }
+  }
+}
+
 BladePush pushBlade(World& w, const Blade& c, Real travel) {
   BladePush out;
   const auto t0 = std::chrono::steady_clock::now();
   const Blocks& B = *w.blocks();
-  Particles& P = w.particles();
-  out.points = P.size();
-  if (c.geostatic) {
-    // The layer's weight as its initial stress (sigma_yy = -gamma z below the top of each
-    // point's column of the lattice, sigma_xx = sigma_zz = K0 sigma_yy with the elastic
-    // K0 = nu / (1 - nu) of a laterally confined layer), so that gravity does not start it
-    // ringing as a sudden load would (to twice the static stress, undamped).
-    const MaterialDef& m = w.def().materials[0];
-    const Real nu =
-        (3 * m.bulk_modulus - 2 * m.shear_modulus) / (2 * (3 * m.bulk_modulus + m.shear_modulus));
-    const Real k0 = nu / (1 - nu), g = -w.def().solver.gravity.y();
-    const Real s = c.cell_size / c.points_per_cell;
-    std::map<long, Real> top;
-    for (std::size_t p = 0; p < P.size(); ++p) {
-      const long col = std::lround(P.x[p] / s - 0.5);
-      auto it = top.find(col);
-      if (it == top.end() || it->second < P.y[p]) top[col] = P.y[p];
-    }
-    for (std::size_t p = 0; p < P.size(); ++p) {
-      const Real z = top[std::lround(P.x[p] / s - 0.5)] + s / 2 - P.y[p];
-      P.syy[p] = -m.density * g * z;
-      P.sxx[p] = P.szz[p] = k0 * P.syy[p];
-      P.sxy[p] = 0;
-      if (m.model == MaterialModel::kGranular) {
-        // The granular pressure is K ln(1 / J), a function of the volume ratio: the point is
-        // given the J of that stress (sigma_m = K ln J), its unstressed volume V0 = V / J so that
-        // its volume V0 J stays the lattice's.
-        const Real J = std::exp((P.sxx[p] + P.syy[p] + P.szz[p]) / (3 * m.bulk_modulus));
-        P.J[p] = J;
-        P.volume0[p] /= J;
-      }
-    }
-  }
+  out.points = w.particles().size();
+  if (c.geostatic) layerWeightAsStress(w, c.cell_size / c.points_per_cell);
   const Real x0 = B.state(0).position.x(), sample = travel / 200;
   Real next = sample, sum_h = 0, sum_v = 0, span = 0;
   while (true) {
@@ -337,6 +335,125 @@ PowerLaw powerLaw(const std::vector<Real>& x, const std::vector<Real>& y,
   const Real dof = static_cast<Real>(x.size()) - 2;
   const Real scale = dof > 0 ? std::max<Real>(1, chi2 / dof) : 1;
   return {k, std::sqrt(scale * sw / det)};
+}
+
+namespace {
+
+// Where the plate's centre starts: over the layer by its covered depth plus a point's contact
+// reach and a millimetre (no contact yet), so far left of the domain's middle that the path's
+// middle is there (gamma > 0), or 1.5 L left of it (gamma = 0, dragged 3 L).
+Vec2 plateStart(const Plate& c) {
+  const Real lift = plateCovered(c) + 0.25 * c.cell_size + 0.001;
+  const Real gamma = c.direction * M_PI / 180;
+  const Real run = c.direction > 0 ? (c.reach + lift) / std::tan(gamma) : 3 * c.length;
+  return Vec2(0.5 * c.width - 0.5 * run, c.bed + lift);
+}
+
+}  // namespace
+
+Real plateCovered(const Plate& c) {
+  return 0.5 * c.length * std::fabs(std::sin(c.angle * M_PI / 180)) + 0.5 * c.thickness;
+}
+
+WorldDef plateIntrusion(const Plate& c) {
+  const Real h = c.cell_size;
+  WorldDef def;
+  def.domain.min = Vec2(0, 0);
+  def.domain.max = Vec2(std::round(c.width / h) * h, std::round((c.bed + c.length + 0.05) / h) * h);
+  def.domain.bottom.type = WallType::kSticky;
+  def.cell_size = h;
+  Blade sand;  // the blade's sand
+  def.materials.push_back(bladeSand(sand));
+  BlockDef plate;
+  plate.name = "plate";
+  plate.type = BodyType::kKinematic;
+  plate.position = plateStart(c);
+  plate.angle = c.angle * M_PI / 180;
+  const Real a = c.rounding, hl = 0.5 * c.length - a, ht = 0.5 * c.thickness - a;
+  plate.core = {Vec2(-hl, -ht), Vec2(hl, -ht), Vec2(hl, ht), Vec2(-hl, ht)};
+  plate.rounding = a;
+  plate.density = 7850;  // a kinematic block's mass is not used
+  plate.friction = c.friction;
+  def.blocks.push_back(plate);
+  BodyDef bed;
+  bed.name = "bed";
+  bed.shape.type = ShapeType::kRectangle;
+  bed.shape.min = Vec2(0, 0);
+  bed.shape.max = Vec2(def.domain.max.x(), c.bed);
+  bed.points_per_cell = 2;
+  def.bodies.push_back(bed);
+  // The blade's contact (excavatorBlade): springs per metre of contact, disks of half the point
+  // spacing, so that a face's points cover it edge to edge and reach no further.
+  def.coupling.scheme = CouplingScheme::kImp;
+  def.coupling.stiffness_per = SpringBasis::kPerLength;
+  def.coupling.contact_radius = 0.25 * h;
+  def.coupling.normal_stiffness = 5e7;
+  def.coupling.tangential_stiffness = 2.5e7;
+  return def;
+}
+
+PlateRun movePlate(World& w, const Plate& c) {
+  PlateRun out;
+  const auto t0 = std::chrono::steady_clock::now();
+  const Blocks& B = *w.blocks();
+  out.points = w.particles().size();
+  layerWeightAsStress(w, 0.5 * c.cell_size);
+  const Real gamma = c.direction * M_PI / 180;
+  const Vec2 along = c.direction > 0 ? Vec2(std::cos(gamma), -std::sin(gamma)) : Vec2(1, 0);
+  const Vec2 start = B.state(0).position;
+  const bool drag = c.direction <= 0;
+  const Real sample = 0.001;
+  Real next = sample, sum_x = 0, sum_z = 0, span = 0;
+  bool descended = !drag;
+  Vec2 from = start;
+  while (true) {
+    const Vec2 x = B.state(0).position;
+    const Real depth = c.bed - x.y();
+    if (!descended && depth >= c.depth - 1e-12) {  // at the drag's depth: along +x from here
+      descended = true;
+      from = x;
+      sum_x = sum_z = span = 0;
+    }
+    const Vec2 velocity = c.speed * (descended ? along : Vec2(0, -1));
+    // The last step of the descent lands on the depth exactly.
+    const TimeStepChoice choice = w.chooseTimeStep();
+    Real dt = choice.dt;
+    if (!descended) dt = std::min(dt, (c.depth - depth) / c.speed);
+    w.setBlockVelocity(B.id(0), velocity, 0);
+    w.step(dt);
+    ++out.steps;
+    if (!descended) continue;
+    sum_x += B.coupling()[0].force.x() * dt;
+    sum_z += B.coupling()[0].force.y() * dt;
+    span += dt;
+    const Real travelled = (B.state(0).position - from).norm();
+    if (travelled < next - 1e-12) continue;
+    out.travel.push_back(travelled);
+    out.depth.push_back(c.bed - B.state(0).position.y());
+    out.fx.push_back(sum_x / span);
+    out.fz.push_back(sum_z / span);
+    sum_x = sum_z = span = 0;
+    next += sample;
+    if (drag ? travelled >= 3 * c.length - 1e-12 : out.depth.back() >= c.reach - 1e-12) break;
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+RftStress rftGeneric(Real beta, Real gamma) {
+  // Li et al. 2013's generic coefficients (N/cm^3): A00, A10, B11, B01, B-11 for alpha_z and
+  // C11, C01, C-11, D10 for alpha_x, the terms of sum_mn [A_mn cos(2 m beta + n gamma) + B_mn
+  // sin(2 m beta + n gamma)] (and C, D for alpha_x) that their fit kept.
+  const Real a00 = 0.206, a10 = 0.169, b11 = 0.212, b01 = 0.358, bm11 = 0.055;
+  const Real c11 = -0.124, c01 = 0.253, cm11 = 0.007, d10 = 0.088;
+  RftStress s;
+  s.z = a00 + a10 * std::cos(2 * beta) + b11 * std::sin(2 * beta + gamma) + b01 * std::sin(gamma) +
+        bm11 * std::sin(-2 * beta + gamma);
+  s.x = c11 * std::cos(2 * beta + gamma) + c01 * std::cos(gamma) +
+        cm11 * std::cos(-2 * beta + gamma) + d10 * std::sin(2 * beta);
+  s.x *= 1e6;
+  s.z *= 1e6;
+  return s;
 }
 
 }  // namespace mpm_sdem::cases

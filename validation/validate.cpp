@@ -81,6 +81,8 @@ const std::vector<Case>& allCases() {
       {"wheel_granular", report::robots::wheelGranular, report::robots::wheelRuns},
       {"blade", report::robots::blade},
       {"blade_granular", report::robots::bladeGranular},
+      {"intrusion", report::robots::intrusion, report::robots::intrusionRuns,
+       report::robots::intrusionFits},
       {"stability", report::hard_cases::stability}};
   return all;
 }

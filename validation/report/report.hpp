@@ -178,6 +178,9 @@ void wheelGranular(const Options& o, Results& r);
 int wheelRuns(bool fast);
 void blade(const Options& o, Results& r);
 void bladeGranular(const Options& o, Results& r);
+void intrusion(const Options& o, Results& r);
+int intrusionRuns(bool fast);
+void intrusionFits(const Options& o, Results& r);
 }  // namespace robots
 
 }  // namespace mpm_sdem::report

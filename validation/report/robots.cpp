@@ -457,4 +457,309 @@ void bladeGranular(const Options& o, Results& r) {
   std::fclose(series);
 }
 
+// Issue 44: intrusion forces against resistive force theory (cases::Plate; Li, Zhang & Goldman
+// 2013). A 5 cm plate (5 mm thick, friction 0.3) in the blade's sand: pushed from above the
+// surface along gamma = 90 deg (down) and 45 deg at six angles beta, its force fitted as a line
+// in the centre's depth z over z from just covered + 1 cm to 9 cm (RFT: F = alpha z L, the line
+// through 0: the intercept and the exponent of |F| in z say how linear); dragged along +x
+// (gamma = 0) at 4, 6 and 8 cm at four angles, each the mean over the last 1.5 L of a 3 L drag
+// (alpha from the line through the three depths). One scale factor zeta for the medium, fitted
+// by least squares to every alpha_x and alpha_z of the report's cell against RFT's generic
+// shapes, then each alpha against zeta times the generic one. The plate pushed down at 0.5 to
+// 2 m/s: sqrt(v^2 / (g z)) to 2.9 at z = 5 cm; the force at z = 6 cm against the quasi-static
+// one plus lambda rho L v^2 (dynamic RFT, Agarwal et al. 2021, Sci. Adv. 7: lambda of about 1).
+// Refinement: the push (beta 0, gamma 90) and the drag (beta 90, 6 cm) at 1 cm, 5 mm, 2.5 mm.
+// One run per plate motion (intrusionRunList); the fits across them: intrusionFits.
+// --fast: 1 cm cells, beta 0, 45, 90 pushed down, 0 along 45 deg, the vertical plate dragged
+// at 4 and 8 cm, and one push at 1 m/s.
+namespace {
+
+struct IntrusionRun {
+  Real beta, gamma, speed, depth, h;  // deg, deg, m/s, m (drags), m
+};
+
+constexpr Real kIntrusionReference = 0.06;  // m: the depth at which speeds are compared
+
+std::vector<IntrusionRun> intrusionRunList(bool fast) {
+  std::vector<IntrusionRun> runs;
+  const Real h = fast ? 0.01 : 0.005;
+  if (fast) {
+    for (Real beta : {0.0, 45.0, 90.0}) runs.push_back({beta, 90, 0.1, 0, h});
+    runs.push_back({0, 45, 0.1, 0, h});
+    for (Real d : {0.04, 0.08}) runs.push_back({90, 0, 0.1, d, h});
+    runs.push_back({0, 90, 1.0, 0, h});
+    return runs;
+  }
+  for (Real gamma : {90.0, 45.0})
+    for (Real beta : {-60.0, -30.0, 0.0, 30.0, 60.0, 90.0})
+      runs.push_back({beta, gamma, 0.1, 0, h});
+  for (Real beta : {-45.0, 0.0, 45.0, 90.0})
+    for (Real d : {0.04, 0.06, 0.08}) runs.push_back({beta, 0, 0.1, d, h});
+  for (Real v : {0.5, 1.0, 1.5, 2.0}) runs.push_back({0, 90, v, 0, h});
+  for (Real cell : {0.01, 0.0025}) {
+    runs.push_back({0, 90, 0.1, 0, cell});
+    runs.push_back({90, 0, 0.1, 0.06, cell});
+  }
+  return runs;
+}
+
+cases::Plate plateOf(const IntrusionRun& run) {
+  cases::Plate c;
+  c.angle = run.beta;
+  c.direction = run.gamma;
+  c.speed = run.speed;
+  c.depth = run.depth;
+  c.cell_size = run.h;
+  return c;
+}
+
+}  // namespace
+
+int intrusionRuns(bool fast) {
+  return static_cast<int>(intrusionRunList(fast).size());
+}
+
+void intrusion(const Options& o, Results& r) {
+  const std::vector<IntrusionRun> runs = intrusionRunList(o.fast);
+  FILE* table = std::fopen((o.out + "/intrusion.csv").c_str(), "w");
+  FILE* series = std::fopen((o.out + "/intrusion_series.csv").c_str(), "w");
+  std::fprintf(table,
+               "beta_deg,gamma_deg,speed_m_s,depth_m,cell_m,points,steps,wall_s,fx_n_m,fz_n_m,"
+               "kx_n_m2,kz_n_m2,ax_n_m,az_n_m,exponent\n");
+  std::fprintf(series,
+               "beta_deg,gamma_deg,speed_m_s,depth_set_m,cell_m,travel_m,depth_m,fx_n_m,"
+               "fz_n_m\n");
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    if (!o.runs(static_cast<int>(i))) continue;
+    const IntrusionRun& run = runs[i];
+    const cases::Plate c = plateOf(run);
+    World w(cases::plateIntrusion(c));
+    const cases::PlateRun p = cases::movePlate(w, c);
+    for (std::size_t k = 0; k < p.depth.size(); ++k)
+      std::fprintf(series, "%g,%g,%g,%g,%g,%.6g,%.6g,%.6g,%.6g\n", run.beta, run.gamma, run.speed,
+                   run.depth, run.h, p.travel[k], p.depth[k], p.fx[k], p.fz[k]);
+    std::fflush(series);
+    // A push: lines F = a + k z over the window, and the exponent of |F| in z there. A drag:
+    // the means over the last half of its 3 L.
+    Real fx = 0, fz = 0, kx = NAN, kz = NAN, ax = NAN, az = NAN, exponent = NAN;
+    char q[128], settings[240];
+    const Real from = cases::plateCovered(c) + 0.01;
+    if (run.gamma > 0) {
+      LineFit lx, lz, log_f;
+      for (std::size_t k = 0; k < p.depth.size(); ++k) {
+        if (p.depth[k] < from) continue;
+        lx.add(p.depth[k], p.fx[k]);
+        lz.add(p.depth[k], p.fz[k]);
+        log_f.add(std::log(p.depth[k]), std::log(std::hypot(p.fx[k], p.fz[k])));
+      }
+      kx = lx.slope(), kz = lz.slope(), ax = lx.intercept(), az = lz.intercept();
+      exponent = log_f.slope();
+      fx = ax + kx * kIntrusionReference;
+      fz = az + kz * kIntrusionReference;
+      std::snprintf(q, sizeof q, "exponent of |F| in z, beta %g, gamma %g, v %g m/s, h %s",
+                    run.beta, run.gamma, run.speed, millimetres(run.h).c_str());
+      std::snprintf(settings, sizeof settings,
+                    "z %.3f-%.3f m: F_x = %.1f + %.0f z, F_z = %.1f + %.0f z (N/m); at z = 6 cm "
+                    "F_x %.1f, F_z %.1f N/m",
+                    from, c.reach, ax, kx, az, kz, fx, fz);
+      r.add("intrusion", q, exponent, 1, "-", "RFT: F = alpha |z| L (Li et al. 2013)", p.seconds,
+            settings, static_cast<long>(p.points), p.steps);
+    } else {
+      int n = 0;
+      for (std::size_t k = 0; k < p.depth.size(); ++k) {
+        if (p.travel[k] < 1.5 * c.length) continue;
+        fx += p.fx[k];
+        fz += p.fz[k];
+        ++n;
+      }
+      fx /= n;
+      fz /= n;
+      std::snprintf(q, sizeof q, "drag force per depth, beta %g, z %.0f cm, h %s", run.beta,
+                    100 * run.depth, millimetres(run.h).c_str());
+      std::snprintf(settings, sizeof settings,
+                    "mean over travel 1.5-3 L: F_x %.2f, F_z %.2f N/m; |F| / (z L) against "
+                    "zeta |alpha_gen| in the fits",
+                    fx, fz);
+      r.add("intrusion", q, std::hypot(fx, fz) / (run.depth * c.length), 0, "N/m^3",
+            "(fitted across runs: intrusion's fits)", p.seconds, settings,
+            static_cast<long>(p.points), p.steps);
+    }
+    // Every digit: the fits read it back (intrusionFits).
+    std::fprintf(table,
+                 "%.17g,%.17g,%.17g,%.17g,%.17g,%zu,%ld,%.4g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
+                 "%.17g\n",
+                 run.beta, run.gamma, run.speed, run.depth, run.h, p.points, p.steps, p.seconds, fx,
+                 fz, kx, kz, ax, az, exponent);
+    std::fflush(table);
+  }
+  std::fclose(table);
+  std::fclose(series);
+}
+
+void intrusionFits(const Options& o, Results& r) {
+  const Table t(o.out + "/intrusion.csv");
+  const std::vector<IntrusionRun> runs = intrusionRunList(o.fast);
+  const Real h0 = runs.front().h, L = cases::Plate().length, rho = 1500;
+  const std::string rft = "RFT, Li et al. 2013: zeta x generic alpha";
+  auto find = [&](const IntrusionRun& run) -> std::size_t {
+    for (std::size_t i = 0; i < t.size(); ++i)
+      if (t.at(i, "beta_deg") == run.beta && t.at(i, "gamma_deg") == run.gamma &&
+          t.at(i, "speed_m_s") == run.speed && t.at(i, "depth_m") == run.depth &&
+          t.at(i, "cell_m") == run.h)
+        return i;
+    throw std::runtime_error("intrusion.csv lacks a run (were all the case's runs gathered?)");
+  };
+  // The measured alphas (N/m^3) at the report's cell and 0.1 m/s, each with RFT's generic one:
+  // pushes from their lines' slopes, drags from the line through their depths per beta.
+  struct Alpha {
+    std::string what;
+    Real beta, gamma, x, z;
+    Real exponent;
+    cases::RftStress generic;
+  };
+  std::vector<Alpha> alphas;
+  std::vector<Real> drag_betas;
+  for (const IntrusionRun& run : runs) {
+    if (run.h != h0 || run.speed != 0.1) continue;
+    const std::size_t i = find(run);
+    if (run.gamma > 0) {
+      alphas.push_back({"pushed", run.beta, run.gamma, -t.at(i, "kx_n_m2") / L,
+                        t.at(i, "kz_n_m2") / L, t.at(i, "exponent"),
+                        cases::rftGeneric(run.beta * M_PI / 180, run.gamma * M_PI / 180)});
+    } else if (std::find(drag_betas.begin(), drag_betas.end(), run.beta) == drag_betas.end()) {
+      drag_betas.push_back(run.beta);
+    }
+  }
+  for (const Real beta : drag_betas) {
+    LineFit lx, lz, log_f;
+    int n = 0;
+    for (const IntrusionRun& run : runs) {
+      if (run.h != h0 || run.gamma != 0 || run.beta != beta) continue;
+      const std::size_t i = find(run);
+      lx.add(run.depth, t.at(i, "fx_n_m"));
+      lz.add(run.depth, t.at(i, "fz_n_m"));
+      log_f.add(std::log(run.depth), std::log(std::hypot(t.at(i, "fx_n_m"), t.at(i, "fz_n_m"))));
+      ++n;
+    }
+    alphas.push_back({"dragged", beta, 0, -lx.slope() / L, lz.slope() / L,
+                      n > 1 ? log_f.slope() : NAN, cases::rftGeneric(beta * M_PI / 180, 0)});
+  }
+  // zeta: least squares over both components of every alpha.
+  Real num = 0, den = 0;
+  for (const Alpha& a : alphas) {
+    num += a.x * a.generic.x + a.z * a.generic.z;
+    den += a.generic.x * a.generic.x + a.generic.z * a.generic.z;
+  }
+  const Real zeta = num / den;
+  Real residual = 0, scale = 0;
+  for (const Alpha& a : alphas) {
+    residual += std::pow(a.x - zeta * a.generic.x, 2) + std::pow(a.z - zeta * a.generic.z, 2);
+    scale += std::pow(zeta * a.generic.x, 2) + std::pow(zeta * a.generic.z, 2);
+  }
+  const Real rms = std::sqrt(residual / (2 * alphas.size()));
+  const Real rms_scale = std::sqrt(scale / (2 * alphas.size()));
+  {
+    char settings[200];
+    std::snprintf(settings, sizeof settings,
+                  "least squares over %zu alphas (x and z) at h %s: rms residual %.0f N/m^3, "
+                  "%.3f of the rms of zeta alpha_gen",
+                  alphas.size(), millimetres(h0).c_str(), rms, rms / rms_scale);
+    r.add("intrusion", "zeta (RFT's scale factor for this sand)", zeta, 0, "-",
+          "fitted: one factor for every angle", 0, settings);
+    r.add("intrusion", "rms residual / rms zeta alpha_gen", rms / rms_scale, 0, "-",
+          "RFT's generic shapes (0 where they hold exactly)", 0, settings);
+  }
+  for (const Alpha& a : alphas) {
+    char q[128], settings[160];
+    std::snprintf(settings, sizeof settings, "%s; generic alpha_x %.3f, alpha_z %.3f N/cm^3",
+                  a.what.c_str(), a.generic.x / 1e6, a.generic.z / 1e6);
+    std::snprintf(q, sizeof q, "alpha_z, beta %g, gamma %g", a.beta, a.gamma);
+    r.add("intrusion", q, a.z, zeta * a.generic.z, "N/m^3", rft, 0, settings);
+    std::snprintf(q, sizeof q, "alpha_x, beta %g, gamma %g", a.beta, a.gamma);
+    r.add("intrusion", q, a.x, zeta * a.generic.x, "N/m^3", rft, 0, settings);
+    if (a.gamma == 0 && std::isfinite(a.exponent)) {
+      std::snprintf(q, sizeof q, "exponent of |F| in z, beta %g dragged", a.beta);
+      r.add("intrusion", q, a.exponent, 1, "-", "RFT: F = alpha |z| L", 0,
+            "the drags' mean forces at their depths");
+    }
+  }
+  // The scale-free ratio: the vertical plate dragged against the horizontal plate pushed down.
+  const Alpha *drag = nullptr, *push = nullptr;
+  for (const Alpha& a : alphas) {
+    if (a.gamma == 0 && a.beta == 90) drag = &a;
+    if (a.gamma == 90 && a.beta == 0) push = &a;
+  }
+  if (drag && push)
+    r.add("intrusion", "alpha_x(beta 90, dragged) / alpha_z(beta 0, pushed down)",
+          drag->x / push->z, drag->generic.x / push->generic.z, "-",
+          "RFT's generic shapes (no zeta)", 0, "");
+  // Speed: the force at 6 cm of the horizontal plate pushed down, F_0 + c v^2 over the speeds.
+  {
+    LineFit fit;
+    std::vector<std::pair<Real, Real>> forces;
+    for (const IntrusionRun& run : runs) {
+      if (run.h != h0 || run.gamma != 90 || run.beta != 0) continue;
+      const Real f = t.at(find(run), "fz_n_m");
+      fit.add(run.speed * run.speed, f);
+      forces.emplace_back(run.speed, f);
+    }
+    if (forces.size() > 1) {
+      const Real lambda = fit.slope() / (rho * L), f0 = fit.intercept();
+      for (const auto& [v, f] : forces) {
+        char q[96], settings[160];
+        std::snprintf(q, sizeof q, "F_z at z 6 cm, beta 0 pushed down, v %g m/s", v);
+        std::snprintf(settings, sizeof settings,
+                      "reference F_0 + rho L v^2 (lambda 1), F_0 = %.1f N/m from the line in v^2; "
+                      "sqrt(v^2 / (g z)) %.2f",
+                      f0, v / std::sqrt(9.81 * kIntrusionReference));
+        r.add("intrusion", q, f, f0 + rho * L * v * v, "N/m", "dynamic RFT (Agarwal et al. 2021)",
+              0, settings);
+      }
+      char settings[160];
+      std::snprintf(settings, sizeof settings,
+                    "F = F_0 + lambda rho L v^2 over %zu speeds (0.1 to %g m/s), rho 1500 kg/m^3, "
+                    "L 5 cm",
+                    forces.size(), forces.back().first);
+      r.add("intrusion", "lambda (the v^2 term's coefficient)", lambda, 1, "-",
+            "dynamic RFT (Agarwal et al. 2021): about 1", 0, settings);
+      // Whether the excess over the slowest push grows as v^2 at all: its exponent in v.
+      LineFit excess;
+      for (const auto& [v, f] : forces)
+        if (v > forces.front().first && f > forces.front().second)
+          excess.add(std::log(v), std::log(f - forces.front().second));
+      if (excess.n >= 2)
+        r.add("intrusion", "exponent of F(v) - F(0.1 m/s) in v", excess.slope(), 2, "-",
+              "dynamic RFT: the excess as v^2", 0, "over the faster speeds");
+    }
+  }
+  // Refinement: the push (beta 0) and the drag (beta 90, 6 cm) at every cell size run.
+  for (const bool dragged : {false, true}) {
+    std::vector<std::pair<Real, Real>> values;  // (h, alpha)
+    for (const IntrusionRun& run : runs) {
+      if (run.speed != 0.1 || (dragged ? run.gamma != 0 || run.beta != 90 || run.depth != 0.06
+                                       : run.gamma != 90 || run.beta != 0))
+        continue;
+      const std::size_t i = find(run);
+      values.emplace_back(run.h,
+                          dragged ? -t.at(i, "fx_n_m") / (run.depth * L) : t.at(i, "kz_n_m2") / L);
+    }
+    if (values.size() < 2) continue;
+    std::sort(values.begin(), values.end(), [](auto a, auto b) { return a.first > b.first; });
+    const cases::RftStress g = cases::rftGeneric(dragged ? M_PI / 2 : 0, dragged ? 0 : M_PI / 2);
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      char q[128], settings[96] = "";
+      std::snprintf(q, sizeof q, "%s, h %s",
+                    dragged ? "alpha_x, beta 90 dragged at 6 cm (F_x / (z L))"
+                            : "alpha_z, beta 0 pushed down (slope / L)",
+                    millimetres(values[k].first).c_str());
+      if (k > 0)
+        std::snprintf(settings, sizeof settings, "%+.1f%% from h %s",
+                      100 * (values[k].second / values[k - 1].second - 1),
+                      millimetres(values[k - 1].first).c_str());
+      r.add("intrusion", q, values[k].second, zeta * (dragged ? g.x : g.z), "N/m^3", rft, 0,
+            settings);
+    }
+  }
+}
+
 }  // namespace mpm_sdem::report::robots
