@@ -693,6 +693,28 @@ void intrusionFits(const Options& o, Results& r) {
     r.add("intrusion", "alpha_x(beta 90, dragged) / alpha_z(beta 0, pushed down)",
           drag->x / push->z, drag->generic.x / push->generic.z, "-",
           "RFT's generic shapes (no zeta)", 0, "");
+  // The horizontal plate pushed down is a strip footing (width B = L) sinking into the layer:
+  // bearing capacity theory gives its force as q B = gamma z N_q B + gamma B^2 N_gamma / 2, a
+  // line in z whose intercept RFT leaves out (significant while z is not large against B).
+  // Prandtl-Reissner's N_q = exp(pi tan phi) tan^2(pi/4 + phi/2) and Meyerhof's N_gamma = (N_q -
+  // 1) tan(1.4 phi), at the sand's flowing in-plane angle (bladeFrictionAngle, 33.0 deg).
+  for (const IntrusionRun& run : runs) {
+    if (run.h != h0 || run.speed != 0.1 || run.gamma != 90 || run.beta != 0) continue;
+    const std::size_t i = find(run);
+    const Real phi = cases::bladeFrictionAngle(cases::Blade());
+    const Real nq = std::exp(M_PI * std::tan(phi)) * std::pow(std::tan(M_PI / 4 + phi / 2), 2);
+    const Real ng = (nq - 1) * std::tan(1.4 * phi), gamma = rho * 9.81;
+    char settings[160];
+    std::snprintf(settings, sizeof settings,
+                  "phi %.1f deg: N_q %.1f, N_gamma %.1f; the push's line F_z = a + k z over its "
+                  "window",
+                  phi * 180 / M_PI, nq, ng);
+    const std::string source = "bearing capacity: Prandtl-Reissner N_q, Meyerhof N_gamma";
+    r.add("intrusion", "slope k of F_z in z, beta 0 pushed down", t.at(i, "kz_n_m2"),
+          gamma * nq * L, "N/m^2", source + " (gamma N_q B)", 0, settings);
+    r.add("intrusion", "intercept a of F_z, beta 0 pushed down", t.at(i, "az_n_m"),
+          0.5 * gamma * L * L * ng, "N/m", source + " (gamma B^2 N_gamma / 2)", 0, settings);
+  }
   // Speed: the force at 6 cm of the horizontal plate pushed down, F_0 + c v^2 over the speeds.
   {
     LineFit fit;
