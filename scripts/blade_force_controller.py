@@ -48,8 +48,10 @@ class BladeForceController:
         """Low-pass the force against the forward motion (-x in the blade's axes)."""
         measured = -msg.wrench.force.x
         t = msg.header.stamp.to_sec()
-        if self.force is None or t <= self.stamp:  # the first, or the clock went back (reset)
+        if self.force is None or t < self.stamp:  # the first, or the clock went back (reset)
             self.force = measured
+        elif t == self.stamp:  # a repeat of the same step's load: nothing new
+            return
         else:
             a = 1.0 - math.exp(-(t - self.stamp) / self.tau)
             self.force += a * (measured - self.force)

@@ -63,6 +63,12 @@ def main():
     rate_hz = rospy.get_param("~rate", 50.0)
     start = rospy.get_param("~start", 0.0)
     waypoints = rospy.get_param("~waypoints", DIG)
+    if not isinstance(waypoints, list) or len(waypoints) < 1 or not all(
+            isinstance(w, list) and len(w) == 4 and
+            all(isinstance(x, (int, float)) for x in w) for w in waypoints):
+        rospy.logfatal("~waypoints: a list of [t s, wrist x m, wrist y m, bucket angle deg], "
+                       "got %r", waypoints)
+        return 1
     for (a, b) in zip(waypoints, waypoints[1:]):
         if not b[0] > a[0]:
             rospy.logfatal("~waypoints: times must increase (%g then %g)", a[0], b[0])

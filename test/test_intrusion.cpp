@@ -30,51 +30,20 @@ TEST(Rft, GenericStressesAreThePublishedSums) {
     EXPECT_NEAR(cases::rftGeneric(beta, M_PI / 2).x, 0.219e6 * std::sin(2 * beta), 1e-6);
 }
 
-namespace {
-
-// The line F = a + k z through a push's samples over its window (cases::plateCovered + 1 cm to
-// the reach), as the report fits it.
-struct Line {
-  double a = 0, k = 0;
-};
-Line pushLine(const cases::Plate& c, const cases::PlateRun& p, bool vertical) {
-  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::size_t i = 0; i < p.depth.size(); ++i) {
-    if (p.depth[i] < cases::plateCovered(c) + 0.01) continue;
-    const double y = vertical ? p.fz[i] : p.fx[i];
-    n += 1, sx += p.depth[i], sy += y, sxx += p.depth[i] * p.depth[i], sxy += p.depth[i] * y;
-  }
-  Line l;
-  l.k = (n * sxy - sx * sy) / (n * sxx - sx * sx);
-  l.a = (sy - l.k * sx) / n;
-  return l;
-}
-
-// A drag's mean horizontal force over the last half of its 3 L (N/m, against the motion).
-double dragResistance(const cases::Plate& c, const cases::PlateRun& p) {
-  double sum = 0;
-  int n = 0;
-  for (std::size_t i = 0; i < p.depth.size(); ++i)
-    if (p.travel[i] >= 1.5 * c.length) sum -= p.fx[i], ++n;
-  return sum / n;
-}
-
-}  // namespace
-
 TEST(Intrusion, PushedPlateIsAStripFootingAndDragsKeepRftsShape) {
   cases::Plate push;
   push.cell_size = 0.01;
   World w(cases::plateIntrusion(push));
-  const Line line = pushLine(push, cases::movePlate(w, push), true);
+  const cases::PlateLines line = cases::pushLines(push, cases::movePlate(w, push));
   const double phi = cases::bladeFrictionAngle(cases::Blade());
-  const double nq = std::exp(M_PI * std::tan(phi)) * std::pow(std::tan(M_PI / 4 + phi / 2), 2);
-  const double ng = (nq - 1) * std::tan(1.4 * phi), gamma = 1500 * 9.81, B = push.length;
-  std::printf("push: F_z = %.0f + %.0f z N/m (bearing capacity: %.0f + %.0f z)\n", line.a, line.k,
+  const cases::BearingFactors f = cases::bearingFactors(phi);
+  const double nq = f.n_q, ng = f.n_gamma, gamma = 1500 * 9.81, B = push.length;
+  std::printf("push: F_z = %.0f + %.0f z N/m (bearing capacity: %.0f + %.0f z)\n", line.az, line.kz,
               0.5 * gamma * B * B * ng, gamma * nq * B);
-  EXPECT_GT(line.k / (gamma * nq * B), 0.95);
-  EXPECT_LT(line.k / (gamma * nq * B), 1.3);
-  EXPECT_GT(line.a / (0.5 * gamma * B * B * ng), 0.8);
-  EXPECT_LT(line.a / (0.5 * gamma * B * B * ng), 2.6);
+  EXPECT_GT(line.kz / (gamma * nq * B), 0.95);
+  EXPECT_LT(line.kz / (gamma * nq * B), 1.3);
+  EXPECT_GT(line.az / (0.5 * gamma * B * B * ng), 0.8);
+  EXPECT_LT(line.az / (0.5 * gamma * B * B * ng), 2.6);
 
   double drag[2];
   for (int k = 0; k < 2; ++k) {
@@ -84,9 +53,9 @@ TEST(Intrusion, PushedPlateIsAStripFootingAndDragsKeepRftsShape) {
     c.direction = 0;
     c.depth = k == 0 ? 0.04 : 0.08;
     World wd(cases::plateIntrusion(c));
-    drag[k] = dragResistance(c, cases::movePlate(wd, c));
+    drag[k] = -cases::dragMean(c, cases::movePlate(wd, c)).x();
   }
-  const double alpha_drag = drag[1] / (0.08 * 0.05), alpha_push = line.k / 0.05;
+  const double alpha_drag = drag[1] / (0.08 * 0.05), alpha_push = line.kz / 0.05;
   std::printf(
       "drag: %.1f N/m at 4 cm, %.1f at 8 cm; alpha_x(90, drag) / alpha_z(0, push) %.3f "
       "(generic %.3f)\n",

@@ -562,6 +562,23 @@ struct PlateRun {
 PlateRun movePlate(World& w, const Plate& c);
 // The depth below the surface at which the plate is just covered: L |sin beta| / 2 + t / 2 (m).
 Real plateCovered(const Plate& c);
+// A push's forces as lines F = a + k z in the centre's depth (least squares over z from
+// plateCovered + 1 cm to the reach; RFT has a = 0), and the exponent of |F| in z there.
+struct PlateLines {
+  Real ax = 0, kx = 0, az = 0, kz = 0;  // N/m, N/m^2
+  Real exponent = 0;
+};
+PlateLines pushLines(const Plate& c, const PlateRun& p);
+// A drag's mean forces over the last half of its 3 L (N/m: x along +x, z upwards).
+Vec2 dragMean(const Plate& c, const PlateRun& p);
+// Bearing capacity factors of a strip footing in plane strain for friction angle phi (rad):
+// Prandtl-Reissner's N_q = exp(pi tan phi) tan^2(pi/4 + phi/2) (exact for a weightless
+// rigid-plastic soil) and Meyerhof's N_gamma = (N_q - 1) tan(1.4 phi). A footing of width B at
+// depth z bears q B = gamma z N_q B + gamma B^2 N_gamma / 2 per metre.
+struct BearingFactors {
+  Real n_q = 0, n_gamma = 0;
+};
+BearingFactors bearingFactors(Real phi);
 // RFT's generic stresses per unit depth (Li et al. 2013, eq. S2-S3: the first terms of a Fourier
 // series in 2 beta and gamma, fitted to nine media; N/cm^3 = 1e6 N/m^3, to be scaled by one
 // factor zeta per medium): alpha_z upwards, alpha_x against the motion's +x (a plate moving in

@@ -440,6 +440,44 @@ PlateRun movePlate(World& w, const Plate& c) {
   return out;
 }
 
+namespace {
+
+// Least squares y = a + k x.
+struct Line {
+  Real n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  void add(Real x, Real y) { n += 1, sx += x, sy += y, sxx += x * x, sxy += x * y; }
+  Real slope() const { return (n * sxy - sx * sy) / (n * sxx - sx * sx); }
+  Real intercept() const { return (sy - slope() * sx) / n; }
+};
+
+}  // namespace
+
+PlateLines pushLines(const Plate& c, const PlateRun& p) {
+  Line x, z, log_f;
+  for (std::size_t k = 0; k < p.depth.size(); ++k) {
+    if (p.depth[k] < plateCovered(c) + 0.01) continue;
+    x.add(p.depth[k], p.fx[k]);
+    z.add(p.depth[k], p.fz[k]);
+    log_f.add(std::log(p.depth[k]), std::log(std::hypot(p.fx[k], p.fz[k])));
+  }
+  return {x.intercept(), x.slope(), z.intercept(), z.slope(), log_f.slope()};
+}
+
+Vec2 dragMean(const Plate& c, const PlateRun& p) {
+  Vec2 sum(0, 0);
+  int n = 0;
+  for (std::size_t k = 0; k < p.depth.size(); ++k)
+    if (p.travel[k] >= 1.5 * c.length) sum += Vec2(p.fx[k], p.fz[k]), ++n;
+  return sum / n;
+}
+
+BearingFactors bearingFactors(Real phi) {
+  BearingFactors f;
+  f.n_q = std::exp(M_PI * std::tan(phi)) * std::pow(std::tan(M_PI / 4 + phi / 2), 2);
+  f.n_gamma = (f.n_q - 1) * std::tan(1.4 * phi);
+  return f;
+}
+
 RftStress rftGeneric(Real beta, Real gamma) {
   // Li et al. 2013's generic coefficients (N/cm^3): A00, A10, B11, B01, B-11 for alpha_z and
   // C11, C01, C-11, D10 for alpha_x, the terms of sum_mn [A_mn cos(2 m beta + n gamma) + B_mn

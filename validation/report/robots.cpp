@@ -545,15 +545,8 @@ void intrusion(const Options& o, Results& r) {
     char q[128], settings[240];
     const Real from = cases::plateCovered(c) + 0.01;
     if (run.gamma > 0) {
-      LineFit lx, lz, log_f;
-      for (std::size_t k = 0; k < p.depth.size(); ++k) {
-        if (p.depth[k] < from) continue;
-        lx.add(p.depth[k], p.fx[k]);
-        lz.add(p.depth[k], p.fz[k]);
-        log_f.add(std::log(p.depth[k]), std::log(std::hypot(p.fx[k], p.fz[k])));
-      }
-      kx = lx.slope(), kz = lz.slope(), ax = lx.intercept(), az = lz.intercept();
-      exponent = log_f.slope();
+      const cases::PlateLines l = cases::pushLines(c, p);
+      kx = l.kx, kz = l.kz, ax = l.ax, az = l.az, exponent = l.exponent;
       fx = ax + kx * kIntrusionReference;
       fz = az + kz * kIntrusionReference;
       std::snprintf(q, sizeof q, "exponent of |F| in z, beta %g, gamma %g, v %g m/s, h %s",
@@ -565,15 +558,8 @@ void intrusion(const Options& o, Results& r) {
       r.add("intrusion", q, exponent, 1, "-", "RFT: F = alpha |z| L (Li et al. 2013)", p.seconds,
             settings, static_cast<long>(p.points), p.steps);
     } else {
-      int n = 0;
-      for (std::size_t k = 0; k < p.depth.size(); ++k) {
-        if (p.travel[k] < 1.5 * c.length) continue;
-        fx += p.fx[k];
-        fz += p.fz[k];
-        ++n;
-      }
-      fx /= n;
-      fz /= n;
+      const Vec2 mean = cases::dragMean(c, p);
+      fx = mean.x(), fz = mean.y();
       std::snprintf(q, sizeof q, "drag force per depth, beta %g, z %.0f cm, h %s", run.beta,
                     100 * run.depth, millimetres(run.h).c_str());
       std::snprintf(settings, sizeof settings,
@@ -696,14 +682,13 @@ void intrusionFits(const Options& o, Results& r) {
   // The horizontal plate pushed down is a strip footing (width B = L) sinking into the layer:
   // bearing capacity theory gives its force as q B = gamma z N_q B + gamma B^2 N_gamma / 2, a
   // line in z whose intercept RFT leaves out (significant while z is not large against B).
-  // Prandtl-Reissner's N_q = exp(pi tan phi) tan^2(pi/4 + phi/2) and Meyerhof's N_gamma = (N_q -
-  // 1) tan(1.4 phi), at the sand's flowing in-plane angle (bladeFrictionAngle, 33.0 deg).
+  // cases::bearingFactors at the sand's flowing in-plane angle (bladeFrictionAngle, 33.0 deg).
   for (const IntrusionRun& run : runs) {
     if (run.h != h0 || run.speed != 0.1 || run.gamma != 90 || run.beta != 0) continue;
     const std::size_t i = find(run);
     const Real phi = cases::bladeFrictionAngle(cases::Blade());
-    const Real nq = std::exp(M_PI * std::tan(phi)) * std::pow(std::tan(M_PI / 4 + phi / 2), 2);
-    const Real ng = (nq - 1) * std::tan(1.4 * phi), gamma = rho * 9.81;
+    const cases::BearingFactors f = cases::bearingFactors(phi);
+    const Real nq = f.n_q, ng = f.n_gamma, gamma = rho * 9.81;
     char settings[160];
     std::snprintf(settings, sizeof settings,
                   "phi %.1f deg: N_q %.1f, N_gamma %.1f; the push's line F_z = a + k z over its "
