@@ -46,11 +46,16 @@ Solid solidOf(const urdf::Geometry& g, const std::string& link, const MeshPath& 
     case urdf::Geometry::MESH: {
       const auto& mesh = static_cast<const urdf::Mesh&>(g);
       s.kind = Solid::Kind::kConvex;
+      std::string file;
       try {
-        s.corners = meshHullCorners(mesh_path(mesh.filename),
-                                    Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z));
+        file = mesh_path(mesh.filename);
+        s.corners =
+            meshHullCorners(file, Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z));
       } catch (const std::exception& e) {  // RobotError from mesh_path, runtime_error
-        throw RobotError("link '" + link + "': its collision " + e.what());
+        // The URI as the description writes it, when it named another file.
+        const std::string uri =
+            file.empty() || file == mesh.filename ? "" : "(" + mesh.filename + ") ";
+        throw RobotError("link '" + link + "': its collision " + uri + e.what());
       }
       return s;
     }

@@ -343,7 +343,7 @@ TEST(Requests, BadParametersStopTheNodeBeforeItSimulates) {
       {"robot_links=[bare] _robot_description_file:=" + tool,
        "link 'bare' has no collision geometry"},
       {"robot_links=[mesh] _robot_description_file:=" + tool,
-       "mpm_sdem/none.stl' cannot be opened (no such file?)"},
+       "link 'mesh': its collision (package://mpm_sdem/none.stl) mesh '"},
       {"robot_links=[elsewhere] _robot_description_file:=" + tool,
        "link 'elsewhere': its collision mesh 'package://no_such_package/m.stl' is in package "
        "'no_such_package', which is not on the ROS package path"},
