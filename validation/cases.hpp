@@ -460,6 +460,19 @@ struct BladeForce {
   Real vertical = 0;                // N/m
 };
 BladeForce bladeForce(const BladePush& p, Real depth, Real from = 0.05, Real to = 0.3);
+// Least-squares line y = a + b x through the points added.
+struct LineFit {
+  Real n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  void add(Real x, Real y) {
+    n += 1;
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+  }
+  Real slope() const { return (n * sxy - sx * sy) / (n * sxx - sx * sx); }
+  Real intercept() const { return (sy - slope() * sx) / n; }
+};
 // A power law y = A x^k fitted by weighted least squares to log y against log x (weights from
 // the relative errors y_error / y): the exponent k and its standard error.
 struct PowerLaw {

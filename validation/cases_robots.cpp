@@ -364,15 +364,10 @@ WorldDef plateIntrusion(const Plate& c) {
   def.cell_size = h;
   Blade sand;  // the blade's sand
   def.materials.push_back(bladeSand(sand));
-  BlockDef plate;
-  plate.name = "plate";
-  plate.type = BodyType::kKinematic;
-  plate.position = plateStart(c);
+  // A kinematic block's mass is not used.
+  BlockDef plate = boxBlock("plate", plateStart(c), c.length, c.thickness, c.rounding,
+                            BodyType::kKinematic, 7850);
   plate.angle = c.angle * M_PI / 180;
-  const Real a = c.rounding, hl = 0.5 * c.length - a, ht = 0.5 * c.thickness - a;
-  plate.core = {Vec2(-hl, -ht), Vec2(hl, -ht), Vec2(hl, ht), Vec2(-hl, ht)};
-  plate.rounding = a;
-  plate.density = 7850;  // a kinematic block's mass is not used
   plate.friction = c.friction;
   def.blocks.push_back(plate);
   BodyDef bed;
@@ -440,20 +435,8 @@ PlateRun movePlate(World& w, const Plate& c) {
   return out;
 }
 
-namespace {
-
-// Least squares y = a + k x.
-struct Line {
-  Real n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
-  void add(Real x, Real y) { n += 1, sx += x, sy += y, sxx += x * x, sxy += x * y; }
-  Real slope() const { return (n * sxy - sx * sy) / (n * sxx - sx * sx); }
-  Real intercept() const { return (sy - slope() * sx) / n; }
-};
-
-}  // namespace
-
 PlateLines pushLines(const Plate& c, const PlateRun& p) {
-  Line x, z, log_f;
+  LineFit x, z, log_f;
   for (std::size_t k = 0; k < p.depth.size(); ++k) {
     if (p.depth[k] < plateCovered(c) + 0.01) continue;
     x.add(p.depth[k], p.fx[k]);

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "cases.hpp"
 #include "mpm_sdem/core/coupling/coupling.hpp"
 #include "mpm_sdem/core/types.hpp"
 
@@ -111,19 +112,8 @@ inline double seconds(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Least-squares line y = a + b x through the points added.
-struct LineFit {
-  Real n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
-  void add(Real x, Real y) {
-    n += 1;
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-  }
-  Real slope() const { return (n * sxy - sx * sy) / (n * sxx - sx * sx); }
-  Real intercept() const { return (sy - slope() * sx) / n; }
-};
+// The least-squares line of the cases (cases.hpp), for the fits across runs.
+using cases::LineFit;
 
 namespace contact {
 void collision(const Options& o, Results& r);
