@@ -560,6 +560,12 @@ struct Plate {
   Real cell_size = 0.005;  // m
   Real bed = 0.2;          // the layer's depth (m)
   Real width = 0.5;        // the domain's (m)
+  // The medium and the solver: the blade's sand at phi (deg; 0: no shear strength, a fluid
+  // that carries pressure only), under gravity g (m/s^2, downwards; 0: no weight, so that
+  // nothing but inertia loads the plate), with the points' velocities by `transfer`.
+  Real friction_angle = 35;
+  Real gravity = 9.81;
+  TransferScheme transfer = TransferScheme::kApic;
 };
 WorldDef plateIntrusion(const Plate& c);
 // The plate's motion: for gamma > 0 from its start along gamma until its centre is `reach` deep;
@@ -584,6 +590,10 @@ struct PlateLines {
 PlateLines pushLines(const Plate& c, const PlateRun& p);
 // A drag's mean forces over the last half of its 3 L (N/m: x along +x, z upwards).
 Vec2 dragMean(const Plate& c, const PlateRun& p);
+// A push's mean forces over pushLines' window (N/m). Where the force is not a line in z (a
+// fast push rings with the layer's waves: 4,500 N/m of rho c v L against 300 of rho L v^2 at
+// 2 m/s), the mean over the window's several round trips of the wave is the robust measure.
+Vec2 pushMean(const Plate& c, const PlateRun& p);
 // Bearing capacity factors of a strip footing in plane strain for friction angle phi (rad):
 // Prandtl-Reissner's N_q = exp(pi tan phi) tan^2(pi/4 + phi/2) (exact for a weightless
 // rigid-plastic soil) and Meyerhof's N_gamma = (N_q - 1) tan(1.4 phi). A footing of width B at

@@ -362,7 +362,10 @@ WorldDef plateIntrusion(const Plate& c) {
   def.domain.max = Vec2(std::round(c.width / h) * h, std::round((c.bed + c.length + 0.05) / h) * h);
   def.domain.bottom.type = WallType::kSticky;
   def.cell_size = h;
+  def.solver.gravity = Vec2(0, -c.gravity);
+  def.solver.transfer = c.transfer;
   Blade sand;  // the blade's sand
+  sand.friction_angle = c.friction_angle;
   def.materials.push_back(bladeSand(sand));
   // A kinematic block's mass is not used.
   BlockDef plate = boxBlock("plate", plateStart(c), c.length, c.thickness, c.rounding,
@@ -444,6 +447,14 @@ PlateLines pushLines(const Plate& c, const PlateRun& p) {
     log_f.add(std::log(p.depth[k]), std::log(std::hypot(p.fx[k], p.fz[k])));
   }
   return {x.intercept(), x.slope(), z.intercept(), z.slope(), log_f.slope()};
+}
+
+Vec2 pushMean(const Plate& c, const PlateRun& p) {
+  Vec2 sum(0, 0);
+  int n = 0;
+  for (std::size_t k = 0; k < p.depth.size(); ++k)
+    if (p.depth[k] >= plateCovered(c) + 0.01) sum += Vec2(p.fx[k], p.fz[k]), ++n;
+  return sum / n;
 }
 
 Vec2 dragMean(const Plate& c, const PlateRun& p) {

@@ -83,6 +83,8 @@ const std::vector<Case>& allCases() {
       {"blade_granular", report::robots::bladeGranular},
       {"intrusion", report::robots::intrusion, report::robots::intrusionRuns,
        report::robots::intrusionFits},
+      {"intrusion_transfer", report::robots::intrusionTransfer,
+       report::robots::intrusionTransferRuns, report::robots::intrusionTransferFits},
       {"stability", report::hard_cases::stability}};
   return all;
 }

@@ -171,6 +171,9 @@ void bladeGranular(const Options& o, Results& r);
 void intrusion(const Options& o, Results& r);
 int intrusionRuns(bool fast);
 void intrusionFits(const Options& o, Results& r);
+void intrusionTransfer(const Options& o, Results& r);
+int intrusionTransferRuns(bool fast);
+void intrusionTransferFits(const Options& o, Results& r);
 }  // namespace robots
 
 }  // namespace mpm_sdem::report

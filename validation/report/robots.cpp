@@ -476,6 +476,8 @@ namespace {
 
 struct IntrusionRun {
   Real beta, gamma, speed, depth, h;  // deg, deg, m/s, m (drags), m
+  TransferScheme transfer = TransferScheme::kApic;
+  Real g = 9.81, phi = 35;  // m/s^2; the sand's friction angle (deg)
 };
 
 constexpr Real kIntrusionReference = 0.06;  // m: the depth at which speeds are compared
@@ -510,6 +512,9 @@ cases::Plate plateOf(const IntrusionRun& run) {
   c.speed = run.speed;
   c.depth = run.depth;
   c.cell_size = run.h;
+  c.transfer = run.transfer;
+  c.gravity = run.g;
+  c.friction_angle = run.phi;
   return c;
 }
 
@@ -519,67 +524,103 @@ int intrusionRuns(bool fast) {
   return static_cast<int>(intrusionRunList(fast).size());
 }
 
-void intrusion(const Options& o, Results& r) {
-  const std::vector<IntrusionRun> runs = intrusionRunList(o.fast);
-  FILE* table = std::fopen((o.out + "/intrusion.csv").c_str(), "w");
-  FILE* series = std::fopen((o.out + "/intrusion_series.csv").c_str(), "w");
+namespace {
+
+// One run of a list: the plate moved, its series written, its result added to `r` under
+// `name`, and its row (every digit: the fits read it back) written to `table`. `medium`: the
+// run's transfer, gravity and friction angle as three more columns (intrusion_transfer's).
+void intrusionRun(const IntrusionRun& run, const std::string& name, bool medium, FILE* table,
+                  FILE* series, Results& r) {
+  const cases::Plate c = plateOf(run);
+  World w(cases::plateIntrusion(c));
+  const cases::PlateRun p = cases::movePlate(w, c);
+  const bool asflip = run.transfer == TransferScheme::kAsflip;
+  for (std::size_t k = 0; k < p.depth.size(); ++k) {
+    std::fprintf(series, "%g,%g,%g,%g,%g,%.6g,%.6g,%.6g,%.6g", run.beta, run.gamma, run.speed,
+                 run.depth, run.h, p.travel[k], p.depth[k], p.fx[k], p.fz[k]);
+    if (medium) std::fprintf(series, ",%d,%g,%g", asflip, run.g, run.phi);
+    std::fprintf(series, "\n");
+  }
+  std::fflush(series);
+  // A push: lines F = a + k z over the window, and the exponent of |F| in z there. A drag:
+  // the means over the last half of its 3 L.
+  Real fx = 0, fz = 0, kx = NAN, kz = NAN, ax = NAN, az = NAN, exponent = NAN;
+  char q[160], settings[240];
+  const std::string medium_name =
+      medium ? std::string(asflip ? ", ASFLIP" : ", APIC") + (run.g > 0 ? "" : ", no gravity") +
+                   (run.phi == 35 ? "" : ", phi " + std::to_string(std::lround(run.phi)))
+             : "";
+  const Real from = cases::plateCovered(c) + 0.01;
+  if (run.gamma > 0 && run.g == 0) {  // inertia alone: the window's mean (the fits' lambda_0)
+    const Vec2 mean = cases::pushMean(c, p);
+    fz = mean.y();
+    std::snprintf(q, sizeof q, "mean F_z over z %.3f-%.3f m, v %g m/s, h %s%s", from, c.reach,
+                  run.speed, millimetres(run.h).c_str(), medium_name.c_str());
+    r.add(name, q, fz, 0, "N/m", "(lambda_0 in the case's fits)", p.seconds, "",
+          static_cast<long>(p.points), p.steps);
+  } else if (run.gamma > 0) {
+    const cases::PlateLines l = cases::pushLines(c, p);
+    kx = l.kx, kz = l.kz, ax = l.ax, az = l.az, exponent = l.exponent;
+    fx = ax + kx * kIntrusionReference;
+    fz = az + kz * kIntrusionReference;
+    std::snprintf(q, sizeof q, "exponent of |F| in z, beta %g, gamma %g, v %g m/s, h %s%s",
+                  run.beta, run.gamma, run.speed, millimetres(run.h).c_str(), medium_name.c_str());
+    std::snprintf(settings, sizeof settings,
+                  "z %.3f-%.3f m: F_x = %.1f + %.0f z, F_z = %.1f + %.0f z (N/m); at z = 6 cm "
+                  "F_x %.1f, F_z %.1f N/m",
+                  from, c.reach, ax, kx, az, kz, fx, fz);
+    r.add(name, q, exponent, 1, "-", "RFT: F = alpha |z| L (Li et al. 2013)", p.seconds, settings,
+          static_cast<long>(p.points), p.steps);
+  } else {
+    const Vec2 mean = cases::dragMean(c, p);
+    fx = mean.x(), fz = mean.y();
+    std::snprintf(q, sizeof q, "drag force per depth, beta %g, z %.0f cm, h %s%s", run.beta,
+                  100 * run.depth, millimetres(run.h).c_str(), medium_name.c_str());
+    std::snprintf(settings, sizeof settings,
+                  "mean over travel 1.5-3 L: F_x %.2f, F_z %.2f N/m; |F| / (z L) against "
+                  "zeta |alpha_gen| in the fits",
+                  fx, fz);
+    r.add(name, q, std::hypot(fx, fz) / (run.depth * c.length), 0, "N/m^3",
+          "(fitted across runs: " + name + "'s fits)", p.seconds, settings,
+          static_cast<long>(p.points), p.steps);
+  }
+  std::fprintf(table,
+               "%.17g,%.17g,%.17g,%.17g,%.17g,%zu,%ld,%.4g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
+               "%.17g",
+               run.beta, run.gamma, run.speed, run.depth, run.h, p.points, p.steps, p.seconds, fx,
+               fz, kx, kz, ax, az, exponent);
+  if (medium) {
+    const Vec2 mean = run.gamma > 0 ? cases::pushMean(c, p) : Vec2(fx, fz);
+    std::fprintf(table, ",%d,%.17g,%.17g,%.17g,%.17g", asflip, run.g, run.phi, mean.x(), mean.y());
+  }
+  std::fprintf(table, "\n");
+  std::fflush(table);
+}
+
+// The runs of `list` that `o` selects, into <out>/<name>.csv and <name>_series.csv.
+void runIntrusionList(const Options& o, Results& r, const std::vector<IntrusionRun>& list,
+                      const std::string& name, bool medium) {
+  FILE* table = std::fopen((o.out + "/" + name + ".csv").c_str(), "w");
+  FILE* series = std::fopen((o.out + "/" + name + "_series.csv").c_str(), "w");
+  const char* columns = medium ? ",asflip,gravity_m_s2,phi_deg,mean_fx_n_m,mean_fz_n_m\n" : "\n";
   std::fprintf(table,
                "beta_deg,gamma_deg,speed_m_s,depth_m,cell_m,points,steps,wall_s,fx_n_m,fz_n_m,"
-               "kx_n_m2,kz_n_m2,ax_n_m,az_n_m,exponent\n");
+               "kx_n_m2,kz_n_m2,ax_n_m,az_n_m,exponent%s",
+               columns);
   std::fprintf(series,
                "beta_deg,gamma_deg,speed_m_s,depth_set_m,cell_m,travel_m,depth_m,fx_n_m,"
-               "fz_n_m\n");
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    if (!o.runs(static_cast<int>(i))) continue;
-    const IntrusionRun& run = runs[i];
-    const cases::Plate c = plateOf(run);
-    World w(cases::plateIntrusion(c));
-    const cases::PlateRun p = cases::movePlate(w, c);
-    for (std::size_t k = 0; k < p.depth.size(); ++k)
-      std::fprintf(series, "%g,%g,%g,%g,%g,%.6g,%.6g,%.6g,%.6g\n", run.beta, run.gamma, run.speed,
-                   run.depth, run.h, p.travel[k], p.depth[k], p.fx[k], p.fz[k]);
-    std::fflush(series);
-    // A push: lines F = a + k z over the window, and the exponent of |F| in z there. A drag:
-    // the means over the last half of its 3 L.
-    Real fx = 0, fz = 0, kx = NAN, kz = NAN, ax = NAN, az = NAN, exponent = NAN;
-    char q[128], settings[240];
-    const Real from = cases::plateCovered(c) + 0.01;
-    if (run.gamma > 0) {
-      const cases::PlateLines l = cases::pushLines(c, p);
-      kx = l.kx, kz = l.kz, ax = l.ax, az = l.az, exponent = l.exponent;
-      fx = ax + kx * kIntrusionReference;
-      fz = az + kz * kIntrusionReference;
-      std::snprintf(q, sizeof q, "exponent of |F| in z, beta %g, gamma %g, v %g m/s, h %s",
-                    run.beta, run.gamma, run.speed, millimetres(run.h).c_str());
-      std::snprintf(settings, sizeof settings,
-                    "z %.3f-%.3f m: F_x = %.1f + %.0f z, F_z = %.1f + %.0f z (N/m); at z = 6 cm "
-                    "F_x %.1f, F_z %.1f N/m",
-                    from, c.reach, ax, kx, az, kz, fx, fz);
-      r.add("intrusion", q, exponent, 1, "-", "RFT: F = alpha |z| L (Li et al. 2013)", p.seconds,
-            settings, static_cast<long>(p.points), p.steps);
-    } else {
-      const Vec2 mean = cases::dragMean(c, p);
-      fx = mean.x(), fz = mean.y();
-      std::snprintf(q, sizeof q, "drag force per depth, beta %g, z %.0f cm, h %s", run.beta,
-                    100 * run.depth, millimetres(run.h).c_str());
-      std::snprintf(settings, sizeof settings,
-                    "mean over travel 1.5-3 L: F_x %.2f, F_z %.2f N/m; |F| / (z L) against "
-                    "zeta |alpha_gen| in the fits",
-                    fx, fz);
-      r.add("intrusion", q, std::hypot(fx, fz) / (run.depth * c.length), 0, "N/m^3",
-            "(fitted across runs: intrusion's fits)", p.seconds, settings,
-            static_cast<long>(p.points), p.steps);
-    }
-    // Every digit: the fits read it back (intrusionFits).
-    std::fprintf(table,
-                 "%.17g,%.17g,%.17g,%.17g,%.17g,%zu,%ld,%.4g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
-                 "%.17g\n",
-                 run.beta, run.gamma, run.speed, run.depth, run.h, p.points, p.steps, p.seconds, fx,
-                 fz, kx, kz, ax, az, exponent);
-    std::fflush(table);
-  }
+               "fz_n_m%s",
+               medium ? ",asflip,gravity_m_s2,phi_deg\n" : "\n");
+  for (std::size_t i = 0; i < list.size(); ++i)
+    if (o.runs(static_cast<int>(i))) intrusionRun(list[i], name, medium, table, series, r);
   std::fclose(table);
   std::fclose(series);
+}
+
+}  // namespace
+
+void intrusion(const Options& o, Results& r) {
+  runIntrusionList(o, r, intrusionRunList(o.fast), "intrusion", false);
 }
 
 void intrusionFits(const Options& o, Results& r) {
@@ -765,6 +806,126 @@ void intrusionFits(const Options& o, Results& r) {
                       millimetres(values[k - 1].first).c_str());
       r.add("intrusion", q, values[k].second, zeta * (dragged ? g.x : g.z), "N/m^3", rft, 0,
             settings);
+    }
+  }
+}
+
+// Issue 44: what the intrusion case's forces owe to the transfer, and the v^2 term alone. The
+// horizontal plate pushed down (as intrusion's), its force the mean over the push's window z =
+// 1.25-9 cm (cases::pushMean: a fast push rings with the layer's waves), at 1 cm and 5 mm with
+// APIC and with ASFLIP:
+// - at 0.1, 1 and 2 m/s in the sand under gravity: lambda from the excess over 0.1 m/s;
+// - without gravity, so that nothing but inertia loads the plate (in a rigid medium F = lambda_0
+//   rho L v^2, lambda_0 fixed by the medium's friction and the shape: there is no other stress
+//   scale), at 1 and 2 m/s, in the sand and in a medium without shear strength (phi 0: the
+//   points carry pressure only). A plate that gives the material it sweeps its own speed feels
+//   rho L v^2 (lambda_0 = 1, dynamic RFT's inertial term); a steady plate with an open cavity in
+//   an ideal fluid C_d / 2 = pi / (pi + 4) = 0.44 (Kirchhoff);
+// - the slow push and the vertical plate's drag at 6 cm: APIC loses at every transfer the part
+//   of a point's velocity that departs from the affine field (docs/method.md, Transfers), a drag
+//   on the shear bands per step, and the step is the sand's wave's, so it does not vanish at
+//   0.1 m/s: ASFLIP against APIC at the same cell and at half of it.
+// --fast: 1 cm cells, without gravity: phi 0 at 1 and 2 m/s with both transfers, the sand at
+// 1 m/s with ASFLIP.
+namespace {
+
+std::vector<IntrusionRun> intrusionTransferRunList(bool fast) {
+  constexpr TransferScheme apic = TransferScheme::kApic, asflip = TransferScheme::kAsflip;
+  std::vector<IntrusionRun> runs;
+  if (fast) {
+    for (TransferScheme transfer : {apic, asflip})
+      for (Real v : {1.0, 2.0}) runs.push_back({0, 90, v, 0, 0.01, transfer, 0, 0});
+    runs.push_back({0, 90, 1.0, 0, 0.01, asflip, 0, 35});
+    return runs;
+  }
+  for (Real h : {0.01, 0.005})
+    for (TransferScheme transfer : {apic, asflip}) {
+      for (Real v : {0.1, 1.0, 2.0}) runs.push_back({0, 90, v, 0, h, transfer});
+      for (Real phi : {0.0, 35.0})
+        for (Real v : {1.0, 2.0}) runs.push_back({0, 90, v, 0, h, transfer, 0, phi});
+      runs.push_back({90, 0, 0.1, 0.06, h, transfer});
+    }
+  // APIC's approach to ASFLIP's lambda_0 without strength (ASFLIP's points there expand
+  // without bound at 2.5 mm: 97,515 steps for one push; docs/method.md, Transfers).
+  for (Real v : {1.0, 2.0}) runs.push_back({0, 90, v, 0, 0.0025, apic, 0, 0});
+  return runs;
+}
+
+}  // namespace
+
+int intrusionTransferRuns(bool fast) {
+  return static_cast<int>(intrusionTransferRunList(fast).size());
+}
+
+void intrusionTransfer(const Options& o, Results& r) {
+  runIntrusionList(o, r, intrusionTransferRunList(o.fast), "intrusion_transfer", true);
+}
+
+void intrusionTransferFits(const Options& o, Results& r) {
+  const std::string name = "intrusion_transfer";
+  const Table t(o.out + "/" + name + ".csv");
+  const std::vector<IntrusionRun> runs = intrusionTransferRunList(o.fast);
+  const Real L = cases::Plate().length, rho = 1500;
+  auto find = [&](const IntrusionRun& run) -> std::size_t {
+    const bool asflip = run.transfer == TransferScheme::kAsflip;
+    for (std::size_t i = 0; i < t.size(); ++i)
+      if (t.at(i, "beta_deg") == run.beta && t.at(i, "gamma_deg") == run.gamma &&
+          t.at(i, "speed_m_s") == run.speed && t.at(i, "depth_m") == run.depth &&
+          t.at(i, "cell_m") == run.h && t.at(i, "asflip") == asflip &&
+          t.at(i, "gravity_m_s2") == run.g && t.at(i, "phi_deg") == run.phi)
+        return i;
+    throw std::runtime_error(name + ".csv lacks a run (were all the case's runs gathered?)");
+  };
+  auto label = [](const IntrusionRun& run) {
+    return std::string(run.transfer == TransferScheme::kAsflip ? "ASFLIP" : "APIC") + ", h " +
+           millimetres(run.h);
+  };
+  auto same = [](IntrusionRun a, Real speed, TransferScheme transfer, Real h) {
+    a.speed = speed, a.transfer = transfer, a.h = h;
+    return a;
+  };
+  for (const IntrusionRun& run : runs) {
+    const std::size_t i = find(run);
+    const Real f = t.at(i, "mean_fz_n_m"), v = run.speed;
+    char q[160], settings[200];
+    if (run.g == 0) {  // inertia alone
+      std::snprintf(q, sizeof q, "lambda_0 = F_z / (rho L v^2), no gravity, phi %g, v %g m/s, %s",
+                    run.phi, v, label(run).c_str());
+      std::snprintf(settings, sizeof settings,
+                    "mean F_z %.1f N/m over z 1.25-9 cm; a steady plate with an open cavity in "
+                    "an ideal fluid: 0.44 (Kirchhoff)",
+                    f);
+      r.add(name, q, f / (rho * L * v * v), 1, "-",
+            "the swept material given the plate's speed: 1; dynamic RFT: about 1", 0, settings);
+    } else if (run.gamma > 0 && v > 0.1) {  // the excess over the slow push
+      const Real slow = t.at(find(same(run, 0.1, run.transfer, run.h)), "mean_fz_n_m");
+      std::snprintf(q, sizeof q, "lambda = (F_z(v) - F_z(0.1 m/s)) / (rho L v^2), v %g m/s, %s", v,
+                    label(run).c_str());
+      std::snprintf(settings, sizeof settings,
+                    "mean F_z over z 1.25-9 cm: %.1f N/m, %.1f at 0.1 m/s; sqrt(v^2 / (g z)) at "
+                    "z 6 cm: %.2f",
+                    f, slow, v / std::sqrt(9.81 * kIntrusionReference));
+      r.add(name, q, (f - slow) / (rho * L * v * v), 1, "-",
+            "dynamic RFT (Agarwal et al. 2021): about 1", 0, settings);
+    } else if (run.transfer == TransferScheme::kAsflip) {  // slow: against APIC at h and h / 2
+      const bool drag = run.gamma == 0;
+      const std::string column = drag ? "mean_fx_n_m" : "mean_fz_n_m";
+      const Real apic = t.at(find(same(run, v, TransferScheme::kApic, run.h)), column);
+      std::snprintf(q, sizeof q, "%s, ASFLIP / APIC at the same cell, h %s",
+                    drag ? "drag F_x, beta 90 at 6 cm" : "mean F_z pushed down at 0.1 m/s",
+                    millimetres(run.h).c_str());
+      std::snprintf(settings, sizeof settings, "ASFLIP %.1f, APIC %.1f N/m", t.at(i, column), apic);
+      r.add(name, q, t.at(i, column) / apic, 1, "-", "a transfer that loses nothing: 1 as h -> 0",
+            0, settings);
+      if (run.h > 0.006) {
+        const Real apic_half = t.at(find(same(run, v, TransferScheme::kApic, run.h / 2)), column);
+        std::snprintf(q, sizeof q, "%s, ASFLIP at h %s / APIC at h %s",
+                      drag ? "drag F_x, beta 90 at 6 cm" : "mean F_z pushed down at 0.1 m/s",
+                      millimetres(run.h).c_str(), millimetres(run.h / 2).c_str());
+        std::snprintf(settings, sizeof settings, "ASFLIP %.1f, APIC %.1f N/m", t.at(i, column),
+                      apic_half);
+        r.add(name, q, t.at(i, column) / apic_half, 1, "-", "APIC at half the cell", 0, settings);
+      }
     }
   }
 }
