@@ -73,6 +73,10 @@ CASES = [
                   "angles, three depths and five speeds against resistive force theory (Li, "
                   "Zhang & Goldman 2013: one scale factor zeta) and dynamic RFT's v^2 term; "
                   "refinement 1 cm to 2.5 mm", True),
+    ("intrusion_transfer", "Issue 44: the plate of `intrusion` pushed down with APIC and with "
+                           "ASFLIP at 1 cm and 5 mm: its inertial force alone (no gravity; the "
+                           "sand and a medium without shear strength) against rho L v^2, the "
+                           "v^2 term under gravity, and the slow push and the drag", True),
     ("fem_cantilever", "Seed 002 sec. 2.3: an FEM cantilever (plane-strain linear triangles, "
                        "corotational) under its own weight against Euler-Bernoulli, three meshes",
      True),
