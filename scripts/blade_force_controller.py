@@ -17,25 +17,42 @@ Parameters (SI):
   ~kp 1.2e-3 (m/s)/(N/m) and ~ki 1.0e-3 (m/s)/(N s/m): the PI gains on the force error;
   ~filter 0.1 s: the time constant of the low-pass on the measured force (a step's contact load
   is noisy: each material point's spring is a share of it); ~rate 50 Hz of simulated time.
+  Ranges: force (0, 1e5], speed [0, 10], max_depth_rate (0, 10], kp and ki [0, 1], filter
+  (0, 100], rate (0, 1000]; anything else stops the node at its start, naming the parameter.
 Publishes ~force (std_msgs/Float64, the filtered force) for plots: rqt_plot /blade_force_controller/force.
 """
 import math
+import sys
 
 import rospy
 from geometry_msgs.msg import Twist, WrenchStamped
 from std_msgs.msg import Float64
 
 
+def number(name, default, low, high, low_open=False):
+    """~name, a finite number in [low, high] ((low, high] when low_open), or the node exits
+    before it commands anything, naming the parameter, its value and the range."""
+    value = rospy.get_param(name, default)
+    number_like = isinstance(value, (int, float)) and not isinstance(value, bool)
+    if not (number_like and math.isfinite(value) and (value > low if low_open else value >= low)
+            and value <= high):
+        rospy.logfatal("%s = %r: must be a number in %s%g, %g] (%s's parameters are listed at "
+                       "the top of the file)", name, value, "(" if low_open else "[", low, high,
+                       rospy.get_name())
+        sys.exit(1)
+    return float(value)
+
+
 class BladeForceController:
     def __init__(self):
         node = rospy.get_param("~node", "mpm_sdem")
         blade = rospy.get_param("~blade", "blade")
-        self.set_point = rospy.get_param("~force", 100.0)
-        self.speed = rospy.get_param("~speed", 0.05)
-        self.max_rate = rospy.get_param("~max_depth_rate", 0.03)
-        self.kp = rospy.get_param("~kp", 1.2e-3)
-        self.ki = rospy.get_param("~ki", 1.0e-3)
-        self.tau = rospy.get_param("~filter", 0.1)
+        self.set_point = number("~force", 100.0, 0, 1e5, low_open=True)
+        self.speed = number("~speed", 0.05, 0, 10)
+        self.max_rate = number("~max_depth_rate", 0.03, 0, 10, low_open=True)
+        self.kp = number("~kp", 1.2e-3, 0, 1)
+        self.ki = number("~ki", 1.0e-3, 0, 1)
+        self.tau = number("~filter", 0.1, 0, 100, low_open=True)
         self.force = None  # filtered, N/m
         self.stamp = None
         self.integral = 0.0  # of the error, N s/m
@@ -74,7 +91,7 @@ class BladeForceController:
 def main():
     rospy.init_node("blade_force_controller")
     controller = BladeForceController()
-    rate_hz = rospy.get_param("~rate", 50.0)
+    rate_hz = number("~rate", 50.0, 0, 1000, low_open=True)
     rate = rospy.Rate(rate_hz)
     while not rospy.is_shutdown():
         controller.command(1.0 / rate_hz)

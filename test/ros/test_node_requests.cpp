@@ -377,6 +377,42 @@ TEST(Requests, BadParametersStopTheNodeBeforeItSimulates) {
   fs::remove_all(dir);
 }
 
+// The example controller (scripts/blade_force_controller.py, the users' template) refuses a
+// parameter out of its range at its start, naming it, before it commands anything.
+TEST(Requests, BadParametersStopTheExampleController) {
+  namespace fs = std::filesystem;
+  const fs::path dir =
+      fs::temp_directory_path() / ("mpm_sdem_bad_controller_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const std::string script =
+      std::string(MPM_SDEM_SOURCE_DIR) + "/scripts/blade_force_controller.py";
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"_force:=0", "~force = 0: must be a number in (0, 100000]"},
+      {"_force:=-50", "~force = -50"},
+      {"_speed:=-0.1", "~speed = -0.1: must be a number in [0, 10]"},
+      {"_max_depth_rate:=0", "~max_depth_rate = 0"},
+      {"_kp:=-0.001", "~kp = -0.001"},
+      {"_ki:=2", "~ki = 2"},
+      {"_filter:=0", "~filter = 0"},
+      {"_rate:=0", "~rate = 0"},
+      {"_rate:=5000", "~rate = 5000"},
+      {"_kp:=fast", "~kp = 'fast'"},
+      {"_filter:=.nan", "~filter = nan"}};
+  int k = 0;
+  for (const auto& [args, reason] : cases) {
+    const fs::path log = dir / ("log" + std::to_string(k++));
+    const std::string cmd = "timeout 30 /usr/bin/python3 " + script + " __name:=badc" +
+                            std::to_string(k) + " " + args + " >" + log.string() + " 2>&1";
+    const int status = std::system(cmd.c_str());
+    ASSERT_TRUE(WIFEXITED(status)) << args;
+    EXPECT_EQ(WEXITSTATUS(status), 1) << args << " (124: it hung)";
+    std::ifstream in(log);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find(reason), std::string::npos) << args << ": " << text;
+  }
+  fs::remove_all(dir);
+}
+
 // ~reset does not start a new bag unless ~record_after_reset: one recording per run.
 TEST(Requests, ResetsKeepOneRecording) {
   namespace fs = std::filesystem;
