@@ -4,6 +4,7 @@
 #include <ros/ros.h>
 #include <tf2_eigen/tf2_eigen.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -128,12 +129,22 @@ bool RobotLinks::spawnArrived(World& world, ObstacleDrivers& drivers) {
           link.name.c_str(), dt.dt, stepLimitName(dt.limit));
       link.failed = true;
     }
-    if (link.failed)
+    if (link.failed) {
       for (const BlockId& id : ids) world.removeBlock(id);
-    else
+    } else {
       added = added || !ids.empty();
+      link.blocks.clear();
+      for (const robot::LinkBlock& b : blocks) link.blocks.push_back(b.block.name);
+    }
   }
   return added;
+}
+
+std::string RobotLinks::linkOf(const std::string& block) const {
+  for (const Link& link : links_)
+    if (std::find(link.blocks.begin(), link.blocks.end(), block) != link.blocks.end())
+      return link.name;
+  return "";
 }
 
 }  // namespace mpm_sdem::node

@@ -35,10 +35,15 @@ class RobotLinks {
   // one whose transform is late is named in a warning after ~robot_tf_timeout s.
   bool spawnArrived(World& world, ObstacleDrivers& drivers);
 
+  // The link whose block `block` is ("" when it is no link's): such a block follows the robot
+  // and is spawned again while its link is in ~robot_links, so ~remove_obstacle refuses it.
+  std::string linkOf(const std::string& block) const;
+
  private:
   struct Link {
     std::string name;
     bool failed = false;
+    std::vector<std::string> blocks;  // the names of its blocks, once spawned
   };
   const NodeParams& params_;
   std::unique_ptr<robot::RobotDescription> robot_;

@@ -144,6 +144,10 @@ bool Services::remove(mpm_sdem::RemoveObstacle::Request& req,
   return answer(res, queue_.call([name](SimLoop& s) -> Reply {
     const BlockId id = findBlock(s.world(), name);
     if (id.isNull()) return {false, "no block named '" + name + "'"};
+    if (const std::string link = s.robotLinks().linkOf(name); !link.empty())
+      return {false, "'" + name + "' is the block of robot link '" + link +
+                         "' (~robot_links): it follows the robot and would be spawned again; "
+                         "start the node without the link to simulate without it"};
     s.world().removeBlock(id);
     s.blocksChanged();
     s.noteRequest("~remove_obstacle '" + name + "'");

@@ -40,6 +40,7 @@ class SimLoop {
   // For commands, on the loop thread.
   World& world() { return *world_; }
   const NodeParams& params() const { return params_; }
+  const RobotLinks& robotLinks() const { return robot_links_; }
   ObstacleDrivers& drivers() { return drivers_; }
   Reply pause();  // also cancels the steps ~step asked for
   Reply resume();

@@ -7,6 +7,7 @@
 #include <mpm_sdem/ApplyObstacleWrench.h>
 #include <mpm_sdem/ClearObstacleWrenches.h>
 #include <mpm_sdem/GetObstacleState.h>
+#include <mpm_sdem/RemoveObstacle.h>
 #include <mpm_sdem/SetObstacleState.h>
 #include <sensor_msgs/point_cloud2_iterator.h>
 #include <std_srvs/Empty.h>
@@ -485,6 +486,14 @@ TEST(Robot, UrdfLinkFollowsItsFrameIntoTheSand) {
     EXPECT_GT(wrench.get().wrench.force.y, 5) << "the sand does not bear the tool";
     std::printf("tool: %.2f N/m up at %.3f m (bottom 3 cm into the bed)\n",
                 wrench.get().wrench.force.y, tool.pose.position.y);
+    // A link's block follows the robot: ~remove_obstacle refuses it, and it stays.
+    mpm_sdem::RemoveObstacle remove;
+    remove.request.name = "tool";
+    ASSERT_TRUE(ros::service::call(test::kNs + "remove_obstacle", remove));
+    EXPECT_FALSE(remove.response.success);
+    EXPECT_NE(remove.response.message.find("robot link 'tool'"), std::string::npos)
+        << remove.response.message;
+    EXPECT_TRUE(n.block("tool", tool));
   }
   stop = true;
   broadcaster.join();
