@@ -35,13 +35,21 @@ ObstacleDrivers::ObstacleDrivers(ros::NodeHandle& pnh, CommandQueue& queue,
   }
 }
 
-void ObstacleDrivers::follow(const std::string& name, const std::string& frame) {
-  for (const Follower& f : followers_)
-    if (f.name == name) return;  // after a reset: the same link's block again
-  Follower f;
-  f.name = name;
-  f.frame = frame;
-  followers_.push_back(f);
+void ObstacleDrivers::follow(const std::string& name, const std::string& frame,
+                             const Eigen::Isometry3d* section) {
+  auto f = std::find_if(followers_.begin(), followers_.end(),
+                        [&](const Follower& g) { return g.name == name; });
+  if (f == followers_.end()) {  // after a reset: the same link's block again
+    followers_.emplace_back();
+    f = followers_.end() - 1;
+    f->name = name;
+    f->frame = frame;
+  }
+  if (section) {
+    f->has_section = true;
+    f->section_rotation = Eigen::Quaterniond(section->rotation());
+    f->section_height = section->translation().z();
+  }
 }
 
 void ObstacleDrivers::sync(const World& world, bool fresh) {
@@ -213,6 +221,25 @@ void ObstacleDrivers::keepInside(World& world, int i, Real h) {
   world.setBlockVelocity(B.id(i), v, w);
 }
 
+void ObstacleDrivers::warnIfOutOfPlane(const Follower& f,
+                                       const geometry_msgs::TransformStamped& ts) const {
+  // The outline stays the frame's section while the frame moves in the plane: turns about its
+  // normal (z) and shifts along x and y. Anything else changes the section. Tolerances: 1 deg
+  // (a 10 cm deep solid's section moves by 1.7 mm) and 1 mm.
+  const geometry_msgs::Quaternion& q = ts.transform.rotation;
+  const Eigen::Quaterniond now(q.w, q.x, q.y, q.z);
+  const Eigen::Vector3d normal = (now * f.section_rotation.inverse()) * Eigen::Vector3d::UnitZ();
+  const Real tilt = std::acos(std::clamp(normal.z(), -1.0, 1.0));
+  const Real shift = std::abs(ts.transform.translation.z - f.section_height);
+  if (tilt > M_PI / 180 || shift > 1e-3)
+    MPM_SDEM_WARN_THROTTLE(5,
+                           "~robot_links: frame %s has tilted %.1f deg out of the plane and moved "
+                           "%.1f mm along its normal since block '%s' was cut from it; the block "
+                           "keeps that section (a link's section follows motions in the plane "
+                           "only: joints about the plane's normal)",
+                           f.frame.c_str(), tilt * 180 / M_PI, 1e3 * shift, f.name.c_str());
+}
+
 void ObstacleDrivers::steer(World& world, Follower& f) {
   const int i = place(world, f.id);
   if (i < 0) return;
@@ -242,6 +269,7 @@ void ObstacleDrivers::steer(World& world, Follower& f) {
                                "~follow_tf_max_speed %g m/s; '%s' closes in at that speed",
                                f.frame.c_str(), moved, gap, max_speed, f.name.c_str());
     }
+    if (f.has_section) warnIfOutOfPlane(f, ts);
     f.stamp[0] = f.stamp[1], f.position[0] = f.position[1], f.angle[0] = f.angle[1];
     f.stamp[1] = ts.header.stamp, f.position[1] = p, f.angle[1] = yaw;
     f.samples = std::min(f.samples + 1, 2);

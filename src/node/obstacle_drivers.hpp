@@ -14,10 +14,13 @@
 // Blocks are held by id, so a removed block's drivers lapse with it.
 #pragma once
 
+#include <geometry_msgs/TransformStamped.h>
 #include <geometry_msgs/Twist.h>
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
+
+#include <Eigen/Geometry>
 
 #include <string>
 #include <vector>
@@ -53,8 +56,12 @@ class ObstacleDrivers {
   Reply clearLoads(const World& world, const std::string& name);  // "" clears all
 
   // Loop thread: block `name` follows tf frame `frame` from now on (a robot's link,
-  // robot_links.hpp), as a ~follow_tf entry does; sync() finds its block.
-  void follow(const std::string& name, const std::string& frame);
+  // robot_links.hpp), as a ~follow_tf entry does; sync() finds its block. `section`: the frame's
+  // pose in ~fixed_frame when the block's outline was cut from it (a robot link's section by
+  // the plane): a warning names the block when the frame leaves that pose's plane motions (tilts
+  // out of the plane or moves along its normal), which the outline does not follow.
+  void follow(const std::string& name, const std::string& frame,
+              const Eigen::Isometry3d* section = nullptr);
 
   // The tf buffer (also for ~get_obstacle_state's reference frames).
   const tf2_ros::Buffer& tf() const { return tf_; }
@@ -83,9 +90,13 @@ class ObstacleDrivers {
     Vec2 position[2];
     Real angle[2] = {0, 0};
     int samples = 0;
+    bool has_section = false;  // follow()'s section: its rotation and height
+    Eigen::Quaterniond section_rotation = Eigen::Quaterniond::Identity();
+    Real section_height = 0;
   };
   void onCmdVel(const std::string& name, const geometry_msgs::Twist& twist);
   void steer(World& world, Follower& f);
+  void warnIfOutOfPlane(const Follower& f, const geometry_msgs::TransformStamped& ts) const;
   // Cuts a kinematic block's velocity towards a wall it would cross in h (keepInsideDomain).
   void keepInside(World& world, int i, Real h);
 

@@ -67,7 +67,7 @@ RobotLinks::RobotLinks(const ros::NodeHandle& nh, const NodeParams& params) : pa
     robot_ = std::make_unique<robot::RobotDescription>(description(nh, params), meshPath);
     for (const std::string& link : params.robot_links) {
       robot_->check(definition(params, link));
-      links_.push_back({link});
+      links_.push_back({link, false, {}});
     }
   } catch (const robot::RobotError& e) {
     throw std::runtime_error(std::string("~robot_links: ") + e.what());
@@ -92,9 +92,13 @@ bool RobotLinks::spawnArrived(World& world, ObstacleDrivers& drivers) {
       continue;
     }
     std::vector<robot::LinkBlock> blocks;
+    Eigen::Isometry3d section = Eigen::Isometry3d::Identity();  // the link's pose, cut here
     try {
       blocks = robot_->obstacles(definition(params_, link.name), [&](const std::string& l) {
-        return tf2::transformToEigen(tf.lookupTransform(params_.fixed_frame, l, ros::Time(0)));
+        const Eigen::Isometry3d pose =
+            tf2::transformToEigen(tf.lookupTransform(params_.fixed_frame, l, ros::Time(0)));
+        if (l == link.name) section = pose;
+        return pose;
       });
     } catch (const std::exception& e) {  // RobotError, tf2's
       ROS_ERROR("~robot_links: %s; it is left out", e.what());
@@ -112,7 +116,7 @@ bool RobotLinks::spawnArrived(World& world, ObstacleDrivers& drivers) {
         break;
       }
       ids.push_back(world.addBlock(b.block));
-      drivers.follow(b.block.name, link.name);
+      drivers.follow(b.block.name, link.name, &section);
       ROS_INFO(
           "~robot_links: link '%s' is block '%s' (%zu core vertices, rounding %.4g m) from "
           "t = %.4f s",

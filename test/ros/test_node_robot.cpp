@@ -447,9 +447,11 @@ TEST(Robot, FirstWarningAtOnceThenThrottledInWallTime) {
 TEST(Robot, UrdfLinkFollowsItsFrameIntoTheSand) {
   test::NodeClient& n = *g_node;
   test::Latest<geometry_msgs::WrenchStamped> wrench(n.nh, test::kNs + "obstacles/tool/wrench");
-  std::atomic<bool> stop{false};
+  test::RosoutLog log(n.nh);
+  std::atomic<bool> stop{false}, tilt{false};
   // The frame at (-0.04, 0.10) until 0.5 s of simulation, then down at 5 cm/s to 0.04; sent
-  // before the node has a clock (stamps 0), as robot_state_publisher's would be.
+  // before the node has a clock (stamps 0), as robot_state_publisher's would be. At the end,
+  // tilted by 10 deg about x (out of the plane).
   auto height = [](double t) { return std::max(0.04, 0.10 - 0.05 * std::max(0.0, t - 0.5)); };
   std::thread broadcaster([&] {
     tf2_ros::TransformBroadcaster tf;
@@ -465,7 +467,8 @@ TEST(Robot, UrdfLinkFollowsItsFrameIntoTheSand) {
       ts.child_frame_id = "tool";
       ts.transform.translation.x = -0.04;
       ts.transform.translation.y = height(ts.header.stamp.toSec());
-      ts.transform.rotation.w = 1;
+      ts.transform.rotation.w = tilt ? std::cos(M_PI / 36) : 1;
+      ts.transform.rotation.x = tilt ? std::sin(M_PI / 36) : 0;
       tf.sendTransform(ts);
     }
   });
@@ -489,11 +492,17 @@ TEST(Robot, UrdfLinkFollowsItsFrameIntoTheSand) {
     // A link's block follows the robot: ~remove_obstacle refuses it, and it stays.
     mpm_sdem::RemoveObstacle remove;
     remove.request.name = "tool";
-    ASSERT_TRUE(ros::service::call(test::kNs + "remove_obstacle", remove));
+    remove = n.call("remove_obstacle", remove);
     EXPECT_FALSE(remove.response.success);
     EXPECT_NE(remove.response.message.find("robot link 'tool'"), std::string::npos)
         << remove.response.message;
     EXPECT_TRUE(n.block("tool", tool));
+    // Tilted out of the plane, the frame no longer has the section the block was cut from.
+    EXPECT_EQ(log.count("keeps that section"), 0);
+    tilt = true;
+    EXPECT_TRUE(waitFor([&] { return log.count("keeps that section") > 0; }, 10));
+    const std::string warning = log.find("keeps that section");
+    EXPECT_NE(warning.find("frame tool has tilted 10.0 deg"), std::string::npos) << warning;
   }
   stop = true;
   broadcaster.join();
@@ -557,8 +566,13 @@ TEST(Robot, ExcavatorDigsTheSand) {
 // The closed-loop example (launch/blade_force_control.launch, scripts/blade_force_controller.py,
 // set point 100 N/m): the blade sinks from 1 cm above the sand until the sand's horizontal force
 // on it reaches the set point, then holds it while the heap ahead grows. Settled: from 3 s to
-// 6 s of simulation, the force averaged over each 0.5 s (50 of the node's wrenches; a single
-// step's load is noisy) within 10% of the set point.
+// 6 s of simulation, the force averaged over each second (100 of the node's wrenches; a single
+// step's load is noisy) within 10% of the set point, and over the 3 s within 2% (the integral
+// action). Not over each 0.5 s: the sand's load swings faster than the loop's 5 rad/s can
+// follow (under the 10 rad/s filter), and 0.5 s means reached 89.7 N/m in one of four runs
+// (the node's timing against the controller's differs from run to run); the 1 s means of
+// those runs are 96.1 to 101.9 N/m, their 3 s means 99.5 to 99.8.
+
 TEST(Robot, BladeForceControllerSettlesAtTheSetPoint) {
   test::NodeClient& n = *g_node;
   const double set_point = 100.0;
@@ -573,16 +587,18 @@ TEST(Robot, BladeForceControllerSettlesAtTheSetPoint) {
   ASSERT_TRUE(waitFor([&] { return n.stats.get().sim_time > 6.0; }, 120))
       << "the simulation did not reach 6 s";
   std::lock_guard<std::mutex> l(m);
-  for (double from = 3.0; from < 6.0 - 1e-9; from += 0.5) {
+  auto mean = [&](double from, double to) {
     double sum = 0;
     int count = 0;
     for (const auto& [t, f] : samples)
-      if (t >= from && t < from + 0.5) sum += f, ++count;
-    ASSERT_GT(count, 20) << "too few wrenches from " << from << " s";
-    std::printf("blade force %.2f-%.2f s: %.1f N/m (%d wrenches)\n", from, from + 0.5, sum / count,
-                count);
-    EXPECT_NEAR(sum / count, set_point, 0.1 * set_point) << "from " << from << " s";
-  }
+      if (t >= from && t < to) sum += f, ++count;
+    EXPECT_GT(count, 40 * (to - from)) << "too few wrenches from " << from << " s";
+    std::printf("blade force %.2f-%.2f s: %.1f N/m (%d wrenches)\n", from, to, sum / count, count);
+    return sum / count;
+  };
+  for (double from = 3.0; from < 6.0 - 1e-9; from += 1.0)
+    EXPECT_NEAR(mean(from, from + 1.0), set_point, 0.1 * set_point) << "from " << from << " s";
+  EXPECT_NEAR(mean(3.0, 6.0), set_point, 0.02 * set_point);
 }
 
 int main(int argc, char** argv) {
