@@ -581,8 +581,11 @@ struct PlateRun {
 PlateRun movePlate(World& w, const Plate& c);
 // The depth below the surface at which the plate is just covered: L |sin beta| / 2 + t / 2 (m).
 Real plateCovered(const Plate& c);
-// A push's forces as lines F = a + k z in the centre's depth (least squares over z from
-// plateCovered + 1 cm to the reach; RFT has a = 0), and the exponent of |F| in z there.
+// Where a push's window starts (m): a centimetre below plateCovered, past the entry's transient.
+// It ends at the reach. pushLines and pushMean measure over it.
+Real pushWindowStart(const Plate& c);
+// A push's forces as lines F = a + k z in the centre's depth (least squares over its window,
+// pushWindowStart to the reach; RFT has a = 0), and the exponent of |F| in z there.
 struct PlateLines {
   Real ax = 0, kx = 0, az = 0, kz = 0;  // N/m, N/m^2
   Real exponent = 0;
@@ -590,7 +593,7 @@ struct PlateLines {
 PlateLines pushLines(const Plate& c, const PlateRun& p);
 // A drag's mean forces over the last half of its 3 L (N/m: x along +x, z upwards).
 Vec2 dragMean(const Plate& c, const PlateRun& p);
-// A push's mean forces over pushLines' window (N/m). Where the force is not a line in z (a
+// A push's mean forces over its window (N/m). Where the force is not a line in z (a
 // fast push rings with the layer's waves: 4,500 N/m of rho c v L against 300 of rho L v^2 at
 // 2 m/s), the mean over the window's several round trips of the wave is the robust measure.
 Vec2 pushMean(const Plate& c, const PlateRun& p);

@@ -438,10 +438,14 @@ PlateRun movePlate(World& w, const Plate& c) {
   return out;
 }
 
+Real pushWindowStart(const Plate& c) {
+  return plateCovered(c) + 0.01;
+}
+
 PlateLines pushLines(const Plate& c, const PlateRun& p) {
   LineFit x, z, log_f;
   for (std::size_t k = 0; k < p.depth.size(); ++k) {
-    if (p.depth[k] < plateCovered(c) + 0.01) continue;
+    if (p.depth[k] < pushWindowStart(c)) continue;
     x.add(p.depth[k], p.fx[k]);
     z.add(p.depth[k], p.fz[k]);
     log_f.add(std::log(p.depth[k]), std::log(std::hypot(p.fx[k], p.fz[k])));
@@ -453,7 +457,7 @@ Vec2 pushMean(const Plate& c, const PlateRun& p) {
   Vec2 sum(0, 0);
   int n = 0;
   for (std::size_t k = 0; k < p.depth.size(); ++k)
-    if (p.depth[k] >= plateCovered(c) + 0.01) sum += Vec2(p.fx[k], p.fz[k]), ++n;
+    if (p.depth[k] >= pushWindowStart(c)) sum += Vec2(p.fx[k], p.fz[k]), ++n;
   return sum / n;
 }
 

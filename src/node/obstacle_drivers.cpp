@@ -39,7 +39,7 @@ void ObstacleDrivers::follow(const std::string& name, const std::string& frame,
                              const Eigen::Isometry3d* section) {
   auto f = std::find_if(followers_.begin(), followers_.end(),
                         [&](const Follower& g) { return g.name == name; });
-  if (f == followers_.end()) {  // after a reset: the same link's block again
+  if (f == followers_.end()) {  // new (after a reset the same link's block keeps its own)
     followers_.emplace_back();
     f = followers_.end() - 1;
     f->name = name;

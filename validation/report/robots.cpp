@@ -527,8 +527,9 @@ int intrusionRuns(bool fast) {
 namespace {
 
 // One run of a list: the plate moved, its series written, its result added to `r` under
-// `name`, and its row (every digit: the fits read it back) written to `table`. `medium`: the
-// run's transfer, gravity and friction angle as three more columns (intrusion_transfer's).
+// `name`, and its row (every digit: the fits read it back) written to `table`. `medium`: five
+// more columns (intrusion_transfer's): the run's transfer, gravity and friction angle, and the
+// mean forces (a push's over its window, cases::pushMean; a drag's as above).
 void intrusionRun(const IntrusionRun& run, const std::string& name, bool medium, FILE* table,
                   FILE* series, Results& r) {
   const cases::Plate c = plateOf(run);
@@ -550,7 +551,7 @@ void intrusionRun(const IntrusionRun& run, const std::string& name, bool medium,
       medium ? std::string(asflip ? ", ASFLIP" : ", APIC") + (run.g > 0 ? "" : ", no gravity") +
                    (run.phi == 35 ? "" : ", phi " + std::to_string(std::lround(run.phi)))
              : "";
-  const Real from = cases::plateCovered(c) + 0.01;
+  const Real from = cases::pushWindowStart(c);
   if (run.gamma > 0 && run.g == 0) {  // inertia alone: the window's mean (the fits' lambda_0)
     const Vec2 mean = cases::pushMean(c, p);
     fz = mean.y();
