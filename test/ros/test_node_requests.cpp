@@ -60,6 +60,18 @@ void expectRefused(bool success, const std::string& message, const Bad& bad) {
   EXPECT_LT(message.size(), 1000u) << bad.why << ": the message echoes the input";
 }
 
+// Runs `cmd`, which writes its output to `log` (started with `args`): it must exit with status 1
+// within its timeout, its output holding `reason`.
+void expectExitNaming(const std::string& cmd, const std::filesystem::path& log,
+                      const std::string& args, const std::string& reason) {
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status)) << args;
+  EXPECT_EQ(WEXITSTATUS(status), 1) << args << " (124: it hung)";
+  std::ifstream in(log);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find(reason), std::string::npos) << args << ": " << text;
+}
+
 }  // namespace
 
 TEST(Requests, BadSpawnsAreRefused) {
@@ -363,12 +375,7 @@ TEST(Requests, BadParametersStopTheNodeBeforeItSimulates) {
     const std::string rest = dict ? args.substr(space) : args;
     const std::string cmd = set + "timeout 30 " + MPM_SDEM_NODE + " __name:=" + name +
                             " _scene:=" + scene + " " + rest + " >" + log.string() + " 2>&1";
-    const int status = std::system(cmd.c_str());
-    ASSERT_TRUE(WIFEXITED(status)) << args;
-    EXPECT_EQ(WEXITSTATUS(status), 1) << args << " (124: it hung)";
-    std::ifstream in(log);
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    EXPECT_NE(text.find(reason), std::string::npos) << args << ": " << text;
+    expectExitNaming(cmd, log, args, reason);
   }
   for (const auto& e : fs::directory_iterator(dir)) {
     const std::string name = e.path().filename().string();
@@ -403,12 +410,7 @@ TEST(Requests, BadParametersStopTheExampleController) {
     const fs::path log = dir / ("log" + std::to_string(k++));
     const std::string cmd = "timeout 30 /usr/bin/python3 " + script + " __name:=badc" +
                             std::to_string(k) + " " + args + " >" + log.string() + " 2>&1";
-    const int status = std::system(cmd.c_str());
-    ASSERT_TRUE(WIFEXITED(status)) << args;
-    EXPECT_EQ(WEXITSTATUS(status), 1) << args << " (124: it hung)";
-    std::ifstream in(log);
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    EXPECT_NE(text.find(reason), std::string::npos) << args << ": " << text;
+    expectExitNaming(cmd, log, args, reason);
   }
   fs::remove_all(dir);
 }
