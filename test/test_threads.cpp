@@ -21,8 +21,9 @@ struct Snapshot {
   long steps = 0;
 };
 
-Snapshot run(const WorldDef& def, int threads, Real end_time) {
+Snapshot run(WorldDef def, int threads, Real end_time) {
   omp_set_num_threads(threads);
+  def.solver.parallel_min_points = 0;  // share the work of these small worlds too
   World w(def);
   runUntil(w, end_time);
   const Particles& P = w.particles();

@@ -13,6 +13,23 @@ inline bool singleThread() {
   return omp_get_max_threads() == 1;
 }
 
+// While alive, the calling thread's parallel regions run on it alone when `serial` (a world too
+// small to share: SolverDef::parallel_min_points); its thread count is restored after.
+class SerialScope {
+ public:
+  explicit SerialScope(bool serial) : restore_(serial ? omp_get_max_threads() : 0) {
+    if (restore_ > 1) omp_set_num_threads(1);
+  }
+  ~SerialScope() {
+    if (restore_ > 1) omp_set_num_threads(restore_);
+  }
+  SerialScope(const SerialScope&) = delete;
+  SerialScope& operator=(const SerialScope&) = delete;
+
+ private:
+  int restore_;
+};
+
 // body(k) for k in [0, count), the iterations shared statically among the threads.
 template <class Body>
 void parallelFor(long count, Body&& body) {

@@ -357,6 +357,7 @@ World::Memory World::memory() const {
 }
 
 TimeStepChoice World::chooseTimeStep() {
+  const detail::SerialScope serial(!sharesWork());
   StageTimer timer(profile_, Stage::kTimeStep);
   if (!def_.time_step.automatic) return {def_.time_step.fixed, StepLimit::kFixed};
   return stepBound(def_.time_step.cfl, def_.time_step.contact_factor);
@@ -435,7 +436,13 @@ Real World::springStep(Real kappa2) const {
   return contactTimeStep(std::fmin(lightest_point_, block), c.normal_stiffness, zeta, 1, kappa2);
 }
 
+bool World::sharesWork() const {
+  // An SPH particle's neighbour sums cost many material points' work: SPH worlds always share.
+  return sph_ || static_cast<long>(particles_.size()) >= def_.solver.parallel_min_points;
+}
+
 StepInfo World::step(Real dt) {
+  const detail::SerialScope serial(!sharesWork());
   StepInfo info;
   info.dt = dt;
   // Seed 000 eq. 17: p^{n+1/2} = p^{n-1/2} + f^n dt. The kick spans from the velocity's time to

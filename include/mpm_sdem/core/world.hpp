@@ -209,6 +209,9 @@ class World {
   const Profile& profile() const { return profile_; }
   /// Starts the stages' timing afresh.
   void resetProfile() { profile_ = Profile(); }
+  /// Whether the step shares its work among the OpenMP threads: SPH worlds, and worlds of at
+  /// least SolverDef::parallel_min_points points; the others step on the calling thread alone.
+  bool sharesWork() const;
 
  private:
   friend struct detail::CheckpointAccess;

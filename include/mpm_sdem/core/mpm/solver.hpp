@@ -36,6 +36,11 @@ struct SolverDef {
   /// by damping * |F| against the node's velocity. It removes kinetic energy without changing
   /// the static equilibrium; for settling quasi-static states only (0 = off).
   Real damping = 0;
+  /// A world of fewer material points and no SPH steps on the calling thread alone:
+  /// below this, starting and ending a step's ~24 parallel regions (3.5 us each on two cores
+  /// here) costs more than sharing its work saves (docs/performance.md). Speed only: the results
+  /// are bit-identical on any number of threads (test_threads). 0: always share.
+  long parallel_min_points = 2000;
 };
 
 }  // namespace mpm_sdem
