@@ -21,7 +21,9 @@ Simulation::Simulation(World& world, const RunDef& def)
   if (def_.threads > 0)
     omp_set_num_threads(def_.threads);
   else
-    tuner_ = std::make_unique<ThreadTuner>(std::min(omp_get_max_threads(), limits::logicalCores()));
+    // A world that steps on one thread anyway (World::sharesWork) gains nothing from trials.
+    tuner_ = std::make_unique<ThreadTuner>(
+        world.sharesWork() ? std::min(omp_get_max_threads(), limits::logicalCores()) : 1);
   world_.setCommandLog(
       [this](const WorldCommand& c) { tell([&](RunOutput& o) { o.command(c); }); });
 }
