@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The install space works on its own: installs the build into a temporary prefix, sets up the
 # environment a catkin install space's setup.bash would (nothing from the build or source tree),
-# then runs the installed programs' --help, the default scene through roslaunch until its end,
-# and a launch whose node fails, which must give a non-zero exit status.
+# then runs the installed programs' --help, the default scene and the excavator demo through
+# roslaunch until their ends, and a launch whose node fails, which must give a non-zero exit
+# status.
 # usage: install_space.sh BUILD_DIR
 set -euo pipefail
 BUILD="$(cd "$1" && pwd)"
@@ -56,10 +57,25 @@ grep -q "reached the scene's end time" "$PREFIX/launch.log" ||
   { cat "$PREFIX/launch.log"; fail "the node did not reach the scene's end"; }
 [ -s "$BAG" ] || fail "no bag at $BAG"
 
+# The excavator demo (launch/excavator_dig.launch) as installed: the URDF and the bucket's mesh
+# from share/, robot_state_publisher, the joint path of the installed excavator_dig.py. Both
+# links become blocks once tf has them, and the run reaches its end. A quarter of real time, so
+# that the Python node has started (about 1 s here) well before the links are due.
+timeout 240 mpm_sdem_launch mpm_sdem excavator_dig.launch headless:=true end_action:=shutdown \
+  threads:=1 real_time_factor:=0.25 set:="['time.end=1.0']" >"$PREFIX/dig.log" 2>&1 ||
+  { cat "$PREFIX/dig.log"; fail "the excavator demo from the install space failed"; }
+for link in stick bucket; do
+  grep -q "link '$link' is block" "$PREFIX/dig.log" ||
+    { cat "$PREFIX/dig.log"; fail "the excavator's link '$link' made no block"; }
+done
+grep -q "reached the scene's end time" "$PREFIX/dig.log" ||
+  { cat "$PREFIX/dig.log"; fail "the excavator demo did not reach its end"; }
+
 # A node that stops at once (no such scene) must fail the launch.
 status=0
 timeout 120 mpm_sdem_launch mpm_sdem sim.launch headless:=true scene:="$PREFIX/no_such_scene.yaml" \
   >"$PREFIX/bad.log" 2>&1 || status=$?
 [ "$status" -ne 0 ] || { cat "$PREFIX/bad.log"; fail "a node that failed gave exit status 0"; }
 grep -q "no_such_scene.yaml" "$PREFIX/bad.log" || { cat "$PREFIX/bad.log"; fail "no reason given"; }
-echo "install space: programs load, the default scene runs, a failing node exits $status"
+echo "install space: programs load, the default scene and the excavator demo run, a failing node" \
+  "exits $status"
