@@ -1,7 +1,6 @@
 #include "publishers.hpp"
 
 #include <geometry_msgs/WrenchStamped.h>
-#include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/fill_image.h>
 #include <std_msgs/String.h>
@@ -73,8 +72,10 @@ Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
                "at the block frame's origin in its axes");
   scene_ = pnh.advertise<std_msgs::String>("scene", 1, true);
   nh.param("/use_sim_time", use_sim_time_, false);
-  if (use_sim_time_)
-    clock_ = {nh.advertise<rosgraph_msgs::Clock>("/clock", 10), SampleClock(params.clock_rate)};
+  if (use_sim_time_) {
+    clock_thread_ = std::make_unique<ClockPublisher>(nh);
+    clock_.clock = SampleClock(params.clock_rate);
+  }
   std_msgs::String text;
   text.data = scene_text;
   scene_.publish(text);
@@ -154,9 +155,7 @@ void Publishers::blocksChanged(const World& world) {
 }
 
 void Publishers::publishClock(const std_msgs::Header& header) {
-  rosgraph_msgs::Clock clock;
-  clock.clock = header.stamp;
-  clock_.pub.publish(clock);
+  clock_thread_->post(header.stamp);
 }
 
 void Publishers::publishStats(const World& world, const conversions::StatsInput& status,
@@ -242,8 +241,8 @@ void Publishers::publish(const World& world, const conversions::StatsInput& stat
   std_msgs::Header header;
   header.stamp = conversions::toRosTime(t);
   header.frame_id = params_.fixed_frame;
-  // Clock first, so that a listener's time has reached the stamps that follow it.
-  if (clock_.due(t, force, true)) publishClock(header);
+  // Clock first; its thread sends it within a millisecond of wall time (ClockPublisher).
+  if (clock_thread_ && clock_.due(t, force, true)) publishClock(header);
   if (particles_.due(t, force)) {
     conversions::toPointCloud(world, params_.cloud_decimation, header, cloud_);
     particles_.pub.publish(cloud_);

@@ -17,6 +17,7 @@
 #include <memory>
 #include <vector>
 
+#include "clock_publisher.hpp"
 #include "mpm_sdem/core/problem.hpp"
 #include "mpm_sdem/core/world.hpp"
 #include "mpm_sdem/ros/conversions.hpp"
@@ -75,6 +76,7 @@ class Publishers {
   Real arrow_scale_ = 0;       // m per N/m
   std::vector<Real> heights_;  // ~terrain's columns, reused
   bool use_sim_time_ = false;
+  std::unique_ptr<ClockPublisher> clock_thread_;  // /clock's messages, with /use_sim_time
   sensor_msgs::PointCloud2 cloud_, fem_cloud_, terrain_cloud_;
   cv::Mat frame_;
   void publishClock(const std_msgs::Header& header);

@@ -293,6 +293,35 @@ TEST(Requests, StepAnswersAtOnceAndPauseCancelsIt) {
 TEST(Requests, PausedNodeKeepsClockAndStats) {
   Node& n = *g_node;
   expectAdvancing(n, "start");
+  {
+    // While running, /clock (sent by a thread of its own, ClockPublisher) has every message in
+    // order: one at the first step at or after each millisecond (rates/clock 1000 Hz), so two
+    // are less than a step (0.278 ms, node_bed.yaml's contact bound) off 1 ms apart; a lost
+    // message makes a gap of about 2 ms, a reordered one a negative gap.
+    std::mutex m;
+    std::vector<double> times;
+    ros::Subscriber sub = n.nh.subscribe<rosgraph_msgs::Clock>(
+        "/clock", 10000, [&](const rosgraph_msgs::Clock::ConstPtr& c) {
+          std::lock_guard<std::mutex> l(m);
+          times.push_back(c->clock.toSec());
+        });
+    ASSERT_TRUE(waitFor(
+        [&] {
+          std::lock_guard<std::mutex> l(m);
+          return times.size() >= 500;
+        },
+        10))
+        << "/clock did not come at its rate";
+    sub.shutdown();
+    std::lock_guard<std::mutex> l(m);
+    const double dt = n.stats.get().dt;
+    ASSERT_LT(dt, 0.5e-3) << "the bound below needs steps shorter than half the clock's period";
+    for (std::size_t k = 1; k < times.size(); ++k) {
+      const double gap = times[k] - times[k - 1];
+      ASSERT_GT(gap, 1e-3 - dt) << "message " << k << " at " << times[k];
+      ASSERT_LT(gap, 1e-3 + dt) << "message " << k << " at " << times[k];
+    }
+  }
   ASSERT_TRUE(n.trigger("pause"));
   ros::WallDuration(1.0).sleep();
   // A late listener gets ~stats at once (latched) and /clock keeps coming at the paused time.

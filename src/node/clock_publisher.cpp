@@ -1,0 +1,47 @@
+#include "clock_publisher.hpp"
+
+#include <rosgraph_msgs/Clock.h>
+
+#include <chrono>
+
+namespace mpm_sdem::node {
+
+ClockPublisher::ClockPublisher(ros::NodeHandle& nh)
+    : pub_(nh.advertise<rosgraph_msgs::Clock>("/clock", 10)), thread_([this] { loop(); }) {}
+
+ClockPublisher::~ClockPublisher() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  stop_.notify_one();
+  thread_.join();
+}
+
+void ClockPublisher::post(const ros::Time& t) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  queued_.push_back(t);
+}
+
+void ClockPublisher::loop() {
+  std::vector<ros::Time> sending;
+  rosgraph_msgs::Clock message;
+  std::unique_lock<std::mutex> lock(mutex_);
+  for (;;) {
+    // A period, not a wake-up per message: waking this thread would cost the simulation's
+    // thread the system call this class saves it.
+    stop_.wait_for(lock, std::chrono::milliseconds(1), [this] { return stopping_; });
+    sending.swap(queued_);
+    const bool last = stopping_;
+    lock.unlock();
+    for (const ros::Time& t : sending) {
+      message.clock = t;
+      pub_.publish(message);
+    }
+    sending.clear();
+    if (last) return;
+    lock.lock();
+  }
+}
+
+}  // namespace mpm_sdem::node
