@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
-"""rviz with the shipped config under Xvfb at 1280x960: its 3D view fills most of the window and
-shows the particles, not tiny in a corner (issue 20).
+"""rviz with a shipped config under Xvfb at 1280x960: its 3D view fills most of the window and
+shows the particles, not tiny in a corner (issue 20), and, with ~robot_pixels, the robot's links
+drawn by rviz's RobotModel display among them (issue 44).
 
-Run by rviz_view.test, which starts the node on the default scene, paused. This test starts its
+Run by rviz_view.test, which starts the node on the default scene, paused, and by
+rviz_excavator.test (the excavator demo, running slowly). This test starts its
 own X server (Xvfb picks a free display) and rviz, polls screenshots until rviz has drawn the
 particles or the time limit passes, checks the last one and saves it (~screenshot). An rviz that
 dies while it sets up (Ogre under Mesa's software renderer, now and then) is started again, twice
@@ -30,8 +32,10 @@ BACKGROUND = (48, 48, 48)  # the config's Background Color
 PARTICLE_MIN, PARTICLE_MAX = (70, 110, 230), (230, 40, 20)
 DRAW_TIMEOUT = 35.0  # s for rviz to start and draw; the .test file's limit is 50 s
 # At t = 0 the 10 cm x 20 cm column covers about 170 x 340 px at the config's 1700 px/m, of
-# which the 5 px points fill about a third: 20,000 px. A quarter of that proves they are drawn.
+# which the 5 px points fill about a third: 20,000 px. A quarter of that proves they are drawn
+# (~particle_pixels; ~particle_height: the least share of the view's height they span).
 MIN_PARTICLE_PIXELS = 5000
+MIN_PARTICLE_HEIGHT = 0.15
 
 
 def die_with_parent():
@@ -89,7 +93,7 @@ class View:
     """What a screenshot shows: the 3D view (the box of the background colour) and, in it, the
     pixels not of the background and those of the particles' colours."""
 
-    def __init__(self, image):
+    def __init__(self, image, robot_color=None):
         self.image = image.convert("RGB")
         rgb = numpy.asarray(self.image).astype(numpy.int32)
         # The view's rows and columns are mostly background; a panel's or the toolbar's are not
@@ -110,12 +114,27 @@ class View:
         self.particles = int(on_scale.sum())
         rows = numpy.nonzero(on_scale.sum(axis=1) >= 3)[0]  # not a stray blended pixel
         self.particle_height = int(rows.max() - rows.min()) if len(rows) else 0
+        self.robot = 0
+        if robot_color is not None:
+            # Within 25 of the robot's colour scaled by rviz's shading (from dark to that colour).
+            c = numpy.array(robot_color)
+            t = numpy.clip((view @ c) / float(c @ c), 0.5, 1.2)
+            self.robot = int((numpy.abs(view - t[..., None] * c).max(axis=2) <= 25).sum())
 
 
 class RvizView(unittest.TestCase):
     def test_view_shows_the_particles(self):
         config = rospy.get_param("~config")
         screenshot = rospy.get_param("~screenshot")
+        min_particles = rospy.get_param("~particle_pixels", MIN_PARTICLE_PIXELS)
+        min_height = rospy.get_param("~particle_height", MIN_PARTICLE_HEIGHT)
+        # The robot's links: pixels of ~robot_color (its URDF colour as the config's RobotModel
+        # alpha blends it over the background), at least ~robot_pixels of them (0: no robot).
+        min_robot = rospy.get_param("~robot_pixels", 0)
+        robot_color = rospy.get_param("~robot_color", None) if min_robot else None
+
+        def complete(v):
+            return v.particles >= min_particles and v.robot >= min_robot
         xvfb = rviz = None
         try:
             xvfb, display = start_xvfb()
@@ -140,28 +159,34 @@ class RvizView(unittest.TestCase):
                     rospy.logwarn("rviz exited with status %s; starting it again", crashes[-1])
                     rviz = start(["rviz", "-d", config], env=env)
                     continue
-                view = View(ImageGrab.grab(xdisplay=display))
-                if view.particles >= MIN_PARTICLE_PIXELS:
+                view = View(ImageGrab.grab(xdisplay=display), robot_color)
+                if complete(view):
                     break
                 time.sleep(0.5)
             waited = time.monotonic() - started
             self.assertIsNotNone(view, "no screenshot taken")
             view.image.save(screenshot)
-            rospy.loginfo("rviz drew after %.1f s; screenshot %s", waited, screenshot)
+            rospy.loginfo("rviz drew after %.1f s: %d particle pixels, %d robot pixels; "
+                          "screenshot %s", waited, view.particles, view.robot, screenshot)
             screen = WIDTH * HEIGHT
             self.assertGreater(view.area, 0.7 * screen,
                                "the 3D view %s covers %.0f%% of the window, not most of it"
                                % (view.box, 100.0 * view.area / screen))
             self.assertGreaterEqual(
-                view.particles, MIN_PARTICLE_PIXELS,
+                view.particles, min_particles,
                 "after %.0f s the 3D view shows %d pixels of particle colours (%d drawn of %d; "
                 "does the paused node latch ~particles?); screenshot %s"
                 % (waited, view.particles, view.drawn, view.area, screenshot))
             self.assertGreater(view.drawn, 0.02 * view.area)
             # Not tiny in a corner: the 20 cm column stands 340 px tall at 1700 px/m.
-            self.assertGreater(view.particle_height, 0.15 * (view.box[3] - view.box[1]),
+            self.assertGreater(view.particle_height, min_height * (view.box[3] - view.box[1]),
                                "the particles span %d px of the view's height"
                                % view.particle_height)
+            self.assertGreaterEqual(
+                view.robot, min_robot,
+                "after %.0f s the 3D view shows %d pixels of the robot's colour %s (does "
+                "robot_state_publisher's tf reach rviz?); screenshot %s"
+                % (waited, view.robot, robot_color, screenshot))
         finally:
             stop(rviz)
             stop(xvfb)
