@@ -4,7 +4,9 @@
 // of the default scene's loop at ROS's usual 1 kHz of simulated time. Here the simulation's
 // thread only queues the times; this thread sends them in order once per millisecond of wall
 // time, so a listener's time lags the node's other topics by at most that. No message is
-// dropped: /clock keeps its rate in simulated time (`rates/clock`).
+// dropped: /clock keeps its rate in simulated time (`rates/clock`). After 0.1 s of wall time
+// without a message (a paused or stopped run) the thread sleeps until the next one, which then
+// wakes it: an idle node costs no wake-ups.
 #pragma once
 
 #include <ros/ros.h>
@@ -23,7 +25,8 @@ class ClockPublisher {
   ClockPublisher(const ClockPublisher&) = delete;
   ClockPublisher& operator=(const ClockPublisher&) = delete;
 
-  // Queues t for /clock (no system call: the thread finds it at its next millisecond).
+  // Queues t for /clock (no system call while messages come: the thread finds it at its next
+  // millisecond).
   void post(const ros::Time& t);
 
  private:
@@ -31,10 +34,11 @@ class ClockPublisher {
 
   ros::Publisher pub_;
   std::mutex mutex_;
-  std::condition_variable stop_;
+  std::condition_variable wake_;
   std::vector<ros::Time> queued_;
   bool stopping_ = false;
-  std::thread thread_;  // last: started once the rest is in place
+  bool asleep_ = false;  // idle: the next post() wakes the thread
+  std::thread thread_;   // last: started once the rest is in place
 };
 
 }  // namespace mpm_sdem::node
