@@ -6,7 +6,9 @@
 // time, so a listener's time lags the node's other topics by at most that. No message is
 // dropped: /clock keeps its rate in simulated time (`rates/clock`). After 0.1 s of wall time
 // without a message (a paused or stopped run) the thread sleeps until the next one, which then
-// wakes it: an idle node's thread wakes for its messages only.
+// wakes it: an idle node's thread wakes for its messages only. Not BoundedWorker (the recorders'
+// writer thread): its push wakes the worker for every job, the system call saved here. The queue
+// holds about a millisecond of messages: ros::Publisher::publish does not block.
 #pragma once
 
 #include <ros/ros.h>

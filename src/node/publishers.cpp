@@ -71,8 +71,9 @@ Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
                "~obstacles/<name>/wrench: the contact load of the material and the other blocks, "
                "at the block frame's origin in its axes");
   scene_ = pnh.advertise<std_msgs::String>("scene", 1, true);
-  nh.param("/use_sim_time", use_sim_time_, false);
-  if (use_sim_time_) {
+  bool use_sim_time = false;
+  nh.param("/use_sim_time", use_sim_time, false);
+  if (use_sim_time) {
     clock_thread_ = std::make_unique<ClockPublisher>(nh);
     clock_.clock = SampleClock(params.clock_rate);
   }
@@ -173,7 +174,7 @@ void Publishers::publishIdle(const World& world, const conversions::StatsInput& 
   std_msgs::Header header;
   header.stamp = conversions::toRosTime(world.time());
   header.frame_id = params_.fixed_frame;
-  if (use_sim_time_) publishClock(header);
+  if (clock_thread_) publishClock(header);
   publishStats(world, status, header);
 }
 

@@ -73,10 +73,9 @@ class Publishers {
   // the broadcaster is replaced, so that its message holds only the blocks there are.
   std::unique_ptr<tf2_ros::StaticTransformBroadcaster> tf_static_;
   std::map<std::string, geometry_msgs::Transform> static_sent_;
-  Real arrow_scale_ = 0;       // m per N/m
-  std::vector<Real> heights_;  // ~terrain's columns, reused
-  bool use_sim_time_ = false;
-  std::unique_ptr<ClockPublisher> clock_thread_;  // /clock's messages, with /use_sim_time
+  Real arrow_scale_ = 0;                          // m per N/m
+  std::vector<Real> heights_;                     // ~terrain's columns, reused
+  std::unique_ptr<ClockPublisher> clock_thread_;  // /clock's messages; null without /use_sim_time
   sensor_msgs::PointCloud2 cloud_, fem_cloud_, terrain_cloud_;
   cv::Mat frame_;
   void publishClock(const std_msgs::Header& header);
