@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every shipped launch file (but sim.launch, which needs a scene) loads in roslaunch, starts the
-# node, and names a scene file that exists and that the runner runs for 10 ms (a bad scene stops
-# it before simulating), writing ParaView frames at 0, 5 and 10 ms (--vtk-every) listed in
+# node, and names a scene file that exists and that the runner runs for 10 ms with the launch
+# file's own `set` overrides (a bad scene or override stops it before simulating), writing ParaView frames at 0, 5 and 10 ms (--vtk-every) listed in
 # vtk/points.pvd. Arguments: the package's source directory, the runner.
 set -euo pipefail
 src="$1"
@@ -12,19 +12,23 @@ for f in "$src"/launch/*.launch; do
   [ "$(basename "$f")" = sim.launch ] && continue
   nodes=$(roslaunch --nodes "$f" 2>&1) || { echo "FAIL $f: $nodes"; status=1; continue; }
   grep -qx /mpm_sdem <<<"$nodes" || { echo "FAIL $f: no /mpm_sdem node ($nodes)"; status=1; }
-  scene=$(roslaunch --dump-params "$f" | sed -n 's|^/mpm_sdem/scene: ||p')
+  params=$(roslaunch --dump-params "$f")
+  scene=$(sed -n 's|^/mpm_sdem/scene: ||p' <<<"$params")
+  # The `set` list as the node gets it (one "- key=value" line each under /mpm_sdem/set:).
+  sets=()
+  while IFS= read -r kv; do sets+=(--set "$kv"); done < <(sed -n '/^\/mpm_sdem\/set:/,/^\//s/^- //p' <<<"$params")
   out=$(mktemp -d)
   if [ ! -f "$scene" ]; then
     echo "FAIL $f: scene '$scene' is not a file"
     status=1
-  elif ! "$runner" "$scene" --set time.end=0.01 --set output.interval=0.01 --vtk-every 0.005 --quiet --out "$out" >/dev/null 2>&1; then
+  elif ! "$runner" "$scene" "${sets[@]}" --set time.end=0.01 --set output.interval=0.01 --vtk-every 0.005 --quiet --out "$out" >/dev/null 2>&1; then
     echo "FAIL $f: the runner refuses $scene"
     status=1
   elif ! grep -q 'file="points_000002.vtu"' "$out/vtk/points.pvd" 2>/dev/null; then
     echo "FAIL $f: --vtk-every 0.005 left no third frame in $out/vtk/points.pvd"
     status=1
   else
-    echo "ok   $(basename "$f"): $(basename "$scene")"
+    echo "ok   $(basename "$f"): $(basename "$scene")${sets:+ ${sets[*]}}"
     rm -rf "$out"
   fi
 done
