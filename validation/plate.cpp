@@ -1,0 +1,107 @@
+// mpm_sdem_plate: one intrusion of the RFT plate (cases::Plate, the report's cases `intrusion`
+// and `intrusion_transfer`) at any cell, angle, direction, speed, gravity and transfer, for
+// the runs the report cannot afford (1.25 mm: 256,000 points, 50-80 minutes each;
+// docs/robots.md, Intrusion forces). Prints what the report measures of such a run: for a
+// push (gamma > 0) the lines F = a + k z over its window and the mean force there, for a drag
+// (gamma = 0) the mean force over its last 1.5 L; and the forces per mm of travel with
+// --curve FILE.
+#include <omp.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "cases.hpp"
+#include "mpm_sdem/core/world.hpp"
+
+using namespace mpm_sdem;
+
+namespace {
+
+int usage(const char* program, FILE* to = stderr) {
+  std::fprintf(to,
+               "usage: %s [--cell M] [--angle DEG] [--direction DEG] [--speed M/S] [--depth M]\n"
+               "          [--gravity M/S2] [--friction-angle DEG] [--transfer apic|asflip]\n"
+               "          [--threads N] [--curve FILE]\n"
+               "  defaults: cases::Plate's (5 mm, beta 0, gamma 90: the flat plate pushed\n"
+               "  straight down at 0.1 m/s, the blade's sand under gravity, APIC); --depth is\n"
+               "  a drag's (gamma 0) depth\n",
+               program);
+  return to == stderr ? 2 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  cases::Plate c;
+  std::string curve;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--help" || a == "-h") return usage(argv[0], stdout);
+    if (i + 1 >= argc) return usage(argv[0]);
+    const char* v = argv[++i];
+    char* end = nullptr;
+    const double x = std::strtod(v, &end);
+    const bool number = end != v && *end == '\0';
+    if (a == "--curve")
+      curve = v;
+    else if (a == "--transfer" && !std::strcmp(v, "apic"))
+      c.transfer = TransferScheme::kApic;
+    else if (a == "--transfer" && !std::strcmp(v, "asflip"))
+      c.transfer = TransferScheme::kAsflip;
+    else if (!number)
+      return usage(argv[0]);
+    else if (a == "--cell" && x >= 1e-4)
+      c.cell_size = x;
+    else if (a == "--angle" && x >= -90 && x <= 90)
+      c.angle = x;
+    else if (a == "--direction" && x >= 0 && x <= 90)
+      c.direction = x;
+    else if (a == "--speed" && x > 0)
+      c.speed = x;
+    else if (a == "--depth" && x > 0 && x < c.bed)
+      c.depth = x;
+    else if (a == "--gravity" && x >= 0)
+      c.gravity = x;
+    else if (a == "--friction-angle" && x >= 0 && x < 60)
+      c.friction_angle = x;
+    else if (a == "--threads" && x >= 1)
+      omp_set_num_threads(static_cast<int>(x));
+    else
+      return usage(argv[0]);
+  }
+  const WorldDef def = cases::plateIntrusion(c);
+  const Real rho_l_v2 = def.materials.at(0).density * c.length * c.speed * c.speed;
+  World w(def);
+  const cases::PlateRun r = cases::movePlate(w, c);
+  std::printf(
+      "h %g m, beta %g deg, gamma %g deg, v %g m/s, g %g m/s^2, phi %g deg, %s: %zu points, "
+      "%ld steps, %.0f s\n",
+      c.cell_size, c.angle, c.direction, c.speed, c.gravity, c.friction_angle,
+      c.transfer == TransferScheme::kAsflip ? "ASFLIP" : "APIC", r.points, r.steps, r.seconds);
+  const Real L = c.length;
+  if (c.direction > 0) {
+    const cases::PlateLines l = cases::pushLines(c, r);
+    const Vec2 m = cases::pushMean(c, r);
+    std::printf(
+        "push: F_z = %.2f N/m + %.1f N/m^2 z (alpha_z %.4g N/m^3), F_x = %.2f + %.1f z, "
+        "|F| as z^%.3f\n",
+        l.az, l.kz, l.kz / L, l.ax, l.kx, l.exponent);
+    std::printf("mean over z %.4f m to the reach: F_x %.2f, F_z %.2f N/m, F_z / (rho L v^2) %.4f\n",
+                cases::pushWindowStart(c), m.x(), m.y(), m.y() / rho_l_v2);
+  } else {
+    const Vec2 m = cases::dragMean(c, r);
+    std::printf("drag at %g m: F_x %.2f, F_z %.2f N/m, alpha_x %.4g N/m^3\n", c.depth, m.x(), m.y(),
+                -m.x() / (c.depth * L));
+  }
+  if (!curve.empty()) {
+    FILE* f = std::fopen(curve.c_str(), "w");
+    if (!f) return std::fprintf(stderr, "cannot write %s\n", curve.c_str()), 1;
+    std::fprintf(f, "travel_m,depth_m,fx_n_m,fz_n_m\n");
+    for (std::size_t k = 0; k < r.depth.size(); ++k)
+      std::fprintf(f, "%.6f,%.6f,%.4f,%.4f\n", r.travel[k], r.depth[k], r.fx[k], r.fz[k]);
+    std::fclose(f);
+  }
+  return 0;
+}
