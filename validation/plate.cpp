@@ -71,6 +71,10 @@ int main(int argc, char** argv) {
     else
       return usage(argv[0]);
   }
+  // Opened before the run, so that a path that cannot be written does not cost a long run.
+  FILE* curve_file = curve.empty() ? nullptr : std::fopen(curve.c_str(), "w");
+  if (!curve.empty() && !curve_file)
+    return std::fprintf(stderr, "cannot write %s\n", curve.c_str()), 1;
   const WorldDef def = cases::plateIntrusion(c);
   const Real rho_l_v2 = def.materials.at(0).density * c.length * c.speed * c.speed;
   World w(def);
@@ -95,9 +99,7 @@ int main(int argc, char** argv) {
     std::printf("drag at %g m: F_x %.2f, F_z %.2f N/m, alpha_x %.4g N/m^3\n", c.depth, m.x(), m.y(),
                 -m.x() / (c.depth * L));
   }
-  if (!curve.empty()) {
-    FILE* f = std::fopen(curve.c_str(), "w");
-    if (!f) return std::fprintf(stderr, "cannot write %s\n", curve.c_str()), 1;
+  if (FILE* f = curve_file) {
     std::fprintf(f, "travel_m,depth_m,fx_n_m,fz_n_m\n");
     for (std::size_t k = 0; k < r.depth.size(); ++k)
       std::fprintf(f, "%.6f,%.6f,%.4f,%.4f\n", r.travel[k], r.depth[k], r.fx[k], r.fz[k]);
