@@ -77,6 +77,10 @@ CASES = [
                            "ASFLIP at 1 cm and 5 mm: its inertial force alone (no gravity; the "
                            "sand and a medium without shear strength) against rho L v^2, the "
                            "v^2 term under gravity, and the slow push and the drag", True),
+    ("intrusion_refinement", "Issue 44: the flat plate of `intrusion` pushed down (0.1 m/s) and "
+                             "its inertial force alone (no gravity, 1 and 2 m/s), APIC, from 1 cm "
+                             "to 1.25 mm: alpha_z, the bearing-capacity slope and intercept, "
+                             "lambda_0, their orders and limits", True),
     ("fem_cantilever", "Seed 002 sec. 2.3: an FEM cantilever (plane-strain linear triangles, "
                        "corotational) under its own weight against Euler-Bernoulli, three meshes",
      True),

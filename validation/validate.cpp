@@ -85,6 +85,8 @@ const std::vector<Case>& allCases() {
        report::robots::intrusionFits},
       {"intrusion_transfer", report::robots::intrusionTransfer,
        report::robots::intrusionTransferRuns, report::robots::intrusionTransferFits},
+      {"intrusion_refinement", report::robots::intrusionRefinement,
+       report::robots::intrusionRefinementRuns, report::robots::intrusionRefinementFits},
       {"stability", report::hard_cases::stability}};
   return all;
 }

@@ -174,6 +174,9 @@ void intrusionFits(const Options& o, Results& r);
 void intrusionTransfer(const Options& o, Results& r);
 int intrusionTransferRuns(bool fast);
 void intrusionTransferFits(const Options& o, Results& r);
+void intrusionRefinement(const Options& o, Results& r);
+int intrusionRefinementRuns(bool fast);
+void intrusionRefinementFits(const Options& o, Results& r);
 }  // namespace robots
 
 }  // namespace mpm_sdem::report

@@ -931,4 +931,118 @@ void intrusionTransferFits(const Options& o, Results& r) {
   }
 }
 
+// Issue 44: the intrusion forces under refinement, through 1.25 mm (the `intrusion` case's
+// zeta and lambda are its 5 mm cell's). The flat plate pushed down at 0.1 m/s (alpha_z, the
+// slope over Prandtl-Reissner's gamma N_q B and the intercept over Meyerhof's gamma B^2
+// N_gamma / 2) and without gravity at 1 and 2 m/s in the sand (lambda_0 = F / (rho L v^2),
+// intrusion_transfer's), APIC, at 1 cm, 5 mm, 2.5 mm and 1.25 mm; from the three finest cells
+// (each half the one before) the observed order p = log2(d1 / d2) of the successive changes d1,
+// d2 and Richardson's limit a_3 - d2 / (2^p - 1), stated only where the changes shrink. The
+// 1.25 mm push is one 51-minute run on one thread (256,000 points, 92,234 steps). --fast: 2 and
+// 1 cm.
+namespace {
+
+std::vector<Real> refinementCells(bool fast) {
+  if (fast) return {0.01, 0.02};
+  return {0.00125, 0.0025, 0.005, 0.01};  // the longest runs first
+}
+
+std::vector<IntrusionRun> intrusionRefinementRunList(bool fast) {
+  std::vector<IntrusionRun> runs;
+  for (Real h : refinementCells(fast)) {
+    runs.push_back({0, 90, 0.1, 0, h});
+    for (Real v : {1.0, 2.0}) runs.push_back({0, 90, v, 0, h, TransferScheme::kApic, 0, 35});
+  }
+  return runs;
+}
+
+std::string cellName(Real h) {
+  char t[32];
+  std::snprintf(t, sizeof t, "%g mm", 1000 * h);
+  return t;
+}
+
+// Successive values of one quantity from the coarsest cell to the finest, each cell half the
+// one before: every value with its change from the one before, then the observed order and the
+// Richardson limit from the three finest where the changes shrink without changing sign.
+void addRefinement(Results& r, const std::string& name, const std::string& quantity,
+                   const std::vector<std::pair<Real, Real>>& values, Real reference,
+                   const std::string& unit, const std::string& source) {
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    char settings[96] = "";
+    if (k > 0)
+      std::snprintf(settings, sizeof settings, "%+.1f%% from h %s",
+                    100 * (values[k].second / values[k - 1].second - 1),
+                    cellName(values[k - 1].first).c_str());
+    r.add(name, quantity + ", h " + cellName(values[k].first), values[k].second, reference, unit,
+          source, 0, settings);
+  }
+  if (values.size() < 3) return;
+  const std::size_t n = values.size();
+  const Real a1 = values[n - 3].second, a2 = values[n - 2].second, a3 = values[n - 1].second;
+  const Real d1 = a1 - a2, d2 = a2 - a3;
+  char settings[160];
+  std::snprintf(settings, sizeof settings, "from h %s, %s, %s: changes %.4g, %.4g",
+                cellName(values[n - 3].first).c_str(), cellName(values[n - 2].first).c_str(),
+                cellName(values[n - 1].first).c_str(), -d1, -d2);
+  if (!(d2 / d1 > 0 && d2 / d1 < 1)) {
+    r.add(name, quantity + ": changes under refinement (not shrinking: no limit)", -d2, 0, unit, "",
+          0, settings);
+    return;
+  }
+  const Real p = std::log2(d1 / d2);
+  r.add(name, quantity + ": observed order", p, 0, "-", "", 0, settings);
+  r.add(name, quantity + ": Richardson limit", a3 - d2 / (std::pow(Real(2), p) - 1), reference,
+        unit, source, 0, settings);
+}
+
+}  // namespace
+
+int intrusionRefinementRuns(bool fast) {
+  return static_cast<int>(intrusionRefinementRunList(fast).size());
+}
+
+void intrusionRefinement(const Options& o, Results& r) {
+  runIntrusionList(o, r, intrusionRefinementRunList(o.fast), "intrusion_refinement", true);
+}
+
+void intrusionRefinementFits(const Options& o, Results& r) {
+  const std::string name = "intrusion_refinement";
+  const Table t(o.out + "/" + name + ".csv");
+  const Real L = cases::Plate().length, rho = 1500, gamma = rho * 9.81;
+  auto find = [&](const IntrusionRun& run) -> std::size_t {
+    for (std::size_t i = 0; i < t.size(); ++i)
+      if (t.at(i, "speed_m_s") == run.speed && t.at(i, "cell_m") == run.h &&
+          t.at(i, "gravity_m_s2") == run.g && t.at(i, "gamma_deg") == run.gamma &&
+          t.at(i, "beta_deg") == run.beta && t.at(i, "phi_deg") == run.phi)
+        return i;
+    throw std::runtime_error(name + ".csv lacks a run (were all the case's runs gathered?)");
+  };
+  std::vector<Real> cells = refinementCells(o.fast);
+  std::sort(cells.begin(), cells.end(), std::greater<Real>());
+  const Real phi = cases::bladeFrictionAngle(cases::Blade());
+  const cases::BearingFactors f = cases::bearingFactors(phi);
+  std::vector<std::pair<Real, Real>> alpha, slope, intercept, lambda1, lambda2;
+  for (Real h : cells) {
+    const std::size_t push = find({0, 90, 0.1, 0, h});
+    alpha.emplace_back(h, t.at(push, "kz_n_m2") / L);
+    slope.emplace_back(h, t.at(push, "kz_n_m2") / (gamma * f.n_q * L));
+    intercept.emplace_back(h, t.at(push, "az_n_m") / (0.5 * gamma * L * L * f.n_gamma));
+    for (Real v : {1.0, 2.0}) {
+      const std::size_t i = find({0, 90, v, 0, h, TransferScheme::kApic, 0, 35});
+      (v == 1 ? lambda1 : lambda2).emplace_back(h, t.at(i, "mean_fz_n_m") / (rho * L * v * v));
+    }
+  }
+  const std::string bearing =
+      "bearing capacity at phi " + std::to_string(std::lround(phi * 180 / M_PI)) + " deg: 1";
+  addRefinement(r, name, "alpha_z, beta 0 pushed down at 0.1 m/s (slope / L)", alpha, 0, "N/m^3",
+                "(the intrusion case's zeta alpha_gen is the 5 mm cell's)");
+  addRefinement(r, name, "slope / (gamma N_q B), Prandtl-Reissner", slope, 1, "-", bearing);
+  addRefinement(r, name, "intercept / (gamma B^2 N_gamma / 2), Meyerhof", intercept, 1, "-",
+                bearing);
+  const std::string rft = "the swept material given the plate's speed: 1; dynamic RFT: about 1";
+  addRefinement(r, name, "lambda_0, no gravity, the sand, v 1 m/s", lambda1, 1, "-", rft);
+  addRefinement(r, name, "lambda_0, no gravity, the sand, v 2 m/s", lambda2, 1, "-", rft);
+}
+
 }  // namespace mpm_sdem::report::robots
