@@ -504,6 +504,18 @@ struct ChuteProfile {
   Real depth = 0;    // h read from the points (m)
 };
 ChuteProfile chuteProfile(const World& w, const Chute& c);
+// Whether the points' volumes still fit their spacing (issue 41's chute runaway,
+// docs/method.md, Granular flows): each point's volume fraction phi_p = sum_I S_Ip sum_q V_q
+// S_Iq / h^2 (quadratic B-spline, periodic in x, the base as a mirror so that a packed layer
+// reads 1 there; 0.998-1.002 for the lattice at rest) over the points below the top two cells,
+// with their J. phi > 1: the points crowd more than their J says.
+struct ChuteVolume {
+  Real phi_min = 0, phi_max = 0, phi_mean = 0;  // over the points below the top two cells
+  Real j_mean = 0;                              // the same points' mean J
+  long separated = 0;                           // points at J >= 1 (all of the layer's)
+  Real vy_max = 0;                              // largest |v_y| (m/s): 0 in the uniform flow
+};
+ChuteVolume chuteVolume(const World& w, const Chute& c);
 
 // Issue 41: granular column collapse on a rough floor against the quasi-2D experiments (Lube et
 // al. 2005, Phys. Rev. E 72; Lajeunesse et al. 2005, Phys. Fluids 17, whose fits are alike). A

@@ -1,6 +1,7 @@
 // Worlds of the granular cases: the silo and Beverloo's law, the granular matrix under a plate
 // (seed 000 sec. 7), the chute (Bagnold) and the column collapse (Lube et al.).
 #include "cases.hpp"
+#include "mpm_sdem/core/mpm/kernels.hpp"
 #include "mpm_sdem/core/stepper.hpp"
 
 #include "mpm_sdem/mesh/mesher.hpp"
@@ -338,6 +339,55 @@ Real bagnold(const Chute& c, Real h, Real z) {
   const Real i = kChuteI0 * (t - kChuteMuS) / (kChuteMu2 - t);
   return Real(2) / 3 * i / c.grain * std::sqrt(kChutePhi * 9.81 * std::cos(c.theta)) *
          (std::pow(h, Real(1.5)) - std::pow(h - z, Real(1.5)));
+}
+
+ChuteVolume chuteVolume(const World& w, const Chute& c) {
+  const Particles& P = w.particles();
+  const Real h = c.cell_size;
+  const int nx = static_cast<int>(std::lround(w.def().domain.max.x() / h));  // periodic columns
+  const int rows = static_cast<int>(std::lround(w.def().domain.max.y() / h)) + 4;
+  std::vector<Real> volume(static_cast<std::size_t>(nx) * rows, 0);  // row j holds node j - 1
+  auto node = [&](int i, int j) -> Real& { return volume[(j + 1) * nx + ((i % nx) + nx) % nx]; };
+  auto stencil = [&](Real x, Real y, Stencil1D& sx, Stencil1D& sy) {
+    QuadraticBSpline::stencil(x / h, 0, sx);
+    QuadraticBSpline::stencil(y / h, 0, sy);
+  };
+  auto spread = [&](Real x, Real y, Real v) {
+    Stencil1D sx, sy;
+    stencil(x, y, sx, sy);
+    for (int j = 0; j < QuadraticBSpline::kSupport; ++j)
+      for (int i = 0; i < QuadraticBSpline::kSupport; ++i)
+        if (sy.base + j >= -1 && sy.base + j < rows - 1)
+          node(sx.base + i, sy.base + j) += v * sx.w[i] * sy.w[j];
+  };
+  Real top = 0;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const Real v = P.volume0[p] * P.J[p] / (h * h);
+    spread(P.x[p], P.y[p], v);
+    if (P.y[p] < 2 * h) spread(P.x[p], -P.y[p], v);  // the base's mirror image
+    top = std::max(top, P.y[p]);
+  }
+  ChuteVolume out;
+  out.phi_min = std::numeric_limits<Real>::infinity();
+  long counted = 0;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    out.vy_max = std::max(out.vy_max, std::abs(P.vy[p]));
+    if (P.J[p] >= 1) ++out.separated;
+    if (P.y[p] >= top - 2 * h) continue;
+    Stencil1D sx, sy;
+    stencil(P.x[p], P.y[p], sx, sy);
+    Real phi = 0;
+    for (int j = 0; j < QuadraticBSpline::kSupport; ++j)
+      for (int i = 0; i < QuadraticBSpline::kSupport; ++i)
+        phi += sx.w[i] * sy.w[j] * node(sx.base + i, sy.base + j);
+    out.phi_min = std::min(out.phi_min, phi);
+    out.phi_max = std::max(out.phi_max, phi);
+    out.phi_mean += phi;
+    out.j_mean += P.J[p];
+    ++counted;
+  }
+  if (counted > 0) out.phi_mean /= counted, out.j_mean /= counted;
+  return out;
 }
 
 ChuteProfile chuteProfile(const World& w, const Chute& c) {
