@@ -364,7 +364,8 @@ ChuteVolume chuteVolume(const World& w, const Chute& c) {
   for (std::size_t p = 0; p < P.size(); ++p) {
     const Real v = P.volume0[p] * P.J[p] / (h * h);
     spread(P.x[p], P.y[p], v);
-    if (P.y[p] < 2 * h) spread(P.x[p], -P.y[p], v);  // the base's mirror image
+    // The base's mirror image, for every point whose image reaches node -1 (within 1.5 h of it).
+    if (P.y[p] < 2.5 * h) spread(P.x[p], -P.y[p], v);
     top = std::max(top, P.y[p]);
   }
   ChuteVolume out;

@@ -25,7 +25,9 @@ int usage(const char* program, FILE* to = stderr) {
                "usage: %s [--cell M] [--angle DEG] [--end S] [--every S] [--perturb M]\n"
                "          [--seed N] [--transfer apic|asflip] [--film] [--threads N]\n"
                "  defaults: 2.5 mm cells, 27 deg, 3 s, every 0.25 s, perturbed by 1e-5 m\n"
-               "  (seed 1; 0: the symmetric start), ASFLIP (cases::chute's), 1 thread\n",
+               "  (seed 1; 0: the symmetric start), ASFLIP (cases::chute's), 1 thread; below\n"
+               "  21 deg the beads do not flow (the profile's columns are then meaningless),\n"
+               "  and --film needs a flowing angle\n",
                program);
   return to == stderr ? 2 : 0;
 }
@@ -58,7 +60,7 @@ int main(int argc, char** argv) {
       return usage(argv[0]);
     else if (a == "--cell" && x >= 2e-4 && x <= 0.01)
       c.cell_size = x;
-    else if (a == "--angle" && x > 21 && x < 32)  // between mu_s's and mu_2's angles
+    else if (a == "--angle" && x >= 0 && x < 32)  // below mu_2's angle (32.76 deg)
       c.theta = x * M_PI / 180;
     else if (a == "--end" && x > 0)
       end = x;
@@ -74,6 +76,8 @@ int main(int argc, char** argv) {
       return usage(argv[0]);
   }
   if (perturb >= 0.1 * c.cell_size) return usage(argv[0]);  // a tenth of a cell at most
+  // The film's viscosity is set from Bagnold's surface speed, which needs a flowing angle.
+  if (film && c.theta <= 20.9 * M_PI / 180) return usage(argv[0]);  // mu_s = tan 20.9 deg
   omp_set_num_threads(threads);
   WorldDef def = cases::chute(c);
   if (apic) def.solver.transfer = TransferScheme::kApic;
