@@ -480,6 +480,15 @@ struct PowerLaw {
 };
 PowerLaw powerLaw(const std::vector<Real>& x, const std::vector<Real>& y,
                   const std::vector<Real>& y_error);
+// Richardson's extrapolation of one quantity measured at three cells, each `ratio` times the
+// next finer (a1 coarsest): the changes d1 = a2 - a1 and d2 = a3 - a2, their ratio d2 / d1
+// (in (0, 1): converging), the observed order p = ln(d1 / d2) / ln(ratio) and the limit
+// a3 + d2 / (ratio^p - 1). order and limit are NaN where the changes do not shrink without
+// changing sign (not in the asymptotic range); a caller may ask more (a least order).
+struct Richardson {
+  Real change_ratio = 0, order = 0, limit = 0;
+};
+Richardson richardson(Real a1, Real a2, Real a3, Real ratio);
 
 // Issue 41: steady uniform chute flow of the mu(I) material (glass beads of Jop, Forterre &
 // Pouliquen 2006: mu_s = tan 20.9 deg, mu_2 = tan 32.76 deg, I_0 = 0.279, phi = 0.6, 1500 kg/m^3;

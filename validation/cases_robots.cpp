@@ -310,6 +310,19 @@ BladeForce bladeForce(const BladePush& p, Real depth, Real from, Real to) {
   return out;
 }
 
+Richardson richardson(Real a1, Real a2, Real a3, Real ratio) {
+  const Real d1 = a2 - a1, d2 = a3 - a2;
+  Richardson out;
+  out.change_ratio = d2 / d1;
+  if (!(d1 * d2 > 0 && std::abs(d2) < std::abs(d1))) {
+    out.order = out.limit = std::numeric_limits<Real>::quiet_NaN();
+    return out;
+  }
+  out.order = std::log(d1 / d2) / std::log(ratio);
+  out.limit = a3 + d2 / (std::pow(ratio, out.order) - 1);
+  return out;
+}
+
 PowerLaw powerLaw(const std::vector<Real>& x, const std::vector<Real>& y,
                   const std::vector<Real>& y_error) {
   Real sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;

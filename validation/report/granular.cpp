@@ -184,17 +184,16 @@ void siloConvergenceFits(const Options& o, Results& r) {
   if (sizes.size() < 3) return;
   const std::size_t f = sizes.size() - 1;  // the finest
   for (std::size_t n = 0; n < necks.size(); ++n) {
-    const Real d1 = rate[n][f - 1] - rate[n][f - 2], d2 = rate[n][f] - rate[n][f - 1];
-    const Real ratio = sizes[f - 1] / sizes[f];
+    const cases::Richardson e =
+        cases::richardson(rate[n][f - 2], rate[n][f - 1], rate[n][f], sizes[f - 1] / sizes[f]);
     char q[96];
     std::snprintf(q, sizeof q, "rate change, finest two / coarser two, D0 %.0f cm", 100 * necks[n]);
-    r.add("silo_convergence", q, d2 / d1, 0, "-", "below 1: converging", 0,
+    r.add("silo_convergence", q, e.change_ratio, 0, "-", "below 1: converging", 0,
           "differences of the three finest cell sizes");
-    if (!(d1 * d2 > 0 && std::abs(d2) < std::abs(d1))) continue;  // not in the asymptotic range
-    const Real p = std::log(d1 / d2) / std::log(ratio);
-    const Real q_inf = rate[n][f] + d2 / (std::pow(ratio, p) - 1);
-    std::snprintf(q, sizeof q, "extrapolated rate (order %.2f), D0 %.0f cm", p, 100 * necks[n]);
-    r.add("silo_convergence", q, q_inf, cases::beverloo(necks[n]), "kg/(s m)",
+    if (std::isnan(e.order)) continue;  // not in the asymptotic range
+    std::snprintf(q, sizeof q, "extrapolated rate (order %.2f), D0 %.0f cm", e.order,
+                  100 * necks[n]);
+    r.add("silo_convergence", q, e.limit, cases::beverloo(necks[n]), "kg/(s m)",
           "Richardson from the three finest cell sizes", 0, "");
   }
 }
@@ -294,19 +293,21 @@ void siloGranularWith(const Options& o, Results& r, TransferScheme transfer) {
   const Real ratio = sizes[f - 1] / sizes[f];
   std::vector<std::pair<Real, Real>> limits;
   for (std::size_t n = 0; n < necks.size(); ++n) {
-    const Real d1 = rate[n][f - 1] - rate[n][f - 2], d2 = rate[n][f] - rate[n][f - 1];
-    if (!std::isfinite(d1) || !std::isfinite(d2)) continue;
+    const cases::Richardson e =
+        cases::richardson(rate[n][f - 2], rate[n][f - 1], rate[n][f], ratio);
+    if (!std::isfinite(rate[n][f - 1] - rate[n][f - 2]) ||
+        !std::isfinite(rate[n][f] - rate[n][f - 1]))
+      continue;  // a run missing
     char q[96];
     std::snprintf(q, sizeof q, "rate change, finest two / coarser two, D0 %.0f cm", 100 * necks[n]);
-    r.add(name, q, d2 / d1, 0, "-", "below 1: converging", 0,
+    r.add(name, q, e.change_ratio, 0, "-", "below 1: converging", 0,
           "differences of the three finest cell sizes");
-    if (!(d1 * d2 > 0 && std::abs(d2) < std::abs(d1))) continue;  // not in the asymptotic range
-    const Real p = std::log(d1 / d2) / std::log(ratio);
-    const Real q_inf = rate[n][f] + d2 / (std::pow(ratio, p) - 1);
-    std::snprintf(q, sizeof q, "extrapolated rate (order %.2f), D0 %.0f cm", p, 100 * necks[n]);
-    r.add(name, q, q_inf, cases::beverloo(necks[n]), "kg/(s m)",
+    if (std::isnan(e.order)) continue;  // not in the asymptotic range
+    std::snprintf(q, sizeof q, "extrapolated rate (order %.2f), D0 %.0f cm", e.order,
+                  100 * necks[n]);
+    r.add(name, q, e.limit, cases::beverloo(necks[n]), "kg/(s m)",
           "Richardson from the three finest cell sizes", 0, "");
-    limits.emplace_back(necks[n], q_inf);
+    limits.emplace_back(necks[n], e.limit);
   }
   char settings[96];
   std::snprintf(settings, sizeof settings, "least squares over the %zu necks' Richardson limits",

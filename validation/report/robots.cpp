@@ -598,6 +598,18 @@ void intrusionRun(const IntrusionRun& run, const std::string& name, bool medium,
   std::fflush(table);
 }
 
+// The row of `run` in a table written with the medium's columns (runIntrusionList's `medium`).
+std::size_t mediumRow(const Table& t, const IntrusionRun& run, const std::string& name) {
+  const bool asflip = run.transfer == TransferScheme::kAsflip;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t.at(i, "beta_deg") == run.beta && t.at(i, "gamma_deg") == run.gamma &&
+        t.at(i, "speed_m_s") == run.speed && t.at(i, "depth_m") == run.depth &&
+        t.at(i, "cell_m") == run.h && t.at(i, "asflip") == asflip &&
+        t.at(i, "gravity_m_s2") == run.g && t.at(i, "phi_deg") == run.phi)
+      return i;
+  throw std::runtime_error(name + ".csv lacks a run (were all the case's runs gathered?)");
+}
+
 // The runs of `list` that `o` selects, into <out>/<name>.csv and <name>_series.csv.
 void runIntrusionList(const Options& o, Results& r, const std::vector<IntrusionRun>& list,
                       const std::string& name, bool medium) {
@@ -867,16 +879,7 @@ void intrusionTransferFits(const Options& o, Results& r) {
   const Table t(o.out + "/" + name + ".csv");
   const std::vector<IntrusionRun> runs = intrusionTransferRunList(o.fast);
   const Real L = cases::Plate().length, rho = 1500;
-  auto find = [&](const IntrusionRun& run) -> std::size_t {
-    const bool asflip = run.transfer == TransferScheme::kAsflip;
-    for (std::size_t i = 0; i < t.size(); ++i)
-      if (t.at(i, "beta_deg") == run.beta && t.at(i, "gamma_deg") == run.gamma &&
-          t.at(i, "speed_m_s") == run.speed && t.at(i, "depth_m") == run.depth &&
-          t.at(i, "cell_m") == run.h && t.at(i, "asflip") == asflip &&
-          t.at(i, "gravity_m_s2") == run.g && t.at(i, "phi_deg") == run.phi)
-        return i;
-    throw std::runtime_error(name + ".csv lacks a run (were all the case's runs gathered?)");
-  };
+  auto find = [&](const IntrusionRun& run) { return mediumRow(t, run, name); };
   auto label = [](const IntrusionRun& run) {
     return std::string(run.transfer == TransferScheme::kAsflip ? "ASFLIP" : "APIC") + ", h " +
            millimetres(run.h);
@@ -974,22 +977,21 @@ void addRefinement(Results& r, const std::string& name, const std::string& quant
   if (values.size() < 3) return;
   const std::size_t n = values.size();
   const Real a1 = values[n - 3].second, a2 = values[n - 2].second, a3 = values[n - 1].second;
-  const Real d1 = a1 - a2, d2 = a2 - a3;
   char settings[160];
   std::snprintf(settings, sizeof settings, "from h %s, %s, %s: changes %.4g, %.4g",
                 millimetres(values[n - 3].first).c_str(), millimetres(values[n - 2].first).c_str(),
-                millimetres(values[n - 1].first).c_str(), -d1, -d2);
+                millimetres(values[n - 1].first).c_str(), a2 - a1, a3 - a2);
   // Richardson's limit assumes the asymptotic range; take it only where the last change is at
   // most half the one before (observed order >= 1).
-  if (!(d2 / d1 > 0 && d2 / d1 <= 0.5)) {
+  const cases::Richardson e =
+      cases::richardson(a1, a2, a3, values[n - 3].first / values[n - 2].first);
+  if (!(e.change_ratio > 0 && e.change_ratio <= 0.5)) {
     r.add(name, quantity + ": last change over the one before (above 0.5: no limit stated)",
-          d2 / d1, 0, "-", "", 0, settings);
+          e.change_ratio, 0, "-", "", 0, settings);
     return;
   }
-  const Real p = std::log2(d1 / d2);
-  r.add(name, quantity + ": observed order", p, 0, "-", "", 0, settings);
-  r.add(name, quantity + ": Richardson limit", a3 - d2 / (std::pow(Real(2), p) - 1), reference,
-        unit, source, 0, settings);
+  r.add(name, quantity + ": observed order", e.order, 0, "-", "", 0, settings);
+  r.add(name, quantity + ": Richardson limit", e.limit, reference, unit, source, 0, settings);
 }
 
 }  // namespace
@@ -1006,14 +1008,7 @@ void intrusionRefinementFits(const Options& o, Results& r) {
   const std::string name = "intrusion_refinement";
   const Table t(o.out + "/" + name + ".csv");
   const Real L = cases::Plate().length, rho = 1500, gamma = rho * 9.81;
-  auto find = [&](const IntrusionRun& run) -> std::size_t {
-    for (std::size_t i = 0; i < t.size(); ++i)
-      if (t.at(i, "speed_m_s") == run.speed && t.at(i, "cell_m") == run.h &&
-          t.at(i, "gravity_m_s2") == run.g && t.at(i, "gamma_deg") == run.gamma &&
-          t.at(i, "beta_deg") == run.beta && t.at(i, "phi_deg") == run.phi)
-        return i;
-    throw std::runtime_error(name + ".csv lacks a run (were all the case's runs gathered?)");
-  };
+  auto find = [&](const IntrusionRun& run) { return mediumRow(t, run, name); };
   std::vector<Real> cells = refinementCells(o.fast);
   std::sort(cells.begin(), cells.end(), std::greater<Real>());
   const Real phi = cases::bladeFrictionAngle(cases::Blade());
