@@ -108,6 +108,13 @@ inline std::vector<CouplingScheme> allSchemes() {
   return out;
 }
 
+/// A cell size as the rows name it: "2.5 mm" for 0.0025 m.
+inline std::string millimetres(double metres) {
+  char t[32];
+  std::snprintf(t, sizeof t, "%g mm", 1000 * metres);
+  return t;
+}
+
 inline double seconds(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -177,6 +184,9 @@ void intrusionTransferFits(const Options& o, Results& r);
 void intrusionRefinement(const Options& o, Results& r);
 int intrusionRefinementRuns(bool fast);
 void intrusionRefinementFits(const Options& o, Results& r);
+void intrusionAngles(const Options& o, Results& r);
+int intrusionAnglesRuns(bool fast);
+void intrusionAnglesFits(const Options& o, Results& r);
 }  // namespace robots
 
 }  // namespace mpm_sdem::report
