@@ -593,7 +593,6 @@ void intrusionRefinementFits(const Options& o, Results& r) {
   addRefinement(r, name, "lambda_0, no gravity, the sand, v 2 m/s", lambda2, 1, "-", rft);
 }
 
-
 // Issue 44: the angle shapes under refinement (the intrusion case fits zeta at its 5 mm cell
 // only). The plate pushed at 0.1 m/s along gamma = 90 deg (beta 0, 30, 60, 90: a negative beta
 // is its positive's mirror image, F_x reversed and F_z equal to the run's digits) and along 45
@@ -685,8 +684,8 @@ void intrusionAnglesFits(const Options& o, Results& r) {
     if (c > 0)
       std::snprintf(settings, sizeof settings, "%+.1f%% from h %s",
                     100 * (s.zeta / shapes[c - 1].zeta - 1), millimetres(cells[c - 1]).c_str());
-    r.add(name, "zeta over the pushes, " + at, s.zeta, 0, "-",
-          "fitted: one factor for every angle", 0, settings);
+    r.add(name, "zeta over the pushes, " + at, s.zeta, 0, "-", "fitted: one factor for every angle",
+          0, settings);
     r.add(name, "rms residual / rms zeta alpha_gen, " + at, s.rms, 0, "-",
           "RFT's generic shapes (0 where they hold exactly)", 0, "");
     for (std::size_t k = 0; k < order.size(); ++k) {
@@ -710,8 +709,9 @@ void intrusionAnglesFits(const Options& o, Results& r) {
       }
     }
   }
-  r.add(name, "largest change of a shape ratio, h " + millimetres(cells.back()) + " from " +
-                  millimetres(cells.front()),
+  r.add(name,
+        "largest change of a shape ratio, h " + millimetres(cells.back()) + " from " +
+            millimetres(cells.front()),
         largest, 0, "-", "(0 for a converged shape)", 0, "");
 }
 
