@@ -91,8 +91,13 @@ int main(int argc, char** argv) {
   std::vector<int> counts{0, 10, 100, 1000};
   double sim_time = 0.1;
   int repeats = 3;
-  for (int i = 1; i + 1 < argc; i += 2) {
+  for (int i = 1; i < argc; i += 2) {
     const std::string a = argv[i];
+    if (i + 1 >= argc) {  // --help, or an option without its value
+      std::fprintf(a == "--help" ? stdout : stderr,
+                   "usage: %s [--counts 0,10,100,1000] [--sim-time 0.1] [--repeats 3]\n", argv[0]);
+      return a == "--help" ? 0 : 2;
+    }
     if (a == "--counts") {
       counts.clear();
       std::stringstream in(argv[i + 1]);

@@ -44,8 +44,18 @@ int main(int argc, char** argv) {
   std::vector<std::string> sizes{"10000", "100000"}, threads{"1", "2"}, scenes;
   int steps = 200, repeats = 5;
   const char* csv = nullptr;
-  for (int i = 1; i + 1 < argc; i += 2) {
+  auto usage = [&](FILE* to) {
+    std::fprintf(to,
+                 "usage: %s [--particles 10000,100000] [--threads 1,2] "
+                 "[--scenes FILE[@CELL_SIZE_M][#COUPLING_SCHEME],...] [--steps 200] "
+                 "[--repeats 5] [--csv FILE]\n",
+                 argv[0]);
+    return to == stdout ? 0 : 2;
+  };
+  for (int i = 1; i < argc; i += 2) {
     const std::string a = argv[i];
+    if (a == "--help" || a == "-h") return usage(stdout);
+    if (i + 1 >= argc) return usage(stderr);  // an option without its value
     if (a == "--particles")
       sizes = split(argv[i + 1]);
     else if (a == "--threads")
@@ -58,15 +68,8 @@ int main(int argc, char** argv) {
       repeats = std::atoi(argv[i + 1]);
     else if (a == "--csv")
       csv = argv[i + 1];
-    else {
-      std::fprintf(
-          stderr,
-          "usage: %s [--particles 10000,100000] [--threads 1,2] "
-          "[--scenes FILE[@CELL_SIZE_M][#COUPLING_SCHEME],...] [--steps 200] [--repeats 5] "
-          "[--csv FILE]\n",
-          argv[0]);
-      return 2;
-    }
+    else
+      return usage(stderr);
   }
   std::vector<Case> cases;
   for (MaterialModel model : {MaterialModel::kLinearElastic, MaterialModel::kDruckerPrager}) {
