@@ -62,6 +62,32 @@ std::vector<IntrusionRun> intrusionRunList(bool fast) {
   return runs;
 }
 
+// RFT's one scale factor for a medium: zeta by least squares over both components of every
+// measured alpha (N/m^3) against the generic ones, and the rms of the residual in N/m^3 and as a
+// fraction of the rms of zeta alpha_gen (0 where the generic shapes hold exactly).
+struct ZetaFit {
+  Real zeta = 0, rms = 0, fraction = 0;
+};
+ZetaFit fitZeta(const std::vector<cases::RftStress>& measured,
+                const std::vector<cases::RftStress>& generic) {
+  Real num = 0, den = 0;
+  for (std::size_t k = 0; k < measured.size(); ++k) {
+    num += measured[k].x * generic[k].x + measured[k].z * generic[k].z;
+    den += generic[k].x * generic[k].x + generic[k].z * generic[k].z;
+  }
+  ZetaFit f;
+  f.zeta = num / den;
+  Real residual = 0, scale = 0;
+  for (std::size_t k = 0; k < measured.size(); ++k) {
+    residual += std::pow(measured[k].x - f.zeta * generic[k].x, 2) +
+                std::pow(measured[k].z - f.zeta * generic[k].z, 2);
+    scale += std::pow(f.zeta * generic[k].x, 2) + std::pow(f.zeta * generic[k].z, 2);
+  }
+  f.rms = std::sqrt(residual / (2 * measured.size()));
+  f.fraction = std::sqrt(residual / scale);
+  return f;
+}
+
 cases::Plate plateOf(const IntrusionRun& run) {
   cases::Plate c;
   c.angle = run.beta;
@@ -241,29 +267,22 @@ void intrusionFits(const Options& o, Results& r) {
     alphas.push_back({"dragged", beta, 0, -lx.slope() / L, lz.slope() / L,
                       n > 1 ? log_f.slope() : NAN, cases::rftGeneric(beta * M_PI / 180, 0)});
   }
-  // zeta: least squares over both components of every alpha.
-  Real num = 0, den = 0;
+  std::vector<cases::RftStress> measured, generic;
   for (const Alpha& a : alphas) {
-    num += a.x * a.generic.x + a.z * a.generic.z;
-    den += a.generic.x * a.generic.x + a.generic.z * a.generic.z;
+    measured.push_back({a.x, a.z});
+    generic.push_back(a.generic);
   }
-  const Real zeta = num / den;
-  Real residual = 0, scale = 0;
-  for (const Alpha& a : alphas) {
-    residual += std::pow(a.x - zeta * a.generic.x, 2) + std::pow(a.z - zeta * a.generic.z, 2);
-    scale += std::pow(zeta * a.generic.x, 2) + std::pow(zeta * a.generic.z, 2);
-  }
-  const Real rms = std::sqrt(residual / (2 * alphas.size()));
-  const Real rms_scale = std::sqrt(scale / (2 * alphas.size()));
+  const ZetaFit fit = fitZeta(measured, generic);
+  const Real zeta = fit.zeta;
   {
     char settings[200];
     std::snprintf(settings, sizeof settings,
                   "least squares over %zu alphas (x and z) at h %s: rms residual %.0f N/m^3, "
                   "%.3f of the rms of zeta alpha_gen",
-                  alphas.size(), millimetres(h0).c_str(), rms, rms / rms_scale);
+                  alphas.size(), millimetres(h0).c_str(), fit.rms, fit.fraction);
     r.add("intrusion", "zeta (RFT's scale factor for this sand)", zeta, 0, "-",
           "fitted: one factor for every angle", 0, settings);
-    r.add("intrusion", "rms residual / rms zeta alpha_gen", rms / rms_scale, 0, "-",
+    r.add("intrusion", "rms residual / rms zeta alpha_gen", fit.fraction, 0, "-",
           "RFT's generic shapes (0 where they hold exactly)", 0, settings);
   }
   for (const Alpha& a : alphas) {
@@ -647,32 +666,24 @@ void intrusionAnglesFits(const Options& o, Results& r) {
   std::vector<IntrusionRun> order;  // one cell's runs (every cell runs the same angles)
   for (const Real h : cells) {
     Shape s;
-    Real num = 0, den = 0, pushed = NAN;
-    std::vector<std::pair<Real, Real>> alphas;  // (x, z)
+    Real pushed = NAN;
+    std::vector<cases::RftStress> measured, generic;
     order.clear();
     for (const IntrusionRun& run : runs) {
       if (run.h != h) continue;
       const std::size_t i = mediumRow(t, run, name);
-      const Real ax = -t.at(i, "kx_n_m2") / L, az = t.at(i, "kz_n_m2") / L;
-      const cases::RftStress g = cases::rftGeneric(run.beta * M_PI / 180, run.gamma * M_PI / 180);
-      num += ax * g.x + az * g.z;
-      den += g.x * g.x + g.z * g.z;
-      if (run.beta == 0 && run.gamma == 90) pushed = az;
-      alphas.emplace_back(ax, az);
+      measured.push_back({-t.at(i, "kx_n_m2") / L, t.at(i, "kz_n_m2") / L});
+      generic.push_back(cases::rftGeneric(run.beta * M_PI / 180, run.gamma * M_PI / 180));
+      if (run.beta == 0 && run.gamma == 90) pushed = measured.back().z;
       order.push_back(run);
     }
-    s.zeta = num / den;
-    Real residual = 0, scale = 0;
-    for (std::size_t k = 0; k < order.size(); ++k) {
-      const cases::RftStress g =
-          cases::rftGeneric(order[k].beta * M_PI / 180, order[k].gamma * M_PI / 180);
-      residual += std::pow(alphas[k].first - s.zeta * g.x, 2) +
-                  std::pow(alphas[k].second - s.zeta * g.z, 2);
-      scale += std::pow(s.zeta * g.x, 2) + std::pow(s.zeta * g.z, 2);
-      s.x.push_back(alphas[k].first / pushed);
-      s.z.push_back(alphas[k].second / pushed);
+    const ZetaFit fit = fitZeta(measured, generic);
+    s.zeta = fit.zeta;
+    s.rms = fit.fraction;
+    for (const cases::RftStress& a : measured) {
+      s.x.push_back(a.x / pushed);
+      s.z.push_back(a.z / pushed);
     }
-    s.rms = std::sqrt(residual / scale);
     shapes.push_back(s);
   }
   const cases::RftStress g0 = cases::rftGeneric(0, M_PI / 2);
