@@ -41,14 +41,16 @@ struct Case {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::string> sizes{"10000", "100000"}, threads{"1", "2"}, scenes;
+  std::vector<std::string> sizes{"10000", "100000"}, threads{"1", "2"}, scenes, updates{"usf"};
   int steps = 200, repeats = 5;
   const char* csv = nullptr;
   auto usage = [&](FILE* to) {
     std::fprintf(to,
                  "usage: %s [--particles 10000,100000] [--threads 1,2] "
                  "[--scenes FILE[@CELL_SIZE_M][#COUPLING_SCHEME],...] [--steps 200] "
-                 "[--repeats 5] [--csv FILE]\n",
+                 "[--repeats 5] [--csv FILE] [--update usf,usl]\n"
+                 "  --update: the columns' stress update (USF, seed 000 sec. 2.2, or USL); scenes "
+                 "keep their own\n",
                  argv[0]);
     return to == stdout ? 0 : 2;
   };
@@ -68,14 +70,21 @@ int main(int argc, char** argv) {
       repeats = std::atoi(argv[i + 1]);
     else if (a == "--csv")
       csv = argv[i + 1];
+    else if (a == "--update")
+      updates = split(argv[i + 1]);
     else
       return usage(stderr);
   }
   std::vector<Case> cases;
-  for (MaterialModel model : {MaterialModel::kLinearElastic, MaterialModel::kDruckerPrager}) {
-    for (const std::string& n : sizes) {
-      cases.push_back({std::string("column_") + bench::modelName(model),
-                       bench::columnWorld(std::atol(n.c_str()), model)});
+  for (const std::string& u : updates) {
+    if (u != "usf" && u != "usl") return usage(stderr);
+    for (MaterialModel model : {MaterialModel::kLinearElastic, MaterialModel::kDruckerPrager}) {
+      for (const std::string& n : sizes) {
+        Case c{std::string("column_") + bench::modelName(model) + (u == "usl" ? "_usl" : ""),
+               bench::columnWorld(std::atol(n.c_str()), model)};
+        if (u == "usl") c.def.solver.stress_update = StressUpdate::kUsl;
+        cases.push_back(c);
+      }
     }
   }
   for (const std::string& spec : scenes) {
