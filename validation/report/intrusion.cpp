@@ -614,8 +614,8 @@ void intrusionRefinementFits(const Options& o, Results& r) {
 
 // Issue 44: the angle shapes under refinement (the intrusion case fits zeta at its 5 mm cell
 // only). The plate pushed at 0.1 m/s along gamma = 90 deg (beta 0, 30, 60, 90: a negative beta
-// is its positive's mirror image, F_x reversed and F_z equal to the run's digits) and along 45
-// deg (beta -60 to 90), APIC, at 5 mm and 2.5 mm. Per cell: zeta by least squares over the
+// is its positive's mirror image, F_x reversed and F_z equal to 5 digits in `intrusion`) and
+// along 45 deg (beta -60 to 90), APIC, at 5 mm and 2.5 mm. Per cell: zeta by least squares over the
 // pushes' alpha_x and alpha_z (as intrusion's, without the drags), its rms residual, and each
 // alpha over the cell's alpha_z(beta 0, gamma 90), the scale-free shape that RFT's generic
 // alphas fix, against the generic ratio, with its change from the coarser cell. --fast: 2 and
