@@ -659,7 +659,7 @@ void intrusionAnglesFits(const Options& o, Results& r) {
   std::vector<Real> cells = angleCells(o.fast);
   std::sort(cells.begin(), cells.end(), std::greater<Real>());
   struct Shape {
-    Real zeta, rms;
+    Real zeta, residual;     // residual: rms over rms zeta alpha_gen (ZetaFit::fraction)
     std::vector<Real> x, z;  // alpha / alpha_z(0, 90), in the order of the cell's runs
   };
   std::vector<Shape> shapes;
@@ -679,7 +679,7 @@ void intrusionAnglesFits(const Options& o, Results& r) {
     }
     const ZetaFit fit = fitZeta(measured, generic);
     s.zeta = fit.zeta;
-    s.rms = fit.fraction;
+    s.residual = fit.fraction;
     for (const cases::RftStress& a : measured) {
       s.x.push_back(a.x / pushed);
       s.z.push_back(a.z / pushed);
@@ -697,7 +697,7 @@ void intrusionAnglesFits(const Options& o, Results& r) {
                     100 * (s.zeta / shapes[c - 1].zeta - 1), millimetres(cells[c - 1]).c_str());
     r.add(name, "zeta over the pushes, " + at, s.zeta, 0, "-", "fitted: one factor for every angle",
           0, settings);
-    r.add(name, "rms residual / rms zeta alpha_gen, " + at, s.rms, 0, "-",
+    r.add(name, "rms residual / rms zeta alpha_gen, " + at, s.residual, 0, "-",
           "RFT's generic shapes (0 where they hold exactly)", 0, "");
     for (std::size_t k = 0; k < order.size(); ++k) {
       const IntrusionRun& run = order[k];
