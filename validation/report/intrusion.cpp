@@ -538,12 +538,17 @@ std::vector<IntrusionRun> intrusionRefinementRunList(bool fast) {
 // Successive values of one quantity from the coarsest cell to the finest, each cell half the
 // one before: every value with its change from the one before, then the observed order and the
 // Richardson limit from the three finest where the last change is at most half the one before.
+// `absolute`: each change as a difference (for ratios that pass near 0) instead of a percentage.
 void addRefinement(Results& r, const std::string& name, const std::string& quantity,
                    const std::vector<std::pair<Real, Real>>& values, Real reference,
-                   const std::string& unit, const std::string& source) {
+                   const std::string& unit, const std::string& source, bool absolute = false) {
   for (std::size_t k = 0; k < values.size(); ++k) {
     char settings[96] = "";
-    if (k > 0)
+    if (k > 0 && absolute)
+      std::snprintf(settings, sizeof settings, "%+.3f from h %s",
+                    values[k].second - values[k - 1].second,
+                    millimetres(values[k - 1].first).c_str());
+    else if (k > 0)
       std::snprintf(settings, sizeof settings, "%+.1f%% from h %s",
                     100 * (values[k].second / values[k - 1].second - 1),
                     millimetres(values[k - 1].first).c_str());
@@ -615,16 +620,24 @@ void intrusionRefinementFits(const Options& o, Results& r) {
 // Issue 44: the angle shapes under refinement (the intrusion case fits zeta at its 5 mm cell
 // only). The plate pushed at 0.1 m/s along gamma = 90 deg (beta 0, 30, 60, 90: a negative beta
 // is its positive's mirror image, F_x reversed and F_z equal to 5 digits in `intrusion`) and
-// along 45 deg (beta -60 to 90), APIC, at 5 mm and 2.5 mm. Per cell: zeta by least squares over the
-// pushes' alpha_x and alpha_z (as intrusion's, without the drags), its rms residual, and each
-// alpha over the cell's alpha_z(beta 0, gamma 90), the scale-free shape that RFT's generic
-// alphas fix, against the generic ratio, with its change from the coarser cell. --fast: 2 and
-// 1 cm, beta 0 and 60 pushed down and 0 along 45 deg.
+// along 45 deg (beta -60 to 90), APIC, at 5 mm and 2.5 mm; the four along gamma 90 also at
+// 1.25 mm (3,000-3,600 s each on one thread; the ten there would take about 9 h). Per cell:
+// zeta by least squares over the pushes' alpha_x and alpha_z (as intrusion's, without the drags)
+// with its rms residual, for every push and for those along gamma 90; and each alpha over the
+// cell's alpha_z(beta 0, gamma 90), the scale-free shape that RFT's generic alphas fix, against
+// the generic ratio, with its change from the coarser cell and, over three cells,
+// addRefinement's order and limit. --fast: 2 and 1 cm, beta 0 and 60 pushed down and 0 along
+// 45 deg.
 namespace {
 
 std::vector<Real> angleCells(bool fast) {
   if (fast) return {0.01, 0.02};
-  return {0.0025, 0.005};  // the longest runs first
+  return {0.00125, 0.0025, 0.005};  // the longest runs first
+}
+
+// The pushes a cell runs: all of them, or at the finest report cell those along gamma 90.
+bool runsAngle(bool fast, Real h, Real gamma) {
+  return fast || h != 0.00125 || gamma == 90;
 }
 
 std::vector<IntrusionRun> intrusionAnglesRunList(bool fast) {
@@ -636,7 +649,8 @@ std::vector<IntrusionRun> intrusionAnglesRunList(bool fast) {
       continue;
     }
     for (Real beta : {0.0, 30.0, 60.0, 90.0}) runs.push_back({beta, 90, 0.1, 0, h});
-    for (Real beta : {-60.0, -30.0, 0.0, 30.0, 60.0, 90.0}) runs.push_back({beta, 45, 0.1, 0, h});
+    if (runsAngle(fast, h, 45))
+      for (Real beta : {-60.0, -30.0, 0.0, 30.0, 60.0, 90.0}) runs.push_back({beta, 45, 0.1, 0, h});
   }
   return runs;
 }
@@ -658,72 +672,77 @@ void intrusionAnglesFits(const Options& o, Results& r) {
   const Real L = cases::Plate().length;
   std::vector<Real> cells = angleCells(o.fast);
   std::sort(cells.begin(), cells.end(), std::greater<Real>());
-  struct Shape {
-    Real zeta, residual;     // residual: rms over rms zeta alpha_gen (ZetaFit::fraction)
-    std::vector<Real> x, z;  // alpha / alpha_z(0, 90), in the order of the cell's runs
+  const auto generic = [](const IntrusionRun& run) {
+    return cases::rftGeneric(run.beta * M_PI / 180, run.gamma * M_PI / 180);
   };
-  std::vector<Shape> shapes;
-  std::vector<IntrusionRun> order;  // one cell's runs (every cell runs the same angles)
+  // Per cell (coarse to fine), each push's alpha over the cell's alpha_z(0, 90); and zeta over
+  // all the pushes and over those along gamma 90, each with its ZetaFit::fraction residual.
+  struct Cell {
+    Real h;
+    bool all;  // every angle ran
+    ZetaFit every, down;
+    std::vector<std::pair<IntrusionRun, cases::RftStress>> shape;
+  };
+  std::vector<Cell> fits;
   for (const Real h : cells) {
-    Shape s;
+    Cell c{h, runsAngle(o.fast, h, 45), {}, {}, {}};
+    std::vector<cases::RftStress> measured, gen, measured_down, gen_down;
     Real pushed = NAN;
-    std::vector<cases::RftStress> measured, generic;
-    order.clear();
     for (const IntrusionRun& run : runs) {
       if (run.h != h) continue;
       const std::size_t i = mediumRow(t, run, name);
-      measured.push_back({-t.at(i, "kx_n_m2") / L, t.at(i, "kz_n_m2") / L});
-      generic.push_back(cases::rftGeneric(run.beta * M_PI / 180, run.gamma * M_PI / 180));
-      if (run.beta == 0 && run.gamma == 90) pushed = measured.back().z;
-      order.push_back(run);
+      const cases::RftStress a{-t.at(i, "kx_n_m2") / L, t.at(i, "kz_n_m2") / L};
+      measured.push_back(a), gen.push_back(generic(run));
+      if (run.gamma == 90) measured_down.push_back(a), gen_down.push_back(generic(run));
+      if (run.beta == 0 && run.gamma == 90) pushed = a.z;
+      c.shape.emplace_back(run, a);
     }
-    const ZetaFit fit = fitZeta(measured, generic);
-    s.zeta = fit.zeta;
-    s.residual = fit.fraction;
-    for (const cases::RftStress& a : measured) {
-      s.x.push_back(a.x / pushed);
-      s.z.push_back(a.z / pushed);
-    }
-    shapes.push_back(s);
+    c.every = fitZeta(measured, gen);
+    c.down = fitZeta(measured_down, gen_down);
+    for (auto& [run, a] : c.shape) a = {a.x / pushed, a.z / pushed};
+    fits.push_back(c);
   }
+  // zeta over every push, at the cells that ran every angle.
+  std::vector<std::pair<Real, Real>> every, down;
+  for (const Cell& c : fits) {
+    down.emplace_back(c.h, c.down.zeta);
+    if (!c.all) continue;
+    every.emplace_back(c.h, c.every.zeta);
+    r.add(name, "rms residual / rms zeta alpha_gen, h " + millimetres(c.h), c.every.fraction, 0,
+          "-", "RFT's generic shapes (0 where they hold exactly)", 0, "");
+  }
+  addRefinement(r, name, "zeta over the pushes", every, 0, "-",
+                "fitted: one factor for every angle");
+  addRefinement(r, name, "zeta over the pushes along gamma 90", down, 0, "-",
+                "fitted: one factor for the pushes straight down");
+  // Each shape ratio through the cells that ran its angle, and the largest change per halving.
   const cases::RftStress g0 = cases::rftGeneric(0, M_PI / 2);
-  Real largest = 0;
-  for (std::size_t c = 0; c < cells.size(); ++c) {
-    const Shape& s = shapes[c];
-    const std::string at = "h " + millimetres(cells[c]);
-    char settings[160] = "";
-    if (c > 0)
-      std::snprintf(settings, sizeof settings, "%+.1f%% from h %s",
-                    100 * (s.zeta / shapes[c - 1].zeta - 1), millimetres(cells[c - 1]).c_str());
-    r.add(name, "zeta over the pushes, " + at, s.zeta, 0, "-", "fitted: one factor for every angle",
-          0, settings);
-    r.add(name, "rms residual / rms zeta alpha_gen, " + at, s.residual, 0, "-",
-          "RFT's generic shapes (0 where they hold exactly)", 0, "");
-    for (std::size_t k = 0; k < order.size(); ++k) {
-      const IntrusionRun& run = order[k];
-      if (run.beta == 0 && run.gamma == 90) continue;  // 1 by definition
-      const cases::RftStress g = cases::rftGeneric(run.beta * M_PI / 180, run.gamma * M_PI / 180);
-      for (const bool x : {false, true}) {
-        const Real value = x ? s.x[k] : s.z[k];
-        char q[128];
-        std::snprintf(q, sizeof q, "%s / alpha_z(0, 90), beta %g, gamma %g, %s",
-                      x ? "alpha_x" : "alpha_z", run.beta, run.gamma, at.c_str());
-        settings[0] = '\0';
-        if (c > 0) {
-          const Real before = x ? shapes[c - 1].x[k] : shapes[c - 1].z[k];
-          largest = std::max(largest, std::abs(value - before));
-          std::snprintf(settings, sizeof settings, "%+.3f from h %s", value - before,
-                        millimetres(cells[c - 1]).c_str());
+  std::vector<Real> largest(fits.size(), 0);
+  for (const auto& [run, unused] : fits.front().shape) {
+    if (run.beta == 0 && run.gamma == 90) continue;  // 1 by definition
+    for (const bool x : {false, true}) {
+      std::vector<std::pair<Real, Real>> values;
+      for (std::size_t c = 0; c < fits.size(); ++c)
+        for (const auto& [other, a] : fits[c].shape) {
+          if (other.beta != run.beta || other.gamma != run.gamma) continue;
+          const Real value = x ? a.x : a.z;
+          if (!values.empty())
+            largest[c] = std::max(largest[c], std::abs(value - values.back().second));
+          values.emplace_back(fits[c].h, value);
         }
-        r.add(name, q, value, (x ? g.x : g.z) / g0.z, "-", "RFT's generic shapes (no zeta)", 0,
-              settings);
-      }
+      const cases::RftStress g = generic(run);
+      char q[96];
+      std::snprintf(q, sizeof q, "%s / alpha_z(0, 90), beta %g, gamma %g",
+                    x ? "alpha_x" : "alpha_z", run.beta, run.gamma);
+      addRefinement(r, name, q, values, (x ? g.x : g.z) / g0.z, "-",
+                    "RFT's generic shapes (no zeta)", true);
     }
   }
-  r.add(name,
-        "largest change of a shape ratio, h " + millimetres(cells.back()) + " from " +
-            millimetres(cells.front()),
-        largest, 0, "-", "(0 for a converged shape)", 0, "");
+  for (std::size_t c = 1; c < fits.size(); ++c)
+    r.add(name,
+          "largest change of a shape ratio, h " + millimetres(fits[c].h) + " from " +
+              millimetres(fits[c - 1].h) + (fits[c].all ? "" : " (the pushes along gamma 90)"),
+          largest[c], 0, "-", "(0 for a converged shape)", 0, "");
 }
 
 }  // namespace mpm_sdem::report::robots
