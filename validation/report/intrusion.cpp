@@ -630,14 +630,16 @@ void intrusionRefinementFits(const Options& o, Results& r) {
 // 45 deg.
 namespace {
 
+constexpr Real kAnglesFinest = 0.00125;  // m: the report's finest cell, only along gamma 90
+
 std::vector<Real> angleCells(bool fast) {
   if (fast) return {0.01, 0.02};
-  return {0.00125, 0.0025, 0.005};  // the longest runs first
+  return {kAnglesFinest, 0.0025, 0.005};  // the longest runs first
 }
 
 // The pushes a cell runs: all of them, or at the finest report cell those along gamma 90.
 bool runsAngle(bool fast, Real h, Real gamma) {
-  return fast || h != 0.00125 || gamma == 90;
+  return fast || h != kAnglesFinest || gamma == 90;
 }
 
 std::vector<IntrusionRun> intrusionAnglesRunList(bool fast) {
