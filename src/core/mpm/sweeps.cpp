@@ -1,9 +1,11 @@
 // The point sweeps of sweeps.hpp for every SIMD target Highway compiles here, and the run-time
 // choice among them (hwy/foreach_target.h re-includes this file, and node_rows.hpp with it, once
-// per target). The sweeps' vectors are GCC's (node_rows.hpp: a row of four nodes): inside
-// HWY_BEFORE_NAMESPACE the compiler lowers them, and the functions of transfer.hpp and
-// constitutive.hpp they inline, to the target's instructions (AVX-512, AVX2, SSE4, SSE2). The
-// colour loops (forEachTileByColour) stay baseline code and call each tile's work.
+// per target). P2G and the stress sweep work on GCC's vectors (node_rows.hpp: a row of four
+// nodes): inside HWY_BEFORE_NAMESPACE the compiler lowers them, and the functions of
+// transfer.hpp and constitutive.hpp they inline, to the target's instructions (AVX-512, AVX2,
+// SSE4, SSE2). G2P of the quadratic B-spline works across points in Highway's vectors
+// (laneSums), the other kernels' on rows. The colour loops (forEachTileByColour) stay baseline
+// code and call each tile's work.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "mpm/sweeps.cpp"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
@@ -161,6 +163,9 @@ void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
   };
   // A point's L_p, then its stress now (a fluid, or the first step) or, batched with the points
   // of its material, once the batch is full: the batch's points keep their weights until then.
+  // (L_p across points, as G2P's sums, measured slower here: the points come in tile order, so
+  // their positions are gathered and L_p written back one by one, and the spread that follows
+  // needs each point's row weights anyway.)
   forEachTileByColour(T, [&](int t) {
     StressBatcher batcher(P, materials, dt);
     Weights held[StressBatch::kSize];
@@ -200,103 +205,337 @@ void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
   });
 }
 
-// G2P: PIC velocity (eq. 26), FLIP blend (eq. 28), APIC affine matrix (eq. 31) or both, then
-// x_p += dt sum_I S_Ip v_I (the PIC velocity moves the point in every scheme). kGradient (USL):
-// also L_p from the post-kick velocity.
-// Without SPH particles every point in storage order; with them (T given), the material points
-// of each tile.
+// A point's sums over its nodes in G2P: the PIC velocity sum_I S_Ip v_I (eq. 26), FLIP's
+// increment sum_I S_Ip (v_I - v0_I) (eq. 28), APIC's B_p = sum_I S_Ip v_I (x_I - x_p)^T (eq. 31)
+// and, in USL, L_p = sum_I v_I (grad S_Ip)^T; each only where the scheme uses it.
+struct G2PSums {
+  Real vx, vy, dvx, dvy, bxx, bxy, byx, byy, lxx, lxy, lyx, lyy;
+};
+
+// The sums of point p with rows of four nodes (node_rows.hpp): every kernel.
+template <class K, TransferScheme kScheme, bool kGradient>
+[[gnu::always_inline]] inline G2PSums rowSums(const Particles& P, const Grid& G, long p) {
+  constexpr int S = K::kSupport;
+  const Real h = G.h, inv_h = G.inv_h;
+  Real yg;
+  Window sx;
+  Stencil1D sy;
+  sweepStencils<K>(G, P, p, yg, sx, sy);
+  const Row4 rx = sx.r * h;
+  Row4 v_x = {}, v_y = {}, dv_x = {}, dv_y = {};
+  Row4 b_xx = {}, b_xy = {}, b_yx = {}, b_yy = {};
+  Row4 l_xx = {}, l_xy = {}, l_yx = {}, l_yy = {};
+  for (int j = 0; j < S; ++j) {
+    const Real ry = ((sy.base + j) - yg) * h;
+    const int row = (sy.base + j) * G.nx + sx.first;
+    const Row4 w = sx.w * sy.w[j];
+    const Row4 gvx = loadRow(G.vel_x.data() + row), gvy = loadRow(G.vel_y.data() + row);
+    v_x += w * gvx;
+    v_y += w * gvy;
+    if (kScheme == TransferScheme::kFlip || kScheme == TransferScheme::kAsflip) {
+      dv_x += w * (gvx - loadRow(G.vel0_x.data() + row));
+      dv_y += w * (gvy - loadRow(G.vel0_y.data() + row));
+    }
+    if (carriesAffine(kScheme)) {
+      b_xx += w * gvx * rx;
+      b_xy += w * gvx * ry;
+      b_yx += w * gvy * rx;
+      b_yy += w * gvy * ry;
+    }
+    if (kGradient) {
+      const Row4 gx = sx.dw * sy.w[j] * inv_h, gy = sx.w * sy.dw[j] * inv_h;
+      l_xx += gvx * gx;
+      l_xy += gvx * gy;
+      l_yx += gvy * gx;
+      l_yy += gvy * gy;
+    }
+  }
+  const Row4 v = sums(v_x, v_y, dv_x, dv_y), b = sums(b_xx, b_xy, b_yx, b_yy);
+  const Row4 l = sums(l_xx, l_xy, l_yx, l_yy);
+  return {v[0], v[1], v[2], v[3], b[0], b[1], b[2], b[3], l[0], l[1], l[2], l[3]};
+}
+
+namespace hn = hwy::HWY_NAMESPACE;
+
+// G2P of the quadratic B-spline across points: as many points at once as a vector has lanes,
+// their nodes' velocities gathered, so that the stencil's arithmetic runs across points instead
+// of across a row's four nodes, of which it uses three (the G2P stage 2.0x faster than on rows,
+// 10k-100k points, AVX-512; bench/README.md). Bit for bit rowSums' result: the same weights
+// (node_rows.hpp's polynomials in r equal kernels.hpp's in f = x_g - base, exact here), the
+// same products, sums and fused multiply-adds in the same order (what GCC makes of the rows:
+// y_g's product fused into each of its uses, a row's four lanes added as (0 + 1) + (2 + 3)),
+// which test_simd_targets checks on whole runs.
+using LaneTag = hn::ScalableTag<Real>;
+using Lanes = hn::Vec<LaneTag>;
+using LaneIndices = hn::Vec<hn::RebindToSigned<LaneTag>>;
+
+// The points' stencils: weights, their derivatives (per grid unit) and offsets x_I - x_p (grid
+// units) at the three nodes per axis, and the index of each point's first node.
+struct LaneStencil {
+  Lanes wx[3], dwx[3], rx[3], wy[3], dwy[3], ry[3];
+  // The row window starts a node before the stencil (x's fraction 1/2 or more).
+  hn::Mask<LaneTag> shifted;
+  LaneIndices first_node;
+};
+
+[[gnu::always_inline]] inline LaneStencil laneStencil(const Grid& G, Lanes x, Lanes y) {
+  const LaneTag d;
+  const Lanes inv_h = hn::Set(d, G.inv_h), half = hn::Set(d, 0.5), one = hn::Set(d, 1);
+  const Lanes three_halves = hn::Set(d, 1.5), three_quarters = hn::Set(d, 0.75);
+  const Lanes xg = (x - hn::Set(d, G.origin.x())) * inv_h;
+  const Lanes dy = y - hn::Set(d, G.origin.y());  // y_g = dy inv_h, never rounded (as the rows)
+  // Along x the row window's weights at the stencil's nodes; along y QuadraticBSpline::stencil's.
+  const Lanes base_x = hn::Floor(xg - half), fx = xg - base_x;
+  const Lanes base_y = hn::Floor(hn::MulAdd(dy, inv_h, hn::Neg(half)));
+  const Lanes fy = hn::MulSub(dy, inv_h, base_y);
+  LaneStencil st;
+  st.shifted = hn::Eq(base_x, hn::Floor(xg));
+  {
+    const Lanes a = three_halves - fx, b = fx - one, c = fx - half;
+    st.wx[0] = half * a * a;
+    st.wx[1] = hn::NegMulAdd(b, b, three_quarters);
+    st.wx[2] = half * c * c;
+    st.dwx[0] = hn::Neg(a);
+    st.dwx[1] = hn::Set(d, -2) * b;
+    st.dwx[2] = c;
+    for (int k = 0; k < 3; ++k) st.rx[k] = (base_x + hn::Set(d, k)) - xg;
+  }
+  {
+    const Lanes a = three_halves - fy, b = fy - one, c = fy - half;
+    st.wy[0] = half * a * a;
+    st.wy[1] = hn::NegMulAdd(b, b, three_quarters);
+    st.wy[2] = half * c * c;
+    st.dwy[0] = hn::Neg(a);
+    st.dwy[1] = hn::Set(d, -2) * b;
+    st.dwy[2] = c;
+    for (int j = 0; j < 3; ++j) st.ry[j] = hn::NegMulAdd(dy, inv_h, base_y + hn::Set(d, j));
+  }
+  st.first_node =
+      hn::ConvertTo(hn::RebindToSigned<LaneTag>(), hn::MulAdd(base_y, hn::Set(d, G.nx), base_x));
+  return st;
+}
+
+// Node (k, j) of the stencil: k along x, j along y.
+[[gnu::always_inline]] inline LaneIndices laneNode(const Grid& G, const LaneStencil& st, int k,
+                                                   int j) {
+  return st.first_node + hn::Set(hn::RebindToSigned<LaneTag>(), j * G.nx + k);
+}
+
+// A sum over the stencil from its three node columns, in the rows' order.
+[[gnu::always_inline]] inline Lanes columnsInRowOrder(const LaneStencil& st, Lanes c0, Lanes c1,
+                                                      Lanes c2) {
+  return hn::IfThenElse(st.shifted, c0 + (c1 + c2), (c0 + c1) + c2);
+}
+
+constexpr int kG2PSums = 12;  // G2PSums' fields, in its order
+
+// rowSums' sums for the points at x and y (one per lane).
+template <TransferScheme kScheme, bool kGradient>
+void laneSums(const Grid& G, Lanes x, Lanes y, Lanes out[kG2PSums]) {
+  const LaneTag d;
+  constexpr bool kFlipPart = kScheme == TransferScheme::kFlip || kScheme == TransferScheme::kAsflip;
+  const Lanes h = hn::Set(d, G.h), inv_h = hn::Set(d, G.inv_h);
+  const LaneStencil st = laneStencil(G, x, y);
+  Lanes rx[3], ry[3];
+  for (int k = 0; k < 3; ++k) rx[k] = st.rx[k] * h, ry[k] = st.ry[k] * h;
+  // Per node column k the sums over its three rows (a lane of rowSums' rows).
+  Lanes column[3][kG2PSums];
+  for (int k = 0; k < 3; ++k) {
+    Lanes* c = column[k];
+    for (int q = 0; q < kG2PSums; ++q) c[q] = hn::Zero(d);
+    for (int j = 0; j < 3; ++j) {
+      const LaneIndices node = laneNode(G, st, k, j);
+      const Lanes w = st.wx[k] * st.wy[j];
+      const Lanes gvx = hn::GatherIndex(d, G.vel_x.data(), node);
+      const Lanes gvy = hn::GatherIndex(d, G.vel_y.data(), node);
+      if (carriesAffine(kScheme)) {  // w v_I serves the velocity and B: rounded once
+        const Lanes tx = w * gvx, ty = w * gvy;
+        c[0] = c[0] + tx, c[1] = c[1] + ty;
+        c[4] = hn::MulAdd(tx, rx[k], c[4]), c[5] = hn::MulAdd(tx, ry[j], c[5]);
+        c[6] = hn::MulAdd(ty, rx[k], c[6]), c[7] = hn::MulAdd(ty, ry[j], c[7]);
+      } else {
+        c[0] = hn::MulAdd(w, gvx, c[0]), c[1] = hn::MulAdd(w, gvy, c[1]);
+      }
+      if (kFlipPart) {
+        c[2] = hn::MulAdd(w, gvx - hn::GatherIndex(d, G.vel0_x.data(), node), c[2]);
+        c[3] = hn::MulAdd(w, gvy - hn::GatherIndex(d, G.vel0_y.data(), node), c[3]);
+      }
+      if (kGradient) {
+        const Lanes gx = st.dwx[k] * st.wy[j] * inv_h, gy = st.wx[k] * st.dwy[j] * inv_h;
+        c[8] = hn::MulAdd(gvx, gx, c[8]), c[9] = hn::MulAdd(gvx, gy, c[9]);
+        c[10] = hn::MulAdd(gvy, gx, c[10]), c[11] = hn::MulAdd(gvy, gy, c[11]);
+      }
+    }
+  }
+  for (int q = 0; q < kG2PSums; ++q)
+    out[q] = columnsInRowOrder(st, column[0][q], column[1][q], column[2][q]);
+}
+
+// The velocity, B or L and position of point p from its sums: PIC velocity (eq. 26), FLIP blend
+// (eq. 28), APIC affine matrix (eq. 31) or both, then x_p += dt sum_I S_Ip v_I (the PIC velocity
+// moves the point in every scheme). kGradient (USL): also L_p from the post-kick velocity.
+template <TransferScheme kScheme, bool kGradient>
+[[gnu::always_inline]] inline void finishPoint(Particles& P, long p, const G2PSums& m,
+                                               const G2PSettings& s, long& clamped, int& bad) {
+  if (kScheme == TransferScheme::kFlip) {
+    const Real a = s.pic_fraction;
+    P.vx[p] = a * m.vx + (1 - a) * (P.vx[p] + m.dvx);
+    P.vy[p] = a * m.vy + (1 - a) * (P.vy[p] + m.dvy);
+  } else if (kScheme == TransferScheme::kAsflip) {
+    // FLIP's increment (eq. 28 with alpha = 0): the point keeps its own departure from the
+    // grid's field, v_p - v^n(x_p), which APIC drops at every transfer (a share lost per
+    // step, so a loss that grows as the step shrinks); B below is APIC's, from the grid.
+    // With a relaxation time the departure decays by the same factor at every point:
+    // sum_p m_p (v_p - v^n(x_p)) = 0 (APIC's transfer keeps momentum), so momentum stays exact.
+    if (s.keep < 1) {
+      P.vx[p] = m.vx + s.keep * (P.vx[p] + m.dvx - m.vx);
+      P.vy[p] = m.vy + s.keep * (P.vy[p] + m.dvy - m.vy);
+    } else {
+      P.vx[p] += m.dvx;
+      P.vy[p] += m.dvy;
+    }
+  } else {
+    P.vx[p] = m.vx;
+    P.vy[p] = m.vy;
+  }
+  if (carriesAffine(kScheme)) {
+    P.bxx[p] = m.bxx;
+    P.bxy[p] = m.bxy;
+    P.byx[p] = m.byx;
+    P.byy[p] = m.byy;
+  }
+  if (kGradient) {
+    P.lxx[p] = m.lxx;
+    P.lxy[p] = m.lxy;
+    P.lyx[p] = m.lyx;
+    P.lyy[p] = m.lyy;
+  }
+  moveInside(P, p, s, m.vx, m.vy, clamped, bad);
+}
+
+// Whether finishLanes does a scheme's velocity update: all but FLIP's blend, which goes point
+// by point (finishPoint).
+constexpr bool finishesLanes(TransferScheme scheme) {
+  return scheme != TransferScheme::kFlip;
+}
+
+// finishPoint for the points p0 .. p0 + lanes - 1 at once, bit for bit (moveInside's fused
+// x_p + dt v and its tests lane by lane).
+template <TransferScheme kScheme, bool kGradient>
+[[gnu::always_inline]] inline void finishLanes(Particles& P, long p0, const Lanes m[kG2PSums],
+                                               const G2PSettings& s, long& clamped, int& bad) {
+  const LaneTag d;
+  if (kScheme == TransferScheme::kAsflip) {
+    const Lanes vx = hn::LoadU(d, P.vx.data() + p0) + m[2];
+    const Lanes vy = hn::LoadU(d, P.vy.data() + p0) + m[3];
+    if (s.keep < 1) {
+      const Lanes keep = hn::Set(d, s.keep);
+      hn::StoreU(hn::MulAdd(keep, vx - m[0], m[0]), d, P.vx.data() + p0);
+      hn::StoreU(hn::MulAdd(keep, vy - m[1], m[1]), d, P.vy.data() + p0);
+    } else {
+      hn::StoreU(vx, d, P.vx.data() + p0);
+      hn::StoreU(vy, d, P.vy.data() + p0);
+    }
+  } else {
+    hn::StoreU(m[0], d, P.vx.data() + p0);
+    hn::StoreU(m[1], d, P.vy.data() + p0);
+  }
+  if (carriesAffine(kScheme)) {
+    hn::StoreU(m[4], d, P.bxx.data() + p0);
+    hn::StoreU(m[5], d, P.bxy.data() + p0);
+    hn::StoreU(m[6], d, P.byx.data() + p0);
+    hn::StoreU(m[7], d, P.byy.data() + p0);
+  }
+  if (kGradient) {
+    hn::StoreU(m[8], d, P.lxx.data() + p0);
+    hn::StoreU(m[9], d, P.lxy.data() + p0);
+    hn::StoreU(m[10], d, P.lyx.data() + p0);
+    hn::StoreU(m[11], d, P.lyy.data() + p0);
+  }
+  const Lanes dt = hn::Set(d, s.dt), x0 = hn::LoadU(d, P.x.data() + p0);
+  const Lanes y0 = hn::LoadU(d, P.y.data() + p0);
+  Lanes x = hn::MulAdd(dt, m[0], x0), y = hn::MulAdd(dt, m[1], y0);
+  const auto finite = hn::And(hn::IsFinite(x), hn::IsFinite(y));  // the others keep x_p
+  if (!hn::AllTrue(d, finite)) bad = 1;
+  const Lanes lo_x = hn::Set(d, s.lo.x()), hi_x = hn::Set(d, s.hi.x());
+  const Lanes lo_y = hn::Set(d, s.lo.y()), hi_y = hn::Set(d, s.hi.y());
+  if (s.periodic_x) {
+    const Lanes width = hn::Set(d, s.hi.x() - s.lo.x());
+    x = hn::IfThenElse(hn::Lt(x, lo_x), x + width, hn::IfThenElse(hn::Ge(x, hi_x), x - width, x));
+  }
+  const auto outside =
+      hn::Or(hn::Or(hn::Lt(x, lo_x), hn::Gt(x, hi_x)), hn::Or(hn::Lt(y, lo_y), hn::Gt(y, hi_y)));
+  clamped += static_cast<long>(hn::CountTrue(d, hn::And(outside, finite)));
+  x = hn::IfThenElse(hn::Lt(x, lo_x), lo_x, hn::IfThenElse(hn::Gt(x, hi_x), hi_x, x));
+  y = hn::IfThenElse(hn::Lt(y, lo_y), lo_y, hn::IfThenElse(hn::Gt(y, hi_y), hi_y, y));
+  hn::StoreU(hn::IfThenElse(finite, x, x0), d, P.x.data() + p0);
+  hn::StoreU(hn::IfThenElse(finite, y, y0), d, P.y.data() + p0);
+}
+
+// The quadratic B-spline's G2P of points p0 .. p0 + lanes - 1 (fewer at the end, where the last
+// lanes repeat the last point).
+template <TransferScheme kScheme, bool kGradient>
+void laneBlock(Particles& P, const Grid& G, const G2PSettings& s, long p0, long& clamped,
+               int& bad) {
+  constexpr size_t kMax = hn::MaxLanes(LaneTag());
+  const long lanes = static_cast<long>(hn::Lanes(LaneTag()));
+  const long count = std::min(lanes, static_cast<long>(P.size()) - p0);
+  Lanes m[kG2PSums];
+  if (count == lanes) {
+    laneSums<kScheme, kGradient>(G, hn::LoadU(LaneTag(), P.x.data() + p0),
+                                 hn::LoadU(LaneTag(), P.y.data() + p0), m);
+    if (finishesLanes(kScheme)) {
+      finishLanes<kScheme, kGradient>(P, p0, m, s, clamped, bad);
+      return;
+    }
+  } else {
+    Real x[kMax] = {}, y[kMax] = {};
+    for (long l = 0; l < lanes; ++l) {
+      x[l] = P.x[p0 + std::min(l, count - 1)];
+      y[l] = P.y[p0 + std::min(l, count - 1)];
+    }
+    laneSums<kScheme, kGradient>(G, hn::LoadU(LaneTag(), x), hn::LoadU(LaneTag(), y), m);
+  }
+  HWY_ALIGN Real sums[kG2PSums * kMax];
+  for (int q = 0; q < kG2PSums; ++q) hn::Store(m[q], LaneTag(), sums + q * lanes);
+  for (long l = 0; l < count; ++l) {
+    const Real* v = sums + l;
+    const G2PSums lane{v[0],         v[lanes],     v[2 * lanes],  v[3 * lanes],
+                       v[4 * lanes], v[5 * lanes], v[6 * lanes],  v[7 * lanes],
+                       v[8 * lanes], v[9 * lanes], v[10 * lanes], v[11 * lanes]};
+    finishPoint<kScheme, kGradient>(P, p0 + l, lane, s, clamped, bad);
+  }
+}
+
+// G2P over every point: without SPH particles in storage order, the quadratic B-spline's
+// points a vector's lanes at a time (laneSums); with them (T given), the material points of
+// each tile one by one.
 template <class K, TransferScheme kScheme, bool kGradient>
 void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& clamped, bool& finite,
                     const Tiles* T = nullptr) {
-  constexpr int S = K::kSupport;
   const long n = static_cast<long>(P.size());
-  const Real h = G.h, inv_h = G.inv_h;
   long clamped_count = 0;
   int bad = 0;
+  constexpr bool kLanes = std::is_same_v<K, QuadraticBSpline>;
+  const bool across = kLanes && !T && !rowSweepsForTest();
+  const long lanes = across ? static_cast<long>(hn::Lanes(LaneTag())) : 1;
   // The reduction's private copies are passed in: a lambda made outside the parallel region
   // would capture the shared ones.
   auto point = [&](long p, long& clamped_here, int& bad_here) __attribute__((always_inline)) {
-    Real yg;
-    Window sx;
-    Stencil1D sy;
-    sweepStencils<K>(G, P, p, yg, sx, sy);
-    const Row4 rx = sx.r * h;
-    Row4 v_x = {}, v_y = {}, dv_x = {}, dv_y = {};
-    Row4 b_xx = {}, b_xy = {}, b_yx = {}, b_yy = {};
-    Row4 l_xx = {}, l_xy = {}, l_yx = {}, l_yy = {};
-    for (int j = 0; j < S; ++j) {
-      const Real ry = ((sy.base + j) - yg) * h;
-      const int row = (sy.base + j) * G.nx + sx.first;
-      const Row4 w = sx.w * sy.w[j];
-      const Row4 gvx = loadRow(G.vel_x.data() + row), gvy = loadRow(G.vel_y.data() + row);
-      v_x += w * gvx;
-      v_y += w * gvy;
-      if (kScheme == TransferScheme::kFlip || kScheme == TransferScheme::kAsflip) {
-        dv_x += w * (gvx - loadRow(G.vel0_x.data() + row));
-        dv_y += w * (gvy - loadRow(G.vel0_y.data() + row));
-      }
-      if (carriesAffine(kScheme)) {
-        b_xx += w * gvx * rx;
-        b_xy += w * gvx * ry;
-        b_yx += w * gvy * rx;
-        b_yy += w * gvy * ry;
-      }
-      if (kGradient) {
-        const Row4 gx = sx.dw * sy.w[j] * inv_h, gy = sx.w * sy.dw[j] * inv_h;
-        l_xx += gvx * gx;
-        l_xy += gvx * gy;
-        l_yx += gvy * gx;
-        l_yy += gvy * gy;
-      }
-    }
-    const Row4 v = sums(v_x, v_y, dv_x, dv_y), b = sums(b_xx, b_xy, b_yx, b_yy);
-    const Row4 l = sums(l_xx, l_xy, l_yx, l_yy);
-    const Real vx = v[0], vy = v[1], dvx = v[2], dvy = v[3];
-    const Real bxx = b[0], bxy = b[1], byx = b[2], byy = b[3];
-    const Real lxx = l[0], lxy = l[1], lyx = l[2], lyy = l[3];
-    if (kScheme == TransferScheme::kFlip) {
-      const Real a = s.pic_fraction;
-      P.vx[p] = a * vx + (1 - a) * (P.vx[p] + dvx);
-      P.vy[p] = a * vy + (1 - a) * (P.vy[p] + dvy);
-    } else if (kScheme == TransferScheme::kAsflip) {
-      // FLIP's increment (eq. 28 with alpha = 0): the point keeps its own departure from the
-      // grid's field, v_p - v^n(x_p), which APIC drops at every transfer (a share lost per
-      // step, so a loss that grows as the step shrinks); B below is APIC's, from the grid.
-      // With a relaxation time the departure decays by the same factor at every point:
-      // sum_p m_p (v_p - v^n(x_p)) = 0 (APIC's transfer keeps momentum), so momentum stays exact.
-      if (s.keep < 1) {
-        P.vx[p] = vx + s.keep * (P.vx[p] + dvx - vx);
-        P.vy[p] = vy + s.keep * (P.vy[p] + dvy - vy);
-      } else {
-        P.vx[p] += dvx;
-        P.vy[p] += dvy;
-      }
-    } else {
-      P.vx[p] = vx;
-      P.vy[p] = vy;
-    }
-    if (carriesAffine(kScheme)) {
-      P.bxx[p] = bxx;
-      P.bxy[p] = bxy;
-      P.byx[p] = byx;
-      P.byy[p] = byy;
-    }
-    if (kGradient) {
-      P.lxx[p] = lxx;
-      P.lxy[p] = lxy;
-      P.lyx[p] = lyx;
-      P.lyy[p] = lyy;
-    }
-    moveInside(P, p, s, vx, vy, clamped_here, bad_here);
+    finishPoint<kScheme, kGradient>(P, p, rowSums<K, kScheme, kGradient>(P, G, p), s, clamped_here,
+                                    bad_here);
   };
   // The points of the grid sums, tile by tile in sorted order, or all in storage order.
-  const long count = T ? static_cast<long>(T->start.size()) - 1 : n;
+  const long count = T ? static_cast<long>(T->start.size()) - 1 : (n + lanes - 1) / lanes;
   auto item = [&](long k, long& clamped_here, int& bad_here) __attribute__((always_inline)) {
-    if (!T) {
+    if (T) {
+      for (int q = T->start[k]; q < T->mpm_end[k]; ++q) point(T->order[q], clamped_here, bad_here);
+    } else if (across) {
+      if constexpr (kLanes)
+        laneBlock<kScheme, kGradient>(P, G, s, k * lanes, clamped_here, bad_here);
+    } else {
       point(k, clamped_here, bad_here);
-      return;
     }
-    for (int q = T->start[k]; q < T->mpm_end[k]; ++q) point(T->order[q], clamped_here, bad_here);
   };
   if (singleThread()) {
     for (long k = 0; k < count; ++k) item(k, clamped_count, bad);
@@ -399,6 +638,16 @@ void gridToParticle(KernelType kernel, TransferScheme scheme, bool gradient, Par
 
 const char* simdTarget() {
   return MPM_SDEM_SWEEP(TargetName)();
+}
+
+namespace {
+bool row_sweeps_for_test = false;
+}
+void setRowSweepsForTest(bool rows) {
+  row_sweeps_for_test = rows;
+}
+bool rowSweepsForTest() {
+  return row_sweeps_for_test;
 }
 
 }  // namespace mpm_sdem::detail

@@ -58,6 +58,11 @@ void gridToParticle(KernelType kernel, TransferScheme scheme, bool gradient, Par
                     const Grid& G, const G2PSettings& s, long& clamped, bool& finite,
                     const Tiles* T = nullptr);
 
+// Tests only: G2P one point at a time with rows of four nodes instead of across points, the
+// two ways test_simd_targets checks give the same bits.
+void setRowSweepsForTest(bool rows);
+bool rowSweepsForTest();
+
 // The SIMD target the sweeps run on here, as Highway names it ("AVX3_DL", "AVX2", "SSE4", ...):
 // the targets round differently (fused multiply-adds), so checkpoints record it.
 const char* simdTarget();
