@@ -10,6 +10,10 @@
 #define HWY_TARGET_INCLUDE "mpm/sweeps.cpp"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include "hwy/highway.h"
 #include "mpm/node_rows.hpp"
 #include "mpm/transfer.hpp"
@@ -517,7 +521,10 @@ void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& cla
   long clamped_count = 0;
   int bad = 0;
   constexpr bool kLanes = std::is_same_v<K, QuadraticBSpline>;
-  const bool across = kLanes && !T && !rowSweepsForTest();
+  // laneStencil computes node indices in Real: exact below 2^53 nodes in double, 2^24 in float.
+  const bool exact =
+      static_cast<double>(G.nx) * G.ny < std::ldexp(1.0, std::numeric_limits<Real>::digits);
+  const bool across = kLanes && !T && exact && !rowSweepsForTest();
   const long lanes = across ? static_cast<long>(hn::Lanes(LaneTag())) : 1;
   // The reduction's private copies are passed in: a lambda made outside the parallel region
   // would capture the shared ones.
