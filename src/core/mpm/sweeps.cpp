@@ -282,37 +282,35 @@ struct LaneStencil {
   LaneIndices first_node;
 };
 
+// Seed 000 eq. A3 at the stencil's three nodes, as QuadraticBSpline::stencil writes it, from the
+// point's offset f in [1/2, 3/2) from the first node: the weights and their derivatives.
+[[gnu::always_inline]] inline void quadraticWeights(Lanes f, Lanes w[3], Lanes dw[3]) {
+  const LaneTag d;
+  const Lanes half = hn::Set(d, 0.5);
+  const Lanes a = hn::Set(d, 1.5) - f, b = f - hn::Set(d, 1), c = f - half;
+  w[0] = half * a * a;
+  w[1] = hn::NegMulAdd(b, b, hn::Set(d, 0.75));
+  w[2] = half * c * c;
+  dw[0] = hn::Neg(a);
+  dw[1] = hn::Set(d, -2) * b;
+  dw[2] = c;
+}
+
 [[gnu::always_inline]] inline LaneStencil laneStencil(const Grid& G, Lanes x, Lanes y) {
   const LaneTag d;
-  const Lanes inv_h = hn::Set(d, G.inv_h), half = hn::Set(d, 0.5), one = hn::Set(d, 1);
-  const Lanes three_halves = hn::Set(d, 1.5), three_quarters = hn::Set(d, 0.75);
+  const Lanes inv_h = hn::Set(d, G.inv_h), half = hn::Set(d, 0.5);
   const Lanes xg = (x - hn::Set(d, G.origin.x())) * inv_h;
   const Lanes dy = y - hn::Set(d, G.origin.y());  // y_g = dy inv_h, never rounded (as the rows)
   // Along x the row window's weights at the stencil's nodes; along y QuadraticBSpline::stencil's.
-  const Lanes base_x = hn::Floor(xg - half), fx = xg - base_x;
+  const Lanes base_x = hn::Floor(xg - half);
   const Lanes base_y = hn::Floor(hn::MulAdd(dy, inv_h, hn::Neg(half)));
-  const Lanes fy = hn::MulSub(dy, inv_h, base_y);
   LaneStencil st;
   st.shifted = hn::Eq(base_x, hn::Floor(xg));
-  {
-    const Lanes a = three_halves - fx, b = fx - one, c = fx - half;
-    st.wx[0] = half * a * a;
-    st.wx[1] = hn::NegMulAdd(b, b, three_quarters);
-    st.wx[2] = half * c * c;
-    st.dwx[0] = hn::Neg(a);
-    st.dwx[1] = hn::Set(d, -2) * b;
-    st.dwx[2] = c;
-    for (int k = 0; k < 3; ++k) st.rx[k] = (base_x + hn::Set(d, k)) - xg;
-  }
-  {
-    const Lanes a = three_halves - fy, b = fy - one, c = fy - half;
-    st.wy[0] = half * a * a;
-    st.wy[1] = hn::NegMulAdd(b, b, three_quarters);
-    st.wy[2] = half * c * c;
-    st.dwy[0] = hn::Neg(a);
-    st.dwy[1] = hn::Set(d, -2) * b;
-    st.dwy[2] = c;
-    for (int j = 0; j < 3; ++j) st.ry[j] = hn::NegMulAdd(dy, inv_h, base_y + hn::Set(d, j));
+  quadraticWeights(xg - base_x, st.wx, st.dwx);
+  quadraticWeights(hn::MulSub(dy, inv_h, base_y), st.wy, st.dwy);
+  for (int k = 0; k < 3; ++k) {
+    st.rx[k] = (base_x + hn::Set(d, k)) - xg;
+    st.ry[k] = hn::NegMulAdd(dy, inv_h, base_y + hn::Set(d, k));
   }
   st.first_node =
       hn::ConvertTo(hn::RebindToSigned<LaneTag>(), hn::MulAdd(base_y, hn::Set(d, G.nx), base_x));
