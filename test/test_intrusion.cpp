@@ -7,12 +7,16 @@
 //    leaves out); the vertical plate dragged along x at 4 and 8 cm: the force per depth nearly
 //    constant (RFT's linear law), and its ratio to the push's the generic shapes' (no zeta).
 //  - Without weight or strength the plate meets the swept material's momentum, rho L v^2.
+//  - A run stopped at a checkpoint and continued in a new world is the run that never stopped,
+//    bit for bit (the report's 1.25 mm runs take hours; cases::PlateCheckpoints).
 // The bands come from the report's study at 1 cm, 5 mm and 2.5 mm (docs/validation/REPORT.md,
 // cases intrusion and intrusion_transfer; docs/robots.md).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <string>
 
 #include "cases.hpp"
 
@@ -93,4 +97,50 @@ TEST(Intrusion, WithoutWeightOrStrengthThePlateMeetsTheSweptMomentum) {
   EXPECT_NEAR(lambda[1], 1, 0.25);
   EXPECT_GT(lambda[1] / lambda[0], 0.9);
   EXPECT_LT(lambda[1] / lambda[0], 1.2);
+}
+
+// A drag stopped once while it descends and once while it is dragged, each time continued in a
+// new world from the checkpoint it wrote: every sample, the step count and the end equal the
+// uninterrupted run's to the bit, and the finished run removes its checkpoint. A checkpoint
+// written for another plate is not used (the run starts over).
+TEST(Intrusion, RunContinuedFromACheckpointIsTheUninterruptedRun) {
+  cases::Plate c;
+  c.cell_size = 0.01;
+  c.direction = 0;  // a drag: descends to 3 cm, then 3 L along x
+  c.depth = 0.03;
+  c.length = 0.03;
+  c.speed = 1;  // ten times the report's: a tenth of the steps
+  World whole(cases::plateIntrusion(c));
+  const cases::PlateRun a = cases::movePlate(whole, c);
+  ASSERT_GT(a.travel.size(), 50u);
+  const std::string path = ::testing::TempDir() + "mpm_sdem_plate.checkpoint";
+  std::filesystem::remove(path);
+  const long descending = 20;  // of about 300 steps down
+  for (const long stop : {descending, a.steps / 2}) {
+    World first(cases::plateIntrusion(c));
+    const cases::PlateRun part = cases::movePlate(first, c, {path, 600, stop});
+    EXPECT_FALSE(part.finished);
+    EXPECT_EQ(part.steps, stop);
+    ASSERT_TRUE(std::filesystem::exists(path));
+    World second(cases::plateIntrusion(c));
+    const cases::PlateRun rest = cases::movePlate(second, c, {path});
+    EXPECT_TRUE(rest.finished);
+    EXPECT_EQ(rest.resumed_from, stop);
+    EXPECT_FALSE(std::filesystem::exists(path));
+    EXPECT_EQ(rest.steps, a.steps);
+    EXPECT_EQ(rest.travel, a.travel);
+    EXPECT_EQ(rest.depth, a.depth);
+    EXPECT_EQ(rest.fx, a.fx);
+    EXPECT_EQ(rest.fz, a.fz);
+    EXPECT_EQ(second.time(), whole.time());
+  }
+  World first(cases::plateIntrusion(c));
+  cases::movePlate(first, c, {path, 600, descending});
+  cases::Plate other = c;
+  other.speed = 2;
+  World w(cases::plateIntrusion(other));
+  const cases::PlateRun fresh = cases::movePlate(w, other, {path, 600, 5});
+  EXPECT_EQ(fresh.resumed_from, 0);
+  EXPECT_EQ(fresh.steps, 5);
+  std::filesystem::remove(path);
 }

@@ -597,9 +597,23 @@ struct PlateRun {
   std::vector<Real> travel, depth, fx, fz;  // m, m, N/m, N/m
   long steps = 0;
   std::size_t points = 0;
-  Real seconds = 0;  // wall
+  Real seconds = 0;       // wall, over every part of a run continued from a checkpoint
+  bool finished = true;   // false: stopped at PlateCheckpoints::stop_at_step
+  long resumed_from = 0;  // the step a checkpoint let it continue from (0: from the start)
 };
-PlateRun movePlate(World& w, const Plate& c);
+// Checkpoints of a plate run, so that a run of hours can stop (killed, or the machine's session
+// ended) and go on later: the world (core/checkpoint.hpp, continued bit for bit) and the run's
+// own progress in one file, replaced every `every` seconds of wall time and removed when the run
+// ends. A run that finds the file continues from it when it was written by this build for this
+// plate; otherwise it starts over and says why on stderr.
+struct PlateCheckpoints {
+  std::string path;    // the file; empty: no checkpoints
+  double every = 600;  // s of wall time between checkpoints
+  // > 0: write one at this step and return unfinished (a run in parts; a run continued from
+  // that step goes on)
+  long stop_at_step = 0;
+};
+PlateRun movePlate(World& w, const Plate& c, const PlateCheckpoints& k = {});
 // The depth below the surface at which the plate is just covered: L |sin beta| / 2 + t / 2 (m).
 Real plateCovered(const Plate& c);
 // Where a push's window starts (m): a centimetre below plateCovered, past the entry's transient.

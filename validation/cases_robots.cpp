@@ -1,5 +1,6 @@
 // Worlds of the robot cases: the driven wheel and the blade against Reece's equation.
 #include "cases.hpp"
+#include "mpm_sdem/core/checkpoint.hpp"
 #include "mpm_sdem/core/stepper.hpp"
 
 #include "mpm_sdem/mesh/mesher.hpp"
@@ -8,9 +9,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <random>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -403,51 +409,167 @@ WorldDef plateIntrusion(const Plate& c) {
   return def;
 }
 
-PlateRun movePlate(World& w, const Plate& c) {
+namespace {
+
+// The plate as text: what a checkpoint records and a resume compares (every field, every digit).
+std::string plateText(const Plate& c) {
+  std::ostringstream o;
+  o.precision(17);
+  o << "plate angle " << c.angle << " direction " << c.direction << " speed " << c.speed
+    << " depth " << c.depth << " reach " << c.reach << " length " << c.length << " thickness "
+    << c.thickness << " rounding " << c.rounding << " friction " << c.friction << " cell "
+    << c.cell_size << " bed " << c.bed << " width " << c.width << " friction_angle "
+    << c.friction_angle << " gravity " << c.gravity << " transfer " << static_cast<int>(c.transfer);
+  return o.str();
+}
+
+// movePlate's own state between two steps, beside the world's.
+struct PlateLoop {
   PlateRun out;
-  const auto t0 = std::chrono::steady_clock::now();
+  Real next = 0.001, sum_x = 0, sum_z = 0, span = 0;  // the sample being summed
+  bool descended = false;
+  Vec2 from = Vec2(0, 0);  // where the sampled motion began
+  double seconds = 0;      // wall time of the parts before this one
+};
+
+constexpr const char* kPlateMagic = "mpm_sdem plate run 1";
+
+// The run's progress as text (17 digits: read back exactly), then the world's checkpoint; written
+// beside the file and renamed over it, so that a kill leaves the old file or the new one.
+void savePlate(World& w, const Plate& c, const PlateLoop& s, const std::string& path) {
+  std::ostringstream o;
+  o.precision(17);
+  o << kPlateMagic << '\n'
+    << s.out.steps << ' ' << s.seconds << ' ' << s.next << ' ' << s.sum_x << ' ' << s.sum_z << ' '
+    << s.span << ' ' << s.descended << ' ' << s.from.x() << ' ' << s.from.y() << '\n'
+    << s.out.travel.size() << '\n';
+  for (std::size_t k = 0; k < s.out.travel.size(); ++k)
+    o << s.out.travel[k] << ' ' << s.out.depth[k] << ' ' << s.out.fx[k] << ' ' << s.out.fz[k]
+      << '\n';
+  const std::string world = saveCheckpoint(w, plateText(c));
+  o << "world " << world.size() << '\n' << world;
+  const std::string part = path + ".part";
+  {
+    std::ofstream f(part, std::ios::binary | std::ios::trunc);
+    f << o.str();
+    if (!f.flush()) throw std::runtime_error("cannot write the checkpoint " + part);
+  }
+  std::filesystem::rename(part, path);
+}
+
+// The checkpoint at path into w and s. False, with the reason on stderr, when there is none or it
+// was written by another build or for another plate: the run then starts over.
+bool loadPlate(World& w, const Plate& c, PlateLoop& s, const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  auto refuse = [&](const std::string& why) {
+    std::fprintf(stderr, "%s: %s; starting the run over\n", path.c_str(), why.c_str());
+    return false;
+  };
+  std::string magic, word;
+  std::getline(in, magic);
+  if (magic != kPlateMagic) return refuse("not a plate run's checkpoint");
+  std::size_t samples = 0, bytes = 0;
+  in >> s.out.steps >> s.seconds >> s.next >> s.sum_x >> s.sum_z >> s.span >> s.descended;
+  Real fx = 0, fy = 0;
+  in >> fx >> fy >> samples;
+  s.from = Vec2(fx, fy);
+  if (!in || samples > (1u << 24)) return refuse("damaged progress");
+  s.out.travel.resize(samples), s.out.depth.resize(samples);
+  s.out.fx.resize(samples), s.out.fz.resize(samples);
+  for (std::size_t k = 0; k < samples; ++k)
+    in >> s.out.travel[k] >> s.out.depth[k] >> s.out.fx[k] >> s.out.fz[k];
+  in >> word >> bytes;
+  in.get();  // the newline before the world's bytes
+  std::string world(bytes, '\0');
+  in.read(world.data(), static_cast<std::streamsize>(bytes));
+  if (!in || word != "world") return refuse("damaged progress");
+  CheckpointHeader h;
+  try {
+    h = readCheckpointHeader(world);
+  } catch (const CheckpointError& e) {
+    return refuse(e.what());
+  }
+  const std::string other = buildDifference(h.build, buildId());
+  if (!other.empty()) return refuse("written by another build: " + other);
+  if (h.scene != plateText(c)) return refuse("written for another plate (" + h.scene + ")");
+  if (h.steps != s.out.steps) return refuse("its progress and world disagree");
+  restoreCheckpoint(w, world);  // same build, same plate, checksum good: a throw here is fatal
+  s.out.resumed_from = s.out.steps;
+  std::fprintf(stderr, "%s: continuing from step %ld (t = %.6f s)\n", path.c_str(), s.out.steps,
+               h.time);
+  return true;
+}
+
+}  // namespace
+
+PlateRun movePlate(World& w, const Plate& c, const PlateCheckpoints& k) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  auto last = t0;
   const Blocks& B = *w.blocks();
+  PlateLoop s;
+  const bool resumed = !k.path.empty() && loadPlate(w, c, s, k.path);
+  if (!resumed) {
+    s = PlateLoop{};
+    layerWeightAsStress(w, 0.5 * c.cell_size);
+    s.from = B.state(0).position;
+  }
+  PlateRun& out = s.out;
   out.points = w.particles().size();
-  layerWeightAsStress(w, 0.5 * c.cell_size);
   const Real gamma = c.direction * M_PI / 180;
   const Vec2 along = c.direction > 0 ? Vec2(std::cos(gamma), -std::sin(gamma)) : Vec2(1, 0);
-  const Vec2 start = B.state(0).position;
   const bool drag = c.direction <= 0;
   const Real sample = 0.001;
-  Real next = sample, sum_x = 0, sum_z = 0, span = 0;
-  bool descended = !drag;
-  Vec2 from = start;
+  if (!resumed) s.descended = !drag;
+  auto wall = [&] { return s.seconds + std::chrono::duration<double>(Clock::now() - t0).count(); };
   while (true) {
+    // Between two steps the loop's state is whole: where a checkpoint is taken.
+    if (!k.path.empty()) {
+      const bool stop = out.steps == k.stop_at_step && out.steps != out.resumed_from;
+      if (stop || std::chrono::duration<double>(Clock::now() - last).count() >= k.every) {
+        PlateLoop copy = s;
+        copy.seconds = wall();
+        savePlate(w, c, copy, k.path);
+        last = Clock::now();
+        if (stop) {
+          out.seconds = wall();
+          out.finished = false;
+          return out;
+        }
+      }
+    }
     const Vec2 x = B.state(0).position;
     const Real depth = c.bed - x.y();
-    if (!descended && depth >= c.depth - 1e-12) {  // at the drag's depth: along +x from here
-      descended = true;
-      from = x;
-      sum_x = sum_z = span = 0;
+    if (!s.descended && depth >= c.depth - 1e-12) {  // at the drag's depth: along +x from here
+      s.descended = true;
+      s.from = x;
+      s.sum_x = s.sum_z = s.span = 0;
     }
-    const Vec2 velocity = c.speed * (descended ? along : Vec2(0, -1));
+    const Vec2 velocity = c.speed * (s.descended ? along : Vec2(0, -1));
     // The last step of the descent lands on the depth exactly.
     const TimeStepChoice choice = w.chooseTimeStep();
     Real dt = choice.dt;
-    if (!descended) dt = std::min(dt, (c.depth - depth) / c.speed);
+    if (!s.descended) dt = std::min(dt, (c.depth - depth) / c.speed);
     w.setBlockVelocity(B.id(0), velocity, 0);
     w.step(dt);
     ++out.steps;
-    if (!descended) continue;
-    sum_x += B.coupling()[0].force.x() * dt;
-    sum_z += B.coupling()[0].force.y() * dt;
-    span += dt;
-    const Real travelled = (B.state(0).position - from).norm();
-    if (travelled < next - 1e-12) continue;
+    if (!s.descended) continue;
+    s.sum_x += B.coupling()[0].force.x() * dt;
+    s.sum_z += B.coupling()[0].force.y() * dt;
+    s.span += dt;
+    const Real travelled = (B.state(0).position - s.from).norm();
+    if (travelled < s.next - 1e-12) continue;
     out.travel.push_back(travelled);
     out.depth.push_back(c.bed - B.state(0).position.y());
-    out.fx.push_back(sum_x / span);
-    out.fz.push_back(sum_z / span);
-    sum_x = sum_z = span = 0;
-    next += sample;
+    out.fx.push_back(s.sum_x / s.span);
+    out.fz.push_back(s.sum_z / s.span);
+    s.sum_x = s.sum_z = s.span = 0;
+    s.next += sample;
     if (drag ? travelled >= 3 * c.length - 1e-12 : out.depth.back() >= c.reach - 1e-12) break;
   }
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.seconds = wall();
+  if (!k.path.empty()) std::filesystem::remove(k.path);
   return out;
 }
 

@@ -4,7 +4,8 @@
 // docs/robots.md, Intrusion forces). Prints what the report measures of such a run: for a
 // push (gamma > 0) the lines F = a + k z over its window and the mean force there, for a drag
 // (gamma = 0) the mean force over its last 1.5 L; and the forces per mm of travel with
-// --curve FILE.
+// --curve FILE. --checkpoint FILE: a checkpoint every 10 minutes of wall time, from which the
+// same command continues a run that was stopped (cases::PlateCheckpoints).
 #include <omp.h>
 
 #include <cstdio>
@@ -23,7 +24,7 @@ int usage(const char* program, FILE* to = stderr) {
   std::fprintf(to,
                "usage: %s [--cell M] [--angle DEG] [--direction DEG] [--speed M/S] [--depth M]\n"
                "          [--gravity M/S2] [--friction-angle DEG] [--transfer apic|asflip]\n"
-               "          [--threads N] [--curve FILE]\n"
+               "          [--threads N] [--curve FILE] [--checkpoint FILE]\n"
                "  defaults: cases::Plate's (5 mm, beta 0, gamma 90: the flat plate pushed\n"
                "  straight down at 0.1 m/s, the blade's sand under gravity, APIC); --depth is\n"
                "  a drag's (gamma 0) depth\n",
@@ -36,6 +37,7 @@ int usage(const char* program, FILE* to = stderr) {
 int main(int argc, char** argv) {
   cases::Plate c;
   std::string curve;
+  cases::PlateCheckpoints checkpoints;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") return usage(argv[0], stdout);
@@ -46,6 +48,8 @@ int main(int argc, char** argv) {
     const bool number = end != v && *end == '\0';
     if (a == "--curve")
       curve = v;
+    else if (a == "--checkpoint")
+      checkpoints.path = v;
     else if (a == "--transfer" && !std::strcmp(v, "apic"))
       c.transfer = TransferScheme::kApic;
     else if (a == "--transfer" && !std::strcmp(v, "asflip"))
@@ -78,7 +82,7 @@ int main(int argc, char** argv) {
   const WorldDef def = cases::plateIntrusion(c);
   const Real rho_l_v2 = def.materials.at(0).density * c.length * c.speed * c.speed;
   World w(def);
-  const cases::PlateRun r = cases::movePlate(w, c);
+  const cases::PlateRun r = cases::movePlate(w, c, checkpoints);
   std::printf(
       "h %g m, beta %g deg, gamma %g deg, v %g m/s, g %g m/s^2, phi %g deg, %s: %zu points, "
       "%ld steps, %.0f s\n",

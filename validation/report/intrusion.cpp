@@ -113,11 +113,13 @@ namespace {
 // `name`, and its row (every digit: the fits read it back) written to `table`. `medium`: five
 // more columns (intrusion_transfer's): the run's transfer, gravity and friction angle, and the
 // mean forces (a push's over its window, cases::pushMean; a drag's as above).
+// `checkpoint`: the run's checkpoint file (cases::PlateCheckpoints: a run of hours that is
+// stopped continues from it when run again).
 void intrusionRun(const IntrusionRun& run, const std::string& name, bool medium, FILE* table,
-                  FILE* series, Results& r) {
+                  FILE* series, Results& r, const std::string& checkpoint) {
   const cases::Plate c = plateOf(run);
   World w(cases::plateIntrusion(c));
-  const cases::PlateRun p = cases::movePlate(w, c);
+  const cases::PlateRun p = cases::movePlate(w, c, {checkpoint});
   const bool asflip = run.transfer == TransferScheme::kAsflip;
   for (std::size_t k = 0; k < p.depth.size(); ++k) {
     std::fprintf(series, "%g,%g,%g,%g,%g,%.6g,%.6g,%.6g,%.6g", run.beta, run.gamma, run.speed,
@@ -208,7 +210,9 @@ void runIntrusionList(const Options& o, Results& r, const std::vector<IntrusionR
                "fz_n_m%s",
                medium ? ",asflip,gravity_m_s2,phi_deg\n" : "\n");
   for (std::size_t i = 0; i < list.size(); ++i)
-    if (o.runs(static_cast<int>(i))) intrusionRun(list[i], name, medium, table, series, r);
+    if (o.runs(static_cast<int>(i)))
+      intrusionRun(list[i], name, medium, table, series, r,
+                   o.out + "/" + name + "." + std::to_string(i) + ".checkpoint");
   std::fclose(table);
   std::fclose(series);
 }
