@@ -81,6 +81,9 @@ CASES = [
                              "its inertial force alone (no gravity, 1 and 2 m/s), APIC, from 1 cm "
                              "to 1.25 mm: alpha_z, the bearing-capacity slope and intercept, "
                              "lambda_0, their orders and limits", True),
+    ("intrusion_drag", "Issue 44: the upright plate of `intrusion` dragged along x at 6 cm "
+                       "(0.1 m/s), APIC, from 1 cm to 1.25 mm: alpha_x, its order and limit",
+     True),
     ("fem_cantilever", "Seed 002 sec. 2.3: an FEM cantilever (plane-strain linear triangles, "
                        "corotational) under its own weight against Euler-Bernoulli, three meshes",
      True),

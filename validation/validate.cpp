@@ -87,6 +87,8 @@ const std::vector<Case>& allCases() {
        report::robots::intrusionTransferRuns, report::robots::intrusionTransferFits},
       {"intrusion_refinement", report::robots::intrusionRefinement,
        report::robots::intrusionRefinementRuns, report::robots::intrusionRefinementFits},
+      {"intrusion_drag", report::robots::intrusionDrag, report::robots::intrusionDragRuns,
+       report::robots::intrusionDragFits},
       {"intrusion_angles", report::robots::intrusionAngles, report::robots::intrusionAnglesRuns,
        report::robots::intrusionAnglesFits},
       {"stability", report::hard_cases::stability}};
