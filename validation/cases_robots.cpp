@@ -569,7 +569,10 @@ PlateRun movePlate(World& w, const Plate& c, const PlateCheckpoints& k) {
     if (drag ? travelled >= 3 * c.length - 1e-12 : out.depth.back() >= c.reach - 1e-12) break;
   }
   out.seconds = wall();
-  if (!k.path.empty()) std::filesystem::remove(k.path);
+  if (!k.path.empty()) {
+    std::filesystem::remove(k.path);
+    std::filesystem::remove(k.path + ".part");  // a write a kill cut short
+  }
   return out;
 }
 
