@@ -24,8 +24,11 @@ int usage(const char* program, FILE* to = stderr) {
   std::fprintf(to,
                "usage: %s [--cell M] [--angle DEG] [--end S] [--every S] [--perturb M]\n"
                "          [--seed N] [--transfer apic|asflip] [--film] [--threads N]\n"
+               "          [--ppc N] [--relax S]\n"
                "  defaults: 2.5 mm cells, 27 deg, 3 s, every 0.25 s, perturbed by 1e-5 m\n"
-               "  (seed 1; 0: the symmetric start), ASFLIP (cases::chute's), 1 thread; below\n"
+               "  (seed 1; 0: the symmetric start), ASFLIP (cases::chute's), 1 thread, 2 x 2\n"
+               "  points per cell (--ppc 1-4), ASFLIP kept whole (--relax: its departure's\n"
+               "  relaxation time in s); below\n"
                "  21 deg the beads do not flow (the profile's columns are then meaningless),\n"
                "  and --film needs a flowing angle\n",
                program);
@@ -38,9 +41,9 @@ int main(int argc, char** argv) {
   cases::Chute c;
   c.cell_size = 0.0025;
   c.theta = 27 * M_PI / 180;
-  Real end = 3, every = 0.25, perturb = 1e-5;
+  Real end = 3, every = 0.25, perturb = 1e-5, relax = 0;
   unsigned seed = 1;
-  int threads = 1;
+  int threads = 1, ppc = 2;
   bool film = false, apic = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -70,6 +73,10 @@ int main(int argc, char** argv) {
       perturb = x;
     else if (a == "--seed" && x >= 0 && x == std::floor(x))
       seed = static_cast<unsigned>(x);
+    else if (a == "--relax" && x >= 0)
+      relax = x;
+    else if (a == "--ppc" && x >= 1 && x <= 4 && x == std::floor(x))
+      ppc = static_cast<int>(x);
     else if (a == "--threads" && x >= 1 && x == std::floor(x))
       threads = static_cast<int>(x);
     else
@@ -81,6 +88,8 @@ int main(int argc, char** argv) {
   omp_set_num_threads(threads);
   WorldDef def = cases::chute(c);
   if (apic) def.solver.transfer = TransferScheme::kApic;
+  def.bodies[0].points_per_cell = ppc;
+  if (relax > 0) def.solver.asflip_relaxation_time = relax;
   const Real surface = cases::bagnold(c, c.depth, c.depth);
   if (film) {  // Nusselt's surface speed rho g sin(theta) h^2 / (2 eta) set to Bagnold's
     MaterialDef& m = def.materials[0];
