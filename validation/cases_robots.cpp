@@ -423,10 +423,12 @@ std::string plateText(const Plate& c) {
   return o.str();
 }
 
+constexpr Real kPlateSample = 0.001;  // m of the plate's motion between two samples
+
 // movePlate's own state between two steps, beside the world's.
 struct PlateLoop {
   PlateRun out;
-  Real next = 0.001, sum_x = 0, sum_z = 0, span = 0;  // the sample being summed
+  Real next = kPlateSample, sum_x = 0, sum_z = 0, span = 0;  // the sample being summed
   bool descended = false;
   Vec2 from = Vec2(0, 0);  // where the sampled motion began
   double seconds = 0;      // wall time of the parts before this one
@@ -520,7 +522,6 @@ PlateRun movePlate(World& w, const Plate& c, const PlateCheckpoints& k) {
   const Real gamma = c.direction * M_PI / 180;
   const Vec2 along = c.direction > 0 ? Vec2(std::cos(gamma), -std::sin(gamma)) : Vec2(1, 0);
   const bool drag = c.direction <= 0;
-  const Real sample = 0.001;
   if (!resumed) s.descended = !drag;
   auto wall = [&] { return s.seconds + std::chrono::duration<double>(Clock::now() - t0).count(); };
   while (true) {
@@ -565,7 +566,7 @@ PlateRun movePlate(World& w, const Plate& c, const PlateCheckpoints& k) {
     out.fx.push_back(s.sum_x / s.span);
     out.fz.push_back(s.sum_z / s.span);
     s.sum_x = s.sum_z = s.span = 0;
-    s.next += sample;
+    s.next += kPlateSample;
     if (drag ? travelled >= 3 * c.length - 1e-12 : out.depth.back() >= c.reach - 1e-12) break;
   }
   out.seconds = wall();
