@@ -662,8 +662,8 @@ void intrusionDragFits(const Options& o, Results& r) {
 // only). The plate pushed at 0.1 m/s along gamma = 90 deg (beta 0, 30, 60, 90: a negative beta
 // is its positive's mirror image, F_x reversed and F_z equal to 5 digits in `intrusion`) and
 // along 45 deg (beta -60 to 90), APIC, at 5 mm and 2.5 mm; the four along gamma 90 also at
-// 1.25 mm (3,807-4,215 s each on one thread, two at a time; the six along 45 deg took 5,427-9,000
-// s each, run outside the report: docs/robots.md). Per cell:
+// 1.25 mm (3,807-4,215 s each on one thread, two at a time; the six along 45 deg took
+// 5,427-9,000 s each, run outside the report: docs/robots.md). Per cell:
 // zeta by least squares over the pushes' alpha_x and alpha_z (as intrusion's, without the drags)
 // with its rms residual, for every push and for those along gamma 90; and each alpha over the
 // cell's alpha_z(beta 0, gamma 90), the scale-free shape that RFT's generic alphas fix, against
