@@ -19,7 +19,7 @@ Parameters (SI):
   is noisy: each material point's spring is a share of it); ~rate 50 Hz of simulated time.
   Ranges: force (0, 1e5], speed [0, 10], max_depth_rate (0, 10], kp and ki [0, 1], filter
   (0, 100], rate (0, 1000]; anything else stops the node at its start, naming the parameter.
-Publishes ~force (std_msgs/Float64, the filtered force) for plots: rqt_plot /blade_force_controller/force.
+Publishes ~force (std_msgs/Float64, the filtered force) for plots: rostopic echo -p /blade_force_controller/force > force.csv (docs/node.md, Plotting a run).
 """
 import math
 import sys

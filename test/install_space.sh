@@ -59,8 +59,9 @@ grep -q "reached the scene's end time" "$PREFIX/launch.log" ||
 
 # The excavator demo (launch/excavator_dig.launch) as installed: the URDF and the bucket's mesh
 # from share/, robot_state_publisher, the joint path of the installed excavator_dig.py. Both
-# links become blocks once tf has them, and the run reaches its end. A quarter of real time, so
-# that the Python node has started (about 1 s here) well before the links are due.
+# links become blocks once tf has them (at t = 0.08 s here), and the run reaches its end. A
+# quarter of real time, so that the Python node has started (about 1 s here) well before the
+# links are due.
 timeout 240 mpm_sdem_launch mpm_sdem excavator_dig.launch headless:=true end_action:=shutdown \
   threads:=1 real_time_factor:=0.25 set:="['time.end=1.0']" >"$PREFIX/dig.log" 2>&1 ||
   { cat "$PREFIX/dig.log"; fail "the excavator demo from the install space failed"; }
@@ -71,7 +72,8 @@ done
 grep -q "reached the scene's end time" "$PREFIX/dig.log" ||
   { cat "$PREFIX/dig.log"; fail "the excavator demo did not reach its end"; }
 
-# A node that stops at once (no such scene) must fail the launch.
+# A node that stops at once (no such scene) must fail the launch. (Before: with
+# libmpm_sdem_mesh.so missing from the install the node exited 127 and roslaunch 0.)
 status=0
 timeout 120 mpm_sdem_launch mpm_sdem sim.launch headless:=true scene:="$PREFIX/no_such_scene.yaml" \
   >"$PREFIX/bad.log" 2>&1 || status=$?

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Every shipped launch file (but sim.launch, which needs a scene) loads in roslaunch, starts the
-# node, and names a scene file that exists and that the runner runs for 10 ms with the launch
-# file's own `set` overrides (a bad scene or override stops it before simulating), writing
-# ParaView frames at 0, 5 and 10 ms (--vtk-every) listed in vtk/points.pvd. Arguments: the package's source directory, the runner.
+# Every shipped launch file (but sim.launch, which needs a scene; 13 of them) loads in roslaunch,
+# starts the node, and names a scene file that exists and that the runner runs for 10 ms with the
+# launch file's own `set` overrides (debris_impact_granular_fine, excavator_blade_fast; a bad
+# scene or override stops it before simulating: checked with `time.cfl=8`), writing ParaView
+# frames at 0, 5 and 10 ms (--vtk-every) listed in vtk/points.pvd.
+# Arguments: the package's source directory, the runner.
 set -euo pipefail
 src="$1"
 runner="$2"

@@ -17,8 +17,9 @@ using namespace mpm_sdem;
 
 // 0.1 s of the node's bed scene with the states sampled at every step (10 kHz asks more than
 // the steps give) and a checkpoint every 0.01 s: many more messages than the queue holds
-// (kQueued), made faster than one thread writes them. Read back: as many as were queued, each
-// topic's times increasing, the last states at the run's end, and no .active file left.
+// (kQueued, 256), made faster than one thread writes them. Read back: as many as were queued
+// (2,641 messages), each topic's times increasing, the last states at the run's end, and no
+// .active file left.
 TEST(BagRecorder, EveryMessageQueuedReachesTheBagInOrder) {
   const Scene scene = loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/test/data/node_bed.yaml");
   World world(scene.world);

@@ -2,6 +2,8 @@
 // against itself differs by exactly nothing, a run with a perturbed parameter by something.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 
@@ -86,6 +88,56 @@ TEST(CompareRuns, SelfIsZeroPerturbedIsNot) {
   EXPECT_GT(fs::file_size(out.string() + ".csv"), 100u);
   EXPECT_GT(fs::file_size(out.string() + ".png"), 1000u);
   fs::remove_all(fs::temp_directory_path() / "mpm_sdem_test_compare");
+}
+
+// Runs whose steps differ stamp their samples at different times (each at the first step on or
+// after its due time): a denser sand (its contact springs' step is longer: 3.09e-4 against
+// 2.78e-4 s) and a halved CFL number (2.08e-4 s, set by the CFL term). Pairing by equal stamps
+// paired 2 of a's 7 snapshots with either (the start and one more). Every sample of a now pairs;
+// the halved step moves the box by less than 1 mm (issue 77's bound on a position when the step
+// halves) and the energy by less than 1% of its largest value; a run that stops at half the time
+// pairs about half of a's samples and is named by fewPaired, and the tool's table warns.
+TEST(CompareRuns, PairsRunsWhoseStepsDiffer) {
+  const RunSeries a = readRun(record("steps_base", ""));
+  const RunSeries half = readRun(record("steps_half_cfl", "--set time.cfl=0.15"));
+  const RunSeries dense = readRun(record("steps_dense", "--set materials.sand.density=1600"));
+  for (const RunSeries* b : {&half, &dense}) {
+    SCOPED_TRACE(b->path);
+    // The stamps differ, so pairing by equal times would miss most samples.
+    std::size_t same = 0;
+    for (std::size_t k = 1; k < std::min(a.clouds.size(), b->clouds.size()); ++k)
+      same += std::abs(a.clouds[k].time - b->clouds[k].time) <= 1e-6;
+    EXPECT_LT(same, a.clouds.size() / 2);
+    std::printf("%zu of %zu snapshots at the same time\n", same + 1, a.clouds.size());
+    const Comparison c = compareRuns(a, *b, 0.005);
+    EXPECT_TRUE(fewPaired(c).empty());
+    ASSERT_EQ(c.blocks.size(), 2u);
+    for (const BlockError& e : c.blocks) EXPECT_EQ(e.paired.paired, e.paired.of) << e.name;
+    EXPECT_EQ(c.clouds.paired.paired, a.clouds.size());
+    EXPECT_EQ(c.energy.paired.paired, a.energy.size());
+    // Snapshots pair within half the 1/30 s recording period.
+    EXPECT_LE(c.clouds.paired.largest_offset, 0.5 / 30 + 1e-6);
+  }
+  const Comparison c = compareRuns(a, half, 0.005);
+  EXPECT_LT(c.blocks[1].final_position, 1e-3) << "the box, when the step halves";
+  EXPECT_LT(c.energy.final_relative, 0.01);
+  std::printf(
+      "halved step: box final position difference %.3g m, energy %.3g; denser sand: %.3g m\n",
+      c.blocks[1].final_position, c.energy.final_relative,
+      compareRuns(a, dense, 0.005).blocks[1].final_position);
+
+  const RunSeries short_run =
+      readRun(record("steps_short", "", "node_bed.yaml --set time.end=0.1"));
+  const Comparison cut = compareRuns(a, short_run, 0.005);
+  EXPECT_NEAR(cut.clouds.paired.fraction(), 0.5, 0.1);
+  const std::vector<std::string> few = fewPaired(cut);
+  ASSERT_FALSE(few.empty());
+  EXPECT_NE(few[0].find("of"), std::string::npos);
+  // The tool says so in its table.
+  const fs::path out = fs::temp_directory_path() / "mpm_sdem_test_compare" / "cut";
+  const std::string cmd = std::string(MPM_SDEM_COMPARE) + " " + a.path + " " + short_run.path +
+                          " --out " + out.string() + " 2>/dev/null | grep -q WARNING";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
 }
 
 // Blocks spawned while running appear in the states from their spawn on: a block both runs

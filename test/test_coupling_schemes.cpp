@@ -16,12 +16,19 @@
 //  - Partitioned: at every step the loads on the boundary particles sum to minus the forces on
 //    the blocks, and all of it reaches the grid; in the wooden-block flow the wall's particle
 //    count stays bounded by its length.
+// Measured (imp, imp_grid, multi_velocity, particle_surface, partitioned): collision momentum
+// error 3.0e-5, 3.0e-5, 2.0e-7, 2.5e-7, 2.0e-5; resting force 1.00000, 1.00000, 1.00000, 0.99999,
+// 1.00001 W; the thrown rock's closest approach to its rounded outline (a = 5 mm) 2.94, 3.06,
+// 4.91, 0.00 mm outside and 0.01 mm inside (the core never entered); the tearing flow's wall 444
+// particles over 1.22 m, its fastest point after 0.6 s 0.34 m/s.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "block_helpers.hpp"
 #include "cases.hpp"
@@ -29,6 +36,7 @@
 #include "coupling/partitioned.hpp"
 #include "mpm_sdem/core/stepper.hpp"
 #include "mpm_sdem/scene/scene.hpp"
+#include "parallel_runs.hpp"
 
 using namespace mpm_sdem;
 
@@ -41,29 +49,96 @@ std::vector<CouplingScheme> allSchemes() {
   return out;
 }
 
-// Called after every step: the scheme-specific checks.
-void checkStep(const World& w) {
+// Called after every step: the scheme-specific checks; "" or the first that fails. (A string,
+// not assertions, so that runs on other threads report to the test that reads them.)
+std::string stepProblem(const World& w) {
   const Coupling& c = *w.coupling();
+  const std::string at = " at t = " + std::to_string(w.time());
   if (const auto* ps = dynamic_cast<const ParticleSurfaceCoupling*>(&c)) {
     for (const ParticleSurfaceCoupling::Record& r : ps->contacts()) {
-      ASSERT_GE(r.impulse.dot(r.normal), 0) << "a tensile contact at t = " << w.time();
+      if (r.impulse.dot(r.normal) < 0) return "a tensile contact" + at;
       // Slip stops the approach only; stick also the sliding (eq. 47).
       const Vec2 aimed = r.stuck ? Vec2(r.target * r.normal) : Vec2(r.relative_after);
-      ASSERT_NEAR(r.relative_after.dot(r.normal), r.target, 1e-9);
-      ASSERT_LT((r.relative_after - aimed).norm(), 1e-9);
-      if (r.gap <= 0) {
-        ASSERT_EQ(r.target, 0);
-      }
+      if (std::abs(r.relative_after.dot(r.normal) - r.target) > 1e-9)
+        return "normal relative velocity off its target" + at;
+      if ((r.relative_after - aimed).norm() >= 1e-9) return "relative velocity off its aim" + at;
+      if (r.gap <= 0 && r.target != 0) return "a closed gap with a target speed" + at;
     }
   }
   if (const auto* pt = dynamic_cast<const PartitionedCoupling*>(&c)) {
     Vec2 on_blocks(0, 0);
     for (const Blocks::Load& b : w.blocks()->coupling()) on_blocks += b.force;
     const Real scale = std::max<Real>(pt->loadSum().norm(), 1e-9);
-    ASSERT_LT((pt->loadSum() + on_blocks).norm(), 1e-9 * scale) << "t = " << w.time();
-    ASSERT_LT((pt->forceOnMaterial() - pt->loadSum()).norm(), 1e-9 * scale)
-        << "part of the boundary loads did not reach the grid at t = " << w.time();
+    if ((pt->loadSum() + on_blocks).norm() >= 1e-9 * scale)
+      return "boundary loads and block forces do not balance" + at;
+    if ((pt->forceOnMaterial() - pt->loadSum()).norm() >= 1e-9 * scale)
+      return "part of the boundary loads did not reach the grid" + at;
   }
+  return "";
+}
+
+void checkStep(const World& w) {
+  ASSERT_EQ(stepProblem(w), "");
+}
+
+// Seed 000 sec. 5.2.1's resting square, for every scheme at once (test/parallel_runs.hpp: 131 s
+// of runs in about 66 s); each TEST_P reads its scheme's.
+struct Resting {
+  std::string problem;       // stepProblem's first, if any
+  Real t = 0, dt = 0;        // s, at the end
+  Vec2 force{0, 0};          // mean over the last 0.6 s, over the weight
+  Real max_speed = 0;        // m/s, at the end
+  Real fastest_contact = 0;  // particle-to-surface: fastest normal speed of a point in contact
+};
+
+Resting restingSquare(CouplingScheme scheme) {
+  const Real h = 0.005, g = 1.0;
+  World w(cases::restingSquare(h, 0.5, scheme));
+  const Real weight = measure(w).mass * g;
+  Resting out;
+  auto step = [&] {
+    stepStable(w);
+    if (out.problem.empty()) out.problem = stepProblem(w);
+  };
+  // The soft contacts of the spring schemes ring with a period of about 0.3 s, decaying over
+  // seconds (seed 000 Fig. 12); the penalty-free ones have no contact damping and keep a
+  // vibration of about 0.1 mm/s. Settle for 2.4 s, then average over two periods.
+  while (w.time() < 2.4) step();
+  Vec2 sum(0, 0);
+  long samples = 0;
+  const Real end = w.time() + 0.6;
+  while (w.time() < end) {
+    step();
+    sum += test::couplingForce(w, 0);
+    ++samples;
+    if (const auto* ps = dynamic_cast<const ParticleSurfaceCoupling*>(w.coupling())) {
+      for (const ParticleSurfaceCoupling::Record& r : ps->contacts()) {
+        const Vec2 v(w.particles().vx[r.particle], w.particles().vy[r.particle]);
+        out.fastest_contact = std::max(out.fastest_contact, std::abs(v.dot(r.normal)));
+      }
+    }
+  }
+  out.force = sum / samples / weight;
+  out.t = w.time();
+  out.dt = w.chooseTimeStep().dt;
+  out.max_speed = measure(w).max_speed;
+  return out;
+}
+
+const Resting& resting(CouplingScheme scheme) {
+  static const std::vector<Resting> all = [] {
+    // multi_velocity's, the longest (it samples the 58 cm floor block every step), first.
+    std::vector<CouplingScheme> order = allSchemes();
+    std::stable_partition(order.begin(), order.end(),
+                          [](CouplingScheme s) { return s == CouplingScheme::kMultiVelocity; });
+    const std::vector<Resting> ran = test::runAll<Resting>(
+        static_cast<int>(order.size()), [&](int i) { return restingSquare(order[i]); });
+    std::vector<Resting> by_scheme(order.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+      by_scheme[static_cast<std::size_t>(order[i])] = ran[i];
+    return by_scheme;
+  }();
+  return all.at(static_cast<std::size_t>(scheme));
 }
 
 class Schemes : public ::testing::TestWithParam<CouplingScheme> {};
@@ -89,42 +164,15 @@ TEST_P(Schemes, TwoDiskCollisionConservesMomentum) {
 }
 
 TEST_P(Schemes, RestingSquareForceEqualsWeight) {
-  const Real h = 0.005, g = 1.0;
-  const WorldDef def = cases::restingSquare(h, 0.5, GetParam());
-  World w(def);
-  const Real weight = measure(w).mass * g;
-  // The soft contacts of the spring schemes ring with a period of about 0.3 s, decaying over
-  // seconds (seed 000 Fig. 12); the penalty-free ones have no contact damping and keep a
-  // vibration of about 0.1 mm/s. Settle for 2.4 s, then average over two periods.
-  while (w.time() < 2.4) {
-    stepStable(w);
-    checkStep(w);
-  }
-  Vec2 sum(0, 0);
-  long samples = 0;
-  Real fastest_contact = 0;  // particle-to-surface: fastest normal speed of a point in contact
-  const Real end = w.time() + 0.6;
-  while (w.time() < end) {
-    stepStable(w);
-    checkStep(w);
-    sum += test::couplingForce(w, 0);
-    ++samples;
-    if (const auto* ps = dynamic_cast<const ParticleSurfaceCoupling*>(w.coupling())) {
-      for (const ParticleSurfaceCoupling::Record& r : ps->contacts()) {
-        const Vec2 v(w.particles().vx[r.particle], w.particles().vy[r.particle]);
-        fastest_contact = std::max(fastest_contact, std::abs(v.dot(r.normal)));
-      }
-    }
-  }
-  const Vec2 mean = sum / samples;
+  const Resting& r = resting(GetParam());
   std::printf("%s: at rest at t = %.2f s, force on the block (%.5f, %.5f) W, dt %.3g s\n",
-              couplingSchemeName(GetParam()), w.time(), mean.x() / weight, mean.y() / weight,
-              w.chooseTimeStep().dt);
-  EXPECT_NEAR(mean.y() / weight, -1.0, 0.02);  // the square pushes down with its weight
-  EXPECT_NEAR(mean.x() / weight, 0.0, 0.02);
-  EXPECT_LT(measure(w).max_speed, 1e-3) << "not resting: sliding, sinking or bouncing";
+              couplingSchemeName(GetParam()), r.t, r.force.x(), r.force.y(), r.dt);
+  EXPECT_EQ(r.problem, "");
+  EXPECT_NEAR(r.force.y(), -1.0, 0.02);  // the square pushes down with its weight
+  EXPECT_NEAR(r.force.x(), 0.0, 0.02);
+  EXPECT_LT(r.max_speed, 1e-3) << "not resting: sliding, sinking or bouncing";
   if (GetParam() == CouplingScheme::kParticleSurface) {
-    EXPECT_LT(fastest_contact, 1e-5) << "points in contact move into or away from the block";
+    EXPECT_LT(r.fastest_contact, 1e-5) << "points in contact move into or away from the block";
   }
 }
 

@@ -5,9 +5,10 @@
 //  - Seed 001 sec. 5.1 reversibility: v = 0.01 c sin(10 pi x) on a fixed-fixed copper bar; after
 //    500 steps the velocities are reversed and 500 more steps return -v(x, 0) within 1% of the
 //    amplitude. This holds for FLIP (alpha = 0) with update-stress-first, the combination seed 000
-//    sec. 2.2 singles out for energy conservation (measured: 0.09%). APIC is dissipative by design
-//    (it drops sub-grid velocity modes: 18% of the energy over this run at 20 cells per
-//    wavelength), so it cannot retrace; it is held instead to never gaining energy.
+//    sec. 2.2 singles out for energy conservation (measured: 0.09%, the energy 1.000 of its
+//    start). APIC is dissipative by design (it drops sub-grid velocity modes: 18% of the energy
+//    over this run at 20 cells per wavelength), so it cannot retrace; it is held instead to never
+//    gaining energy.
 //  - Seed 001 sec. 5.2: the free copper bar under a 1 MPa traction on both ends at the seed's
 //    resolution (10 cells, 2 points per cell along it) comes to the static strain -sigma / E =
 //    -7.8125e-6 within 0.1% (measured: 1e-5; the time average still holds some of the ringing).

@@ -122,9 +122,9 @@ TEST(ImpCollision, StiffContactRigidLimitExchangesVelocities) {
 // first-order error of the free-pair impulse (a point held by its disk is not pushed out as a
 // free one would be): 0.9955 against the explicit 0.9999, 0.9977 and 0.9988 at half and a
 // quarter of the step. With the literal 6e8 N/m the contact no longer sets the step: 1,461
-// steps against 6,534, momentum and energy bounds as above. (The stiff contact's share depends
-// on the step under both integrations, 0.77-0.67 explicit and 0.83-0.73 exact from 1 to 0.1 of
-// it: the disk's vibration is damped per transfer, so it is not asserted.)
+// steps against 6,534 (share 82.8%), momentum and energy bounds as above. (The stiff contact's
+// share depends on the step under both integrations, 0.77-0.67 explicit and 0.83-0.73 exact from
+// 1 to 0.1 of it: the disk's vibration is damped per transfer, so it is not asserted.)
 TEST(ImpCollision, ExactContactTakesTheMaterialsStep) {
   const auto exact = ContactIntegration::kExact;
   expectExchange(
@@ -146,6 +146,8 @@ TEST(ImpCollision, ExactContactTakesTheMaterialsStep) {
 // Momentum: the grid gets the sum of the substeps' impulses and the block minus each, so what
 // remains is Box2D's single precision (float epsilon 6e-8 on the block's velocity, summed over
 // the block's substeps: measured 3e-7; the explicit springs' 3e-5 is the staggering above).
+// Measured shares: hard 99.985%, 99.987% at a quarter of every step; the literal 6e8 N/m 86.4% in
+// 716 steps.
 TEST(ImpCollision, SubcycledContactTakesTheMaterialsStep) {
   const auto sub = ContactIntegration::kSubcycled;
   const Outcome hard =

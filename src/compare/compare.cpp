@@ -12,16 +12,62 @@ namespace mpm_sdem::compare {
 
 namespace {
 
-constexpr double kSameTime = 1e-6;  // s
+constexpr double kSameTime = 1e-6;  // s: stamps this close are one time
 
-// Calls f(i, j) for every pair of samples of a and b recorded at the same time.
-template <class A, class B, class TimeA, class TimeB, class F>
-void forMatched(const std::vector<A>& a, const std::vector<B>& b, TimeA ta, TimeB tb, F f) {
-  std::size_t j = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    while (j < b.size() && tb(b[j]) < ta(a[i]) - kSameTime) ++j;
-    if (j < b.size() && std::abs(tb(b[j]) - ta(a[i])) <= kSameTime) f(i, j);
+// The recording period of a series: the median spacing of its times (0 with fewer than two).
+template <class T, class Time>
+double period(const std::vector<T>& v, Time t) {
+  std::vector<double> gaps;
+  for (std::size_t k = 1; k < v.size(); ++k) gaps.push_back(t(v[k]) - t(v[k - 1]));
+  if (gaps.empty()) return 0;
+  std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+  return gaps[gaps.size() / 2];
+}
+
+// b read at time t between two of its samples: b[lo] with weight 1 - w and b[hi] with weight w.
+struct Bracket {
+  std::size_t lo = 0, hi = 0;
+  double w = 0;
+};
+
+// b's samples on either side of t, or none when t lies outside b's span or in a gap longer than
+// twice b's recording period (missing samples are not bridged).
+template <class B, class Time>
+bool bracket(const std::vector<B>& b, Time tb, double t, double b_period, Bracket& out) {
+  const auto after = std::lower_bound(b.begin(), b.end(), t - kSameTime,
+                                      [&](const B& s, double x) { return tb(s) < x; });
+  if (after == b.end()) return false;
+  const std::size_t hi = after - b.begin();
+  if (std::abs(tb(b[hi]) - t) <= kSameTime) {
+    out = {hi, hi, 1};
+    return true;
   }
+  if (hi == 0) return false;
+  const double t0 = tb(b[hi - 1]), t1 = tb(b[hi]);
+  if (t1 - t0 > 2 * b_period + kSameTime) return false;
+  out = {hi - 1, hi, (t - t0) / (t1 - t0)};
+  return true;
+}
+
+// Calls f(i, j) for each snapshot a[i] with b's nearest, b[j], within half a recording period
+// (the shorter of the two runs'); counts the pairs.
+template <class T, class Time, class F>
+Paired forNearest(const std::vector<T>& a, const std::vector<T>& b, Time t, F f) {
+  Paired p;
+  p.of = a.size();
+  const double pa = period(a, t), pb = period(b, t);
+  const double tolerance = (pa > 0 && pb > 0 ? 0.5 * std::min(pa, pb) : 0) + kSameTime;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const auto after = std::lower_bound(b.begin(), b.end(), t(a[i]),
+                                        [&](const T& s, double x) { return t(s) < x; });
+    std::size_t j = after - b.begin();
+    if (j > 0 && (j == b.size() || t(a[i]) - t(b[j - 1]) < t(b[j]) - t(a[i]))) --j;
+    if (j >= b.size() || std::abs(t(b[j]) - t(a[i])) > tolerance) continue;
+    p.largest_offset = std::max(p.largest_offset, std::abs(t(b[j]) - t(a[i])));
+    ++p.paired;
+    f(i, j);
+  }
+  return p;
 }
 
 double rms(const std::vector<double>& v) {
@@ -103,22 +149,33 @@ Comparison compareRuns(const RunSeries& a, const RunSeries& b, double raster) {
     if (!in_b.count(n)) out.only_a.push_back(n);
   for (const std::string& n : names_b)
     if (!in_a.count(n)) out.only_b.push_back(n);
+  auto state_time = [](const mpm_sdem::BlockStates& s) { return s.header.stamp.toSec(); };
+  const double b_state_period = period(b.blocks, state_time);
   for (const std::string& name : names_a) {
     if (!in_b.count(name)) continue;
     BlockError e;
     e.name = name;
-    auto t = [](const mpm_sdem::BlockStates& s) { return s.header.stamp.toSec(); };
-    forMatched(a.blocks, b.blocks, t, t, [&](std::size_t i, std::size_t j) {
-      const auto* pa = findBlock(a.blocks[i], name);
-      const auto* pb = findBlock(b.blocks[j], name);
-      if (!pa || !pb) return;
-      e.time.push_back(t(a.blocks[i]));
-      e.position.push_back(std::hypot(pa->pose.position.x - pb->pose.position.x,
-                                      pa->pose.position.y - pb->pose.position.y));
-      e.angle.push_back(std::abs(std::remainder(
-          conversions::yaw(pa->pose.orientation) - conversions::yaw(pb->pose.orientation),
-          2 * M_PI)));
-    });
+    // Each of a's states holding the block, against b's interpolated in time.
+    for (const auto& sa : a.blocks) {
+      const auto* pa = findBlock(sa, name);
+      if (!pa) continue;
+      ++e.paired.of;
+      Bracket k;
+      if (!bracket(b.blocks, state_time, state_time(sa), b_state_period, k)) continue;
+      const auto* lo = findBlock(b.blocks[k.lo], name);
+      const auto* hi = findBlock(b.blocks[k.hi], name);
+      if (!lo || !hi) continue;
+      ++e.paired.paired;
+      const double x = lo->pose.position.x + k.w * (hi->pose.position.x - lo->pose.position.x);
+      const double y = lo->pose.position.y + k.w * (hi->pose.position.y - lo->pose.position.y);
+      const double yaw_lo = conversions::yaw(lo->pose.orientation);
+      const double yaw =
+          yaw_lo + k.w * std::remainder(conversions::yaw(hi->pose.orientation) - yaw_lo, 2 * M_PI);
+      e.time.push_back(state_time(sa));
+      e.position.push_back(std::hypot(pa->pose.position.x - x, pa->pose.position.y - y));
+      e.angle.push_back(
+          std::abs(std::remainder(conversions::yaw(pa->pose.orientation) - yaw, 2 * M_PI)));
+    }
     e.rms_position = rms(e.position);
     e.rms_angle = rms(e.angle);
     e.final_position = e.position.empty() ? 0 : e.position.back();
@@ -128,7 +185,7 @@ Comparison compareRuns(const RunSeries& a, const RunSeries& b, double raster) {
     out.blocks.push_back(std::move(e));
   }
   auto tc = [](const Cloud& c) { return c.time; };
-  forMatched(a.clouds, b.clouds, tc, tc, [&](std::size_t i, std::size_t j) {
+  out.clouds.paired = forNearest(a.clouds, b.clouds, tc, [&](std::size_t i, std::size_t j) {
     out.clouds.time.push_back(a.clouds[i].time);
     out.clouds.distance.push_back(meanNearestDistance(a.clouds[i].xy, b.clouds[j].xy));
     out.clouds.iou.push_back(occupancyIoU(a.clouds[i].xy, b.clouds[j].xy, raster));
@@ -137,9 +194,9 @@ Comparison compareRuns(const RunSeries& a, const RunSeries& b, double raster) {
     out.clouds.sph_count_b.push_back(sb.size() / 2);
     out.clouds.sph_distance.push_back(sa.empty() || sb.empty() ? -1 : meanNearestDistance(sa, sb));
   });
-  forMatched(a.fem_nodes, b.fem_nodes, tc, tc, [&](std::size_t i, std::size_t j) {
+  out.fem.paired = forNearest(a.fem_nodes, b.fem_nodes, tc, [&](std::size_t i, std::size_t j) {
     const std::vector<float>&pa = a.fem_nodes[i].xy, &pb = b.fem_nodes[j].xy;
-    if (pa.size() != pb.size()) return;  // different meshes: nothing to match
+    if (pa.size() != pb.size()) return;  // different meshes: nothing to compare
     double sum = 0, largest = 0;
     for (std::size_t k = 0; k + 1 < pa.size(); k += 2) {
       const double d = std::hypot(pa[k] - pb[k], pa[k + 1] - pb[k + 1]);
@@ -154,14 +211,35 @@ Comparison compareRuns(const RunSeries& a, const RunSeries& b, double raster) {
   double scale = 0;
   for (const auto& s : a.energy) scale = std::max(scale, std::abs(s.total));
   std::vector<double> rel;
-  forMatched(a.energy, b.energy, te, te, [&](std::size_t i, std::size_t j) {
-    out.energy.time.push_back(a.energy[i].time);
-    out.energy.total_a.push_back(a.energy[i].total);
-    out.energy.total_b.push_back(b.energy[j].total);
-    rel.push_back(scale > 0 ? (a.energy[i].total - b.energy[j].total) / scale : 0);
-  });
+  const double b_energy_period = period(b.energy, te);
+  out.energy.paired.of = a.energy.size();
+  for (const EnergySample& sa : a.energy) {
+    Bracket k;
+    if (!bracket(b.energy, te, sa.time, b_energy_period, k)) continue;
+    ++out.energy.paired.paired;
+    const double total_b =
+        b.energy[k.lo].total + k.w * (b.energy[k.hi].total - b.energy[k.lo].total);
+    out.energy.time.push_back(sa.time);
+    out.energy.total_a.push_back(sa.total);
+    out.energy.total_b.push_back(total_b);
+    rel.push_back(scale > 0 ? (sa.total - total_b) / scale : 0);
+  }
   out.energy.rms_relative = rms(rel);
   out.energy.final_relative = rel.empty() ? 0 : std::abs(rel.back());
+  return out;
+}
+
+std::vector<std::string> fewPaired(const Comparison& c) {
+  std::vector<std::string> out;
+  auto check = [&](const std::string& kind, const Paired& p) {
+    if (p.fraction() < kEnoughPaired)
+      out.push_back(kind + ": " + std::to_string(p.paired) + " of " + std::to_string(p.of) +
+                    " paired");
+  };
+  for (const BlockError& e : c.blocks) check("block " + e.name, e.paired);
+  check("particle clouds", c.clouds.paired);
+  check("FEM nodes", c.fem.paired);
+  check("energies", c.energy.paired);
   return out;
 }
 

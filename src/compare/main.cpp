@@ -17,7 +17,10 @@ const char* kUsage =
     "usage: mpm_sdem_compare A.bag B.bag [--out PREFIX] [--raster M]\n"
     "  --out PREFIX  write PREFIX.csv and PREFIX.png (default: A_vs_B in the current directory)\n"
     "  --raster M    cell size of the occupancy IoU raster, m (default 0.005)\n"
-    "Samples are matched when both runs recorded them at the same simulation time.\n"
+    "B is read at A's sample times, so runs whose steps differ compare: block states and\n"
+    "energies are interpolated in B's time, particle and FEM snapshots paired with B's\n"
+    "nearest within half a recording period. The table says how many of A's samples paired\n"
+    "and warns of each kind where fewer than 90% did.\n"
     "exit status: 0 compared, 1 unreadable bag or output, 2 bad command line\n";
 
 void writeCsv(const Comparison& c, const std::string& path) {
@@ -50,7 +53,25 @@ void writeCsv(const Comparison& c, const std::string& path) {
   }
 }
 
+// How many of a's samples each kind paired, then a warning for each kind that paired too few.
+void printPairing(const Comparison& c) {
+  std::size_t states = 0, states_of = 0;
+  for (const BlockError& b : c.blocks) states += b.paired.paired, states_of += b.paired.of;
+  std::printf("paired with b: block states %zu of %zu, particle clouds %zu of %zu", states,
+              states_of, c.clouds.paired.paired, c.clouds.paired.of);
+  if (c.fem.paired.of) std::printf(", FEM nodes %zu of %zu", c.fem.paired.paired, c.fem.paired.of);
+  std::printf(", energies %zu of %zu (snapshots at most %.3g s apart)\n", c.energy.paired.paired,
+              c.energy.paired.of,
+              std::max(c.clouds.paired.largest_offset, c.fem.paired.largest_offset));
+  for (const std::string& few : fewPaired(c)) {
+    std::printf("WARNING: %s; its errors rest on those alone\n", few.c_str());
+    std::fprintf(stderr, "mpm_sdem_compare: warning: %s (fewer than %.0f%%)\n", few.c_str(),
+                 100 * kEnoughPaired);
+  }
+}
+
 void printTable(const Comparison& c) {
+  printPairing(c);
   std::printf("%-12s %12s %12s %12s %12s %10s %10s\n", "block", "rms pos (m)", "final pos (m)",
               "rms ang (rad)", "final ang", "contact a", "contact b");
   for (const BlockError& b : c.blocks) {
@@ -72,7 +93,7 @@ void printTable(const Comparison& c) {
     iou_min = std::min(iou_min, c.clouds.iou[k]);
   }
   std::printf(
-      "particle clouds: %zu matched, mean nearest-neighbour distance %.4g m (largest "
+      "particle clouds: %zu paired, mean nearest-neighbour distance %.4g m (largest "
       "%.4g m), smallest occupancy IoU %.4f (%g m cells)\n",
       c.clouds.time.size(), dmean, dmax, iou_min, c.raster);
   double sph_largest = -1;
@@ -85,10 +106,10 @@ void printTable(const Comparison& c) {
   if (!c.fem.time.empty()) {
     double largest = 0;
     for (double d : c.fem.largest) largest = std::max(largest, d);
-    std::printf("FEM nodes: %zu matched, final RMS distance %.4g m, largest %.4g m\n",
+    std::printf("FEM nodes: %zu paired, final RMS distance %.4g m, largest %.4g m\n",
                 c.fem.time.size(), c.fem.rms.back(), largest);
   }
-  std::printf("total energy: %zu matched, RMS difference %.4g and final %.4g of max |E_a|\n",
+  std::printf("total energy: %zu paired, RMS difference %.4g and final %.4g of max |E_a|\n",
               c.energy.time.size(), c.energy.rms_relative, c.energy.final_relative);
   std::printf("(first contact: first time a material point touches the block, s; -1: never)\n");
 }

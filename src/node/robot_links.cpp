@@ -33,6 +33,13 @@ std::string description(const ros::NodeHandle& nh, const NodeParams& p) {
         "~robot_links is set but there is no robot description: set the parameter '" +
         p.robot_description_param +
         "' (as robot_state_publisher reads it) or ~robot_description_file");
+  // The master keeps parameters across launches, so this may be an earlier launch's robot: say
+  // which one is read and how to clear it (the master gives no time a parameter was set).
+  ROS_INFO(
+      "~robot_links: the robot description is parameter '%s' (%zu bytes); one left on this "
+      "master by an earlier launch is read too: `rosparam delete %s` clears it, or set "
+      "~robot_description_file",
+      key.c_str(), text.size(), key.c_str());
   return text;
 }
 

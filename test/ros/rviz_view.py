@@ -7,9 +7,10 @@ Run by rviz_view.test, which starts the node on the default scene, paused, and b
 rviz_excavator.test (the excavator demo, running slowly). This test starts its
 own X server (Xvfb picks a free display) and rviz, polls screenshots until rviz has drawn the
 particles or the time limit passes, checks the last one and saves it (~screenshot). An rviz that
-dies while it sets up (Ogre under Mesa's software renderer, now and then) is started again, twice
-at most, within the same limit. Xvfb and rviz are stopped whatever happens: in `finally`, on
-SIGTERM from rostest, and by the kernel if this process dies first (PR_SET_PDEATHSIG)."""
+dies while it sets up (Ogre under Mesa's software renderer, now and then: seen in one fresh-clone
+CI run on 2026-11-27) is started again, twice at most, within the same limit. Xvfb and rviz are
+stopped whatever happens: in `finally`, on SIGTERM from rostest, and by the kernel if this process
+dies first (PR_SET_PDEATHSIG)."""
 
 import ctypes
 import os
