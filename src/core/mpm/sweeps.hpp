@@ -63,7 +63,7 @@ void gridToParticle(KernelType kernel, TransferScheme scheme, bool gradient, Par
 void setRowSweepsForTest(bool rows);
 bool rowSweepsForTest();
 
-// The SIMD target the sweeps run on here, as Highway names it ("AVX3_DL", "AVX2", "SSE4", ...):
+// The SIMD target the sweeps run on here, as Highway names it ("AVX3", "AVX2", "SSE4", ...):
 // the targets round differently (fused multiply-adds), so checkpoints record it.
 const char* simdTarget();
 
