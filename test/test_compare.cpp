@@ -35,7 +35,7 @@ std::string record(const std::string& name, const std::string& extra,
   const std::string bag = (dir / (name + ".bag")).string();
   const std::string cmd = std::string(MPM_SDEM_RUNNER) + " " + MPM_SDEM_SOURCE_DIR + "/test/data/" +
                           scene + " --threads 1 --quiet --out " + (dir / name).string() +
-                          " --bag " + bag + " " + extra + " 2>/dev/null";
+                          " --bag " + bag + " --bag-cloud-rate 30 " + extra + " 2>/dev/null";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
   return bag;
 }

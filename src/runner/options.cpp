@@ -21,7 +21,7 @@ const char* usage() {
          "  --bag FILE       also record a rosbag as the node does (no ROS master needed)\n"
          "  --bag-cloud-rate HZ, --bag-state-rate HZ, --bag-checkpoint-rate HZ\n"
          "                   particle clouds / block states / checkpoints per simulated second\n"
-         "                   (30, 100, 1; a last checkpoint is written at the end)\n"
+         "                   (10, 100, 1; a last checkpoint is written at the end)\n"
          "  --checkpoint-every S\n"
          "                   also write the whole state to DIR/checkpoints/t<time>.ckpt every S\n"
          "                   simulated seconds and at the end (the latest two are kept)\n"

@@ -13,7 +13,7 @@ struct Options {
   int threads = 0;  // 0: chosen while running (ThreadTuner), up to the OpenMP default
   bool quiet = false;
   std::string bag;                 // write a rosbag like the node's (empty: none)
-  double bag_cloud_rate = 30;      // Hz of simulation time
+  double bag_cloud_rate = 10;      // Hz of simulation time (the node's default, RecordDef)
   double bag_state_rate = 100;     // Hz
   double bag_checkpoint_rate = 1;  // Hz
   double checkpoint_every = 0;     // s of simulation time between checkpoint files (0: none)
