@@ -73,7 +73,14 @@ mpm_sdem_configure() {
   # catkin caches an empty PYTHONPATH for tests on a first configure without this directory
   # (shared/ros-on-debian.md, fix 2).
   mkdir -p "$BUILD_DIR/devel/lib/python3/dist-packages"
-  cmake -S "$MPM_SDEM_ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release "$@" >"$BUILD_DIR/cmake.log" 2>&1 ||
+  # Without the variables a sourced devel space sets: catkin caches the setup's effect as the
+  # difference it makes to this environment (catkin_generated/setup_cached.sh), so a configure
+  # from a shell that had sourced build/devel/setup.bash cached no ROS_PACKAGE_PATH, and every
+  # rostest then failed with "ResourceNotFound: mpm_sdem".
+  env -u CMAKE_PREFIX_PATH -u LD_LIBRARY_PATH -u PKG_CONFIG_PATH -u PYTHONPATH -u ROS_DISTRO \
+    -u ROS_ETC_DIR -u ROS_PACKAGE_PATH -u ROS_PYTHON_VERSION -u ROS_VERSION -u ROS_ROOT \
+    -u ROSLISP_PACKAGE_DIRECTORIES \
+    cmake -S "$MPM_SDEM_ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release "$@" >"$BUILD_DIR/cmake.log" 2>&1 ||
     { cat "$BUILD_DIR/cmake.log"; return 1; }
 }
 
