@@ -50,7 +50,7 @@ bool bracket(const std::vector<B>& b, Time tb, double t, double b_period, Bracke
 }
 
 // Calls f(i, j) for each snapshot a[i] with b's nearest, b[j], within half a recording period
-// (the shorter of the two runs'); counts the pairs.
+// (the shorter of the two runs'); counts the pairs that f compared (it returns whether it did).
 template <class T, class Time, class F>
 Paired forNearest(const std::vector<T>& a, const std::vector<T>& b, Time t, F f) {
   Paired p;
@@ -62,10 +62,9 @@ Paired forNearest(const std::vector<T>& a, const std::vector<T>& b, Time t, F f)
                                         [&](const T& s, double x) { return t(s) < x; });
     std::size_t j = after - b.begin();
     if (j > 0 && (j == b.size() || t(a[i]) - t(b[j - 1]) < t(b[j]) - t(a[i]))) --j;
-    if (j >= b.size() || std::abs(t(b[j]) - t(a[i])) > tolerance) continue;
+    if (j >= b.size() || std::abs(t(b[j]) - t(a[i])) > tolerance || !f(i, j)) continue;
     p.largest_offset = std::max(p.largest_offset, std::abs(t(b[j]) - t(a[i])));
     ++p.paired;
-    f(i, j);
   }
   return p;
 }
@@ -193,10 +192,11 @@ Comparison compareRuns(const RunSeries& a, const RunSeries& b, double raster) {
     out.clouds.sph_count_a.push_back(sa.size() / 2);
     out.clouds.sph_count_b.push_back(sb.size() / 2);
     out.clouds.sph_distance.push_back(sa.empty() || sb.empty() ? -1 : meanNearestDistance(sa, sb));
+    return true;
   });
   out.fem.paired = forNearest(a.fem_nodes, b.fem_nodes, tc, [&](std::size_t i, std::size_t j) {
     const std::vector<float>&pa = a.fem_nodes[i].xy, &pb = b.fem_nodes[j].xy;
-    if (pa.size() != pb.size()) return;  // different meshes: nothing to compare
+    if (pa.size() != pb.size()) return false;  // different meshes: nothing to compare
     double sum = 0, largest = 0;
     for (std::size_t k = 0; k + 1 < pa.size(); k += 2) {
       const double d = std::hypot(pa[k] - pb[k], pa[k + 1] - pb[k + 1]);
@@ -206,6 +206,7 @@ Comparison compareRuns(const RunSeries& a, const RunSeries& b, double raster) {
     out.fem.time.push_back(a.fem_nodes[i].time);
     out.fem.rms.push_back(pa.empty() ? 0 : std::sqrt(sum / (pa.size() / 2)));
     out.fem.largest.push_back(largest);
+    return true;
   });
   auto te = [](const EnergySample& s) { return s.time; };
   double scale = 0;
