@@ -59,16 +59,24 @@ SimLoop::~SimLoop() {
 
 void SimLoop::resumeFromCheckpoint() {
   CheckpointSource from;
+  CatchUp caught_up;
   try {
     from = loadCheckpointSource(params_.resume);
     resumeWorld(*world_, scene_, from.bytes, from.description);
+    // The steps as the recorded node took them: landed on the scene's end time until it was
+    // reached (end_action pause or shutdown), past it with no end.
+    const bool to_end = params_.end_action != EndAction::kContinue && from.time < scene_.end_time;
+    caught_up = catchUpToAsked(*world_, from,
+                               to_end ? scene_.end_time : std::numeric_limits<Time>::infinity(),
+                               scene_.limits.step_collapse);
   } catch (const std::exception& e) {
     throw std::runtime_error("~resume " + params_.resume + ": " + e.what());
   }
   resumed_bag_ = from.bag;
-  ROS_INFO("resumed from %s: t = %.6g s, step %ld", from.description.c_str(), world_->time(),
-           world_->stepCount());
-  if (const std::string w = resumeGapWarning(from, world_->chooseTimeStep().dt); !w.empty())
+  ROS_INFO("%s: t = %.6g s, step %ld", resumeDescription(from, caught_up, world_->time()).c_str(),
+           world_->time(), world_->stepCount());
+  if (const std::string w = resumeGapWarning(from, world_->time(), world_->chooseTimeStep().dt);
+      !w.empty())
     ROS_WARN("~resume: %s", w.c_str());
 }
 

@@ -16,6 +16,7 @@
 
 #include "mpm_sdem/core/checkpoint.hpp"
 #include "mpm_sdem/ros/conversions.hpp"
+#include "mpm_sdem/ros/recorded_commands.hpp"
 
 namespace fs = std::filesystem;
 
@@ -89,10 +90,9 @@ CheckpointSource fromBag(const std::string& path, bool at, Real t) {
   std::vector<ros::Time> times;
   const rosbag::MessageInstance* chosen = nullptr;
   std::vector<rosbag::MessageInstance> all(view.begin(), view.end());
-  std::size_t k_chosen = 0;
   for (const rosbag::MessageInstance& m : all) {
     times.push_back(m.getTime());
-    if (!at || m.getTime() <= limit) chosen = &m, k_chosen = times.size() - 1;
+    if (!at || m.getTime() <= limit) chosen = &m;
   }
   if (all.empty())
     throw std::runtime_error(path + " holds no checkpoint (record with a checkpoint rate > 0)");
@@ -112,29 +112,50 @@ CheckpointSource fromBag(const std::string& path, bool at, Real t) {
   s.time = msg->time;
   s.description = "the checkpoint at t = " + stampText(chosen->getTime()) + " (step " +
                   std::to_string(msg->steps) + ") in " + path;
-  if (at) s.asked = t;
-  if (times.size() > 1) {
-    const std::size_t next = std::min(k_chosen + 1, times.size() - 1);
-    s.spacing = (times[next] - times[next - 1]).toSec();
+  if (at) {
+    s.asked = t;
+    s.recorded_end = rosbag::View(bag).getEndTime().toSec();
+    s.commands = readRecordedCommands(path, s.time, std::min(t, s.recorded_end));
   }
   return s;
 }
 
 }  // namespace
 
-std::string resumeGapWarning(const CheckpointSource& from, Real dt) {
-  const Real gap = from.asked - from.time;
-  if (from.asked < 0 || !(gap > dt)) return "";
-  char m[480];
+CatchUp catchUpToAsked(World& world, const CheckpointSource& from, Time end_time,
+                       Real step_collapse) {
+  if (from.asked < 0) return {};
+  // The bag's stamps are rounded to the nanosecond: its last step ends within one of its stamp.
+  const Time until = std::min<Time>(from.asked, from.recorded_end + 1e-9);
+  CatchUp c = catchUp(world, until, end_time, step_collapse, from.commands);
+  if (!c.problem.empty())
+    throw std::runtime_error("stepping on from " + from.description +
+                             " to t = " + seconds(from.asked) + ": " + c.problem);
+  return c;
+}
+
+std::string resumeDescription(const CheckpointSource& from, const CatchUp& c, Time reached) {
+  std::string out = "resuming from " + from.description;
+  if (c.steps == 0) return out;
+  char m[256];
   std::snprintf(m, sizeof m,
-                "resuming %.6g s before the t = %.9g s asked for: the bag's last checkpoint "
-                "before it is at t = %.9g s%s. Record with a checkpoint rate of R Hz "
-                "(~bag_checkpoint_rate, mpm_sdem_run --bag-checkpoint-rate) to resume within "
-                "1/R s of any time (%.3g Hz: within %.3g s); within a step (%.3g s) takes %.3g Hz",
-                gap, from.asked, from.time,
-                from.spacing > 0 ? (", its checkpoints " + seconds(from.spacing) + " apart").c_str()
-                                 : " (the only one)",
-                10 / gap, gap / 10, dt, 1 / dt);
+                "; stepped on to t = %.9g s as the bag's run did (%ld steps, %zu recorded "
+                "commands, %.3g s of wall time)",
+                reached, c.steps, c.applied, c.wall_seconds);
+  out += m;
+  if (c.skipped > 0)
+    out += "; " + std::to_string(c.skipped) + " commands could not be applied (a changed scene)";
+  return out;
+}
+
+std::string resumeGapWarning(const CheckpointSource& from, Time reached, Real dt) {
+  const Real gap = from.asked - reached;
+  if (from.asked < 0 || !(gap > dt)) return "";
+  char m[320];
+  std::snprintf(m, sizeof m,
+                "resuming at t = %.9g s, %.6g s before the t = %.9g s asked for: the bag's "
+                "recording ends at t = %.9g s",
+                reached, gap, from.asked, from.recorded_end);
   return m;
 }
 

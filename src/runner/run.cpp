@@ -39,16 +39,22 @@ RunDef runDef(const Scene& scene, int threads) {
 }
 
 // --resume: the checkpoint into the world, after checking it continues this scene with this
-// build. Throws std::runtime_error saying why it cannot.
+// build; BAG@TIME then steps on to TIME as the bag's run did. Throws std::runtime_error saying
+// why it cannot.
 void resume(const std::string& spec, Run& run) {
+  CatchUp caught_up;
   try {
     run.resumed = loadCheckpointSource(spec);
     resumeWorld(*run.world, run.scene, run.resumed.bytes, run.resumed.description);
-  } catch (const std::exception& e) {  // a missing source, or a CheckpointError
+    caught_up =
+        catchUpToAsked(*run.world, run.resumed, run.scene.end_time, run.scene.limits.step_collapse);
+  } catch (const std::exception& e) {  // a missing source, a CheckpointError, a failed step
     throw std::runtime_error("--resume " + spec + ": " + e.what());
   }
-  std::fprintf(stderr, "resuming from %s\n", run.resumed.description.c_str());
-  if (const std::string w = resumeGapWarning(run.resumed, run.world->chooseTimeStep().dt);
+  std::fprintf(stderr, "%s\n",
+               resumeDescription(run.resumed, caught_up, run.world->time()).c_str());
+  if (const std::string w =
+          resumeGapWarning(run.resumed, run.world->time(), run.world->chooseTimeStep().dt);
       !w.empty())
     std::fprintf(stderr, "warning: %s\n", w.c_str());
 }

@@ -2,15 +2,18 @@
 // - node_replay.test: the node records a run while a client commands its obstacles (a spawned
 //   block, a held load, a velocity command, a teleport); mpm_sdem_run --replay-commands on the
 //   same scene reproduces the node's bag message for message, and on a changed scene runs the
-//   same commands to another result.
+//   same commands to another result; resumed from the node's bag between its checkpoints, it
+//   steps on under the node's commands to the same bag.
 // - node_resume.test: a node started with ~resume from a runner's bag continues /clock, tf and
-//   the bag from the checkpoint: its bag equals the uninterrupted run's.
+//   the bag from the time asked for (its bag's checkpoint before it, then the steps to it): its
+//   bag equals the uninterrupted run's.
 #include <geometry_msgs/Twist.h>
 #include <gtest/gtest.h>
 #include <mpm_sdem/ApplyObstacleWrench.h>
 #include <mpm_sdem/GetObstacleState.h>
 #include <mpm_sdem/RecordedCommand.h>
 #include <mpm_sdem/SetObstacleState.h>
+#include <mpm_sdem/StepSimulation.h>
 #include <rosgraph_msgs/Clock.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -107,6 +110,13 @@ TEST(Replay, TheRunnerReplaysTheNodesCommandsExactly) {
   ASSERT_EQ(run(base + " --bag " + replay), 0);
   EXPECT_EQ(test::differingTopics(node_bag, replay), std::vector<std::string>{})
       << "topics whose messages differ between the node's run and its replay";
+  // Resumed at 0.12 s from the node's bag (its checkpoints: t = 0 and the end) the runner steps
+  // from t = 0 under the node's commands, then replays the rest (the held load's and the
+  // velocity commands' come on both sides of 0.12 s): the same bag again.
+  const std::string resumed = node_bag + ".resumed.bag";
+  ASSERT_EQ(run(base + " --resume " + node_bag + "@0.12 --bag " + resumed), 0);
+  EXPECT_EQ(test::differingTopics(node_bag, resumed), std::vector<std::string>{})
+      << "topics whose messages differ between the node's run and its resumed replay";
 
   // A heavier box under the same commands: the blade moves as commanded, the box (pushed by
   // the same load, on the same sand) otherwise.
@@ -128,7 +138,7 @@ TEST(Replay, TheRunnerReplaysTheNodesCommandsExactly) {
   EXPECT_EQ(run(std::string(MPM_SDEM_COMPARE) + " " + node_bag + " " + changed + " > " + node_bag +
                 ".compare.txt 2>&1"),
             0);
-  for (const std::string& f : {replay, changed}) fs::remove(f);
+  for (const std::string& f : {replay, resumed, changed}) fs::remove(f);
   fs::remove_all(node_bag + ".out");
 }
 
@@ -178,17 +188,24 @@ TEST(Resume, NodeContinuesClockTfAndBagFromACheckpoint) {
   } stop{pid};
   ASSERT_TRUE(waitFor([&] { return clock.has() && n.stats.has(); }, 30));
   {
-    // Started paused at the checkpoint at 0.2 s (the bag's last at or before 0.25 s).
+    // Started paused within a step (0.3 ms) of 0.25 s: the bag's checkpoint at 0.2 s, then
+    // the steps the runner took from there.
     std::lock_guard<std::mutex> l(m);
-    EXPECT_GE(first_clock, 0.2);
-    EXPECT_LT(first_clock, 0.201);
+    EXPECT_LE(first_clock, 0.25);
+    EXPECT_GT(first_clock, 0.25 - 3e-4);
     EXPECT_NEAR(n.stats.get().sim_time, first_clock, 1e-9);  // a stamp is whole ns
-    // The box where the uninterrupted run had it then.
+  }
+  {
+    // One step on, at the runner's sample of 0.25 s: the box where the uninterrupted run had it.
+    StepSimulation one;
+    one.request.steps = 1;
+    ASSERT_TRUE(n.call("step", one).response.success) << one.response.message;
+    ASSERT_TRUE(waitFor([&] { return n.stats.get().sim_time > first_clock; }, 10));
     GetObstacleState g;
     g.request.name = "box";
     g = n.call("get_obstacle_state", g);
     ASSERT_TRUE(g.response.success) << g.response.message;
-    EXPECT_EQ(g.response.header.stamp.toSec(), first_clock);
+    EXPECT_GE(g.response.header.stamp.toSec(), 0.25);
     bool found = false;
     for (const BlockStates& s : blockStates(whole)) {
       if (s.header.stamp != g.response.header.stamp) continue;
@@ -198,7 +215,7 @@ TEST(Resume, NodeContinuesClockTfAndBagFromACheckpoint) {
       EXPECT_EQ(g.response.state.pose.position.y, box->pose.position.y);
       found = true;
     }
-    EXPECT_TRUE(found) << "the whole run's states at the checkpoint's time";
+    EXPECT_TRUE(found) << "the whole run's states at 0.25 s";
   }
   EXPECT_TRUE(n.trigger("resume"));
   geometry_msgs::TransformStamped box;
