@@ -1,9 +1,9 @@
 // Checkpoints (core/checkpoint.hpp): a world restored from a checkpoint continues bit for bit as
 // the world that wrote it, in every kind of scene (each coupling scheme, both block contact
-// models, disc clusters, FEM bodies, SPH, blocks added and removed while running); and a damaged
-// checkpoint, one from another build, or one that does not fit the world is refused with the
-// reason. Checked: dropping the block springs' history or the IMP pair lists from the checkpoint
-// fails it (13,524 and 13,556 values differ).
+// models, disc clusters, FEM bodies, SPH, blocks added and removed and gravity changed while
+// running); and a damaged checkpoint, one from another build, or one that does not fit the world
+// is refused with the reason. Checked: dropping the block springs' history or the IMP pair lists from the checkpoint
+// fails it (13,524 and 13,556 values differ), and so does dropping the gravity.
 #include <gtest/gtest.h>
 #include <zlib.h>
 
@@ -128,6 +128,19 @@ TEST(Checkpoint, FemBodiesResumeBitIdentically) {
              "fem_bodies.barrier.youngs_modulus=2e5",
              "fem_bodies.barrier.held=[[0.1, -0.001, 0.125, 0.0001]]"}),
       0.05, 0.07);
+}
+
+TEST(Checkpoint, GravityChangedWhileRunningIsRestored) {
+  // Set before the run (a world built from the scene has the scene's): the material, Box2D's
+  // world (rebuilt by the checkpoint with the box2d model) and an FEM body must take it back.
+  auto tilt = [](World& w) { w.setGravity({4.0, -8.0}); };
+  expectResumeIdentical(debris({"block_contact.model=box2d"}), 0.085, 0.1, tilt);
+  expectResumeIdentical(
+      scene("test/data/valid_fem.yaml",
+            {"fem_bodies.barrier.position=[0.112, 0.04]", "fem_bodies.barrier.element_size=0.008",
+             "fem_bodies.barrier.youngs_modulus=2e5",
+             "fem_bodies.barrier.held=[[0.1, -0.001, 0.125, 0.0001]]"}),
+      0.05, 0.07, tilt);
 }
 
 TEST(Checkpoint, SphRegionResumesBitIdentically) {

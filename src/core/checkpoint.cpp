@@ -19,7 +19,7 @@ namespace mpm_sdem {
 namespace {
 
 constexpr char kMagic[8] = {'M', 'P', 'M', 'S', 'D', 'E', 'M', 'C'};
-constexpr std::uint32_t kFormat = 1;
+constexpr std::uint32_t kFormat = 2;                        // 2: the gravity (World::setGravity)
 constexpr std::size_t kPrefix = sizeof kMagic + 4 + 8 + 4;  // magic, format, length, CRC
 
 using Out = cereal::BinaryOutputArchive;
@@ -167,6 +167,7 @@ struct CheckpointAccess {
 
   static void save(Out& ar, World& w) {
     ar(w.time_, w.steps_, w.velocity_lag_, w.stress_lag_, w.point_loads_, w.commands_);
+    ar(w.def_.solver.gravity);  // setGravity may have changed the scene's
     w.particles_.forEachColumn([&ar](auto& column) { ar(column); });
     w.tiles_.stateIo(ar);
     ar(w.sph_ != nullptr, w.blocks_ != nullptr, w.fem_ != nullptr, w.coupling_ != nullptr);
@@ -178,6 +179,11 @@ struct CheckpointAccess {
 
   static void load(In& ar, World& w) {
     ar(w.time_, w.steps_, w.velocity_lag_, w.stress_lag_, w.point_loads_, w.commands_);
+    Vec2 gravity;
+    ar(gravity);
+    if (!World::gravityProblem(gravity).empty())
+      throw CheckpointError("the saved gravity is out of range");
+    w.applyGravity(gravity);  // before the blocks: their Box2D world is rebuilt with it
     Particles& P = w.particles_;
     P.forEachColumn([&ar](auto& column) { ar(column); });
     bool equal = true;

@@ -272,7 +272,7 @@ WorldCommand World::command(WorldCommand::Kind kind, BlockId id) {
   c.time = time_;
   c.step = steps_;
   c.sequence = commands_++;
-  c.block = blocks_->def(blocks_->indexOf(id)).name;
+  if (!id.isNull()) c.block = blocks_->def(blocks_->indexOf(id)).name;
   return c;
 }
 
@@ -317,7 +317,34 @@ void World::addBlockLoad(BlockId id, const Vec2& force, const Vec2& point, Real 
   command_log_(c);
 }
 
+Problem World::gravityProblem(const Vec2& g) {
+  if (!std::isfinite(g.x()) || !std::isfinite(g.y())) return {"gravity", "must be finite"};
+  return limits::rangeProblem(g.norm(), limits::kGravity);
+}
+
+void World::applyGravity(const Vec2& g) {
+  def_.solver.gravity = g;
+  if (blocks_) blocks_->setGravity(g);
+  if (fem_) fem_->setGravity(g);
+}
+
+void World::setGravity(const Vec2& g) {
+  if (const Problem p = gravityProblem(g); !p.empty())
+    throw std::invalid_argument("gravity: " + p.text());
+  applyGravity(g);
+  if (!command_log_) return;
+  WorldCommand c = command(WorldCommand::Kind::kSetGravity, BlockId());
+  c.vector = g;
+  command_log_(c);
+}
+
 std::string applyCommand(World& world, const WorldCommand& c) {
+  if (c.kind == WorldCommand::Kind::kSetGravity) {
+    if (const Problem p = World::gravityProblem(c.vector); !p.empty())
+      return "cannot set gravity: " + p.text();
+    world.setGravity(c.vector);
+    return "";
+  }
   if (c.kind == WorldCommand::Kind::kAddBlock) {
     if (Problem p = world.placementProblem(c.def, true); !p.empty())
       return "cannot add block '" + c.def.name + "': " + p.text();
@@ -328,6 +355,7 @@ std::string applyCommand(World& world, const WorldCommand& c) {
   if (id.isNull()) return "no block named '" + c.block + "'";
   switch (c.kind) {
     case WorldCommand::Kind::kAddBlock:
+    case WorldCommand::Kind::kSetGravity:
       break;
     case WorldCommand::Kind::kRemoveBlock:
       world.removeBlock(id);

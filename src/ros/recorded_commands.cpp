@@ -21,7 +21,7 @@ std::vector<WorldCommand> readRecordedCommands(const std::string& path, Real fro
     for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TypeQuery(type))) {
       const auto msg = m.instantiate<mpm_sdem::RecordedCommand>();
       // Kinds a later build may add are not this build's to apply.
-      if (!msg || msg->kind > mpm_sdem::RecordedCommand::ADD_LOAD) continue;
+      if (!msg || msg->kind > mpm_sdem::RecordedCommand::SET_GRAVITY) continue;
       if (msg->time >= from && msg->time <= to) out.push_back(conversions::fromMsg(*msg));
     }
   } catch (const rosbag::BagException& e) {

@@ -163,7 +163,13 @@ class World {
   /// (m, world frame) and a torque (N m/m). Moves dynamic blocks only; a caller that holds a
   /// load adds it before every step it acts in (the node's ~apply_obstacle_wrench).
   void addBlockLoad(BlockId id, const Vec2& force, const Vec2& point, Real torque);
-  /// Every change made by the five calls above (addBlock to addBlockLoad) goes to log once it is
+  /// The acceleration of gravity (m/s^2) on the material, the blocks, the FEM bodies and the SPH
+  /// region from the next step on (a bed tilted or spun while running). Throws
+  /// std::invalid_argument past limits::kGravity (gravityProblem).
+  void setGravity(const Vec2& gravity);
+  /// Why setGravity would refuse gravity (empty when it would not).
+  static Problem gravityProblem(const Vec2& gravity);
+  /// Every change made by the six calls above (addBlock to setGravity) goes to log once it is
   /// made, numbered in order (world_command.hpp): what a run is re-simulated under. An empty log
   /// records nothing.
   void setCommandLog(CommandLog log) { command_log_ = std::move(log); }
@@ -203,6 +209,9 @@ class World {
   Memory memory() const;
   /// Simulated time (s).
   Time time() const { return time_; }
+  /// The time the material points' velocities are at: the leapfrog keeps them half a step
+  /// behind the positions (seed 000 eq. 17).
+  Time velocityTime() const { return time_ - velocity_lag_; }
   /// Steps taken since the start (a resumed run continues the count).
   long stepCount() const { return steps_; }
   /// Wall time per stage since the start or the last resetProfile().
@@ -299,6 +308,8 @@ class World {
     }
   };
   std::vector<PointLoad> point_loads_;  ///< few and rarely used: a list, not a column
+  /// setGravity without the log (a checkpoint's gravity).
+  void applyGravity(const Vec2& gravity);
   Time time_ = 0;
   long steps_ = 0;
   CommandLog command_log_;

@@ -1,9 +1,9 @@
 /// \file
 /// Changes made to a world from outside between two steps (a node's obstacle requests, held
-/// loads, velocity commands), as World's block mutators received them. A world reports each one
-/// it applies to a log (World::setCommandLog); applyCommand applies a recorded one again. A run
-/// re-simulated under its recorded commands, from the same scene, is the same run to the bit;
-/// from a changed scene, it shows what the change does under the same commands.
+/// loads, velocity commands, gravity set at run time), as World's mutators received them. A world
+/// reports each one it applies to a log (World::setCommandLog); applyCommand applies a recorded one
+/// again. A run re-simulated under its recorded commands, from the same scene, is the same run to
+/// the bit; from a changed scene, it shows what the change does under the same commands.
 #pragma once
 
 #include <cstdint>
@@ -26,6 +26,7 @@ struct WorldCommand {
     kSetPose = 2,      ///< block's frame origin at point (m), angle scalar (rad)
     kSetVelocity = 3,  ///< block's frame origin moving at vector (m/s), scalar (rad/s)
     kAddLoad = 4,      ///< vector: force (N/m, world frame) at point (m), scalar: torque (N m/m)
+    kSetGravity = 5,   ///< vector: the acceleration of gravity (m/s^2); block: ""
   };
   Kind kind = Kind::kAddBlock;  ///< which change
   Real time = 0;                ///< s: the world's time when applied, before the step from there

@@ -335,6 +335,11 @@ void Blocks::addLoad(BlockId id, const Vec2& force, const Vec2& point, Real torq
   addTorque(i, torque);
 }
 
+void Blocks::setGravity(const Vec2& gravity) {
+  gravity_ = gravity;
+  b2_->setGravity(gravity);
+}
+
 void Blocks::addContactForce(int a, int b, const Vec2& f, const Vec2& point) {
   addForce(a, f, point);
   addForce(b, -f, point);

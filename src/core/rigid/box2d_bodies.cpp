@@ -53,6 +53,10 @@ struct Box2DBodies::World {
 Box2DBodies::Box2DBodies(const Vec2& gravity, Real scale, BlockContactModel model)
     : w_(std::make_unique<World>(toB2(gravity, scale))), scale_(scale), model_(model) {}
 
+void Box2DBodies::setGravity(const Vec2& gravity) {
+  w_->world.SetGravity(toB2(gravity, scale_));
+}
+
 Box2DBodies::~Box2DBodies() = default;
 
 void Box2DBodies::add(const BlockDef& d, const std::vector<Spheropolygon>& parts,

@@ -46,6 +46,8 @@ class Box2DBodies {
   // A force at the centre of mass (N/m) and a torque (N m/m) for the next step (dynamic bodies).
   void applyForce(int i, const Vec2& force, Real torque);
   void step(Real h);
+  // The acceleration of gravity (m/s^2) from the next step on.
+  void setGravity(const Vec2& gravity);
   // After step(h): each touching contact's mean force over the step, to blocks'
   // recordContactForce (the bodies' places in the list are the blocks').
   void reportContacts(Real h, Blocks& blocks) const;

@@ -70,6 +70,8 @@ class FemBodies final : public ContactBodies {
 
   /// How many bodies.
   int count() const { return static_cast<int>(defs_.size()); }
+  /// The acceleration of gravity (m/s^2) on every node from the next step on.
+  void setGravity(const Vec2& gravity) { gravity_ = gravity; }
   /// Body i's definition.
   const FemBodyDef& def(int i) const { return defs_[i]; }
   ///@{

@@ -178,6 +178,8 @@ class Blocks final : public ContactBodies, public InteriorLattice {
   ///@}
   /// Both for the next step on the block of that id; throws like remove().
   void addLoad(BlockId id, const Vec2& force, const Vec2& point, Real torque);
+  /// The acceleration of gravity (m/s^2) on every block from the next step on.
+  void setGravity(const Vec2& gravity);
   ///@{
   /// The block that contact shape s belongs to (a spheropolygon is one shape; a cluster one per
   /// disc), and block i's shapes: firstShape(i) .. firstShape(i) + shapesOf(i) - 1.
