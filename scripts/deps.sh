@@ -19,7 +19,7 @@ MPM_SDEM_RUN_PACKAGES=(
   libgeometry-msgs-dev ros-geometry-msgs libsensor-msgs-dev ros-sensor-msgs
   libvisualization-msgs-dev ros-visualization-msgs libstd-srvs-dev ros-std-srvs libtf2-ros-dev
   ros-tf2-msgs libtf2-eigen-dev ros-rosgraph-msgs libroslib-dev librosbag-dev python3-rosbag
-  python3-roslaunch rosout
+  python3-roslaunch rosout libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libbox2d-dev libeigen3-dev libyaml-cpp-dev libhwy-dev libcgal-dev libcereal-dev zlib1g-dev
   liburdfdom-dev
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-videoio-dev

@@ -319,7 +319,9 @@ void World::addBlockLoad(BlockId id, const Vec2& force, const Vec2& point, Real 
 
 Problem World::gravityProblem(const Vec2& g) {
   if (!std::isfinite(g.x()) || !std::isfinite(g.y())) return {"gravity", "must be finite"};
-  return limits::rangeProblem(g.norm(), limits::kGravity);
+  if (const Problem p = limits::rangeProblem(g.norm(), limits::kGravity); !p.empty())
+    return {"gravity", "its magnitude " + p.message};
+  return {};
 }
 
 void World::applyGravity(const Vec2& g) {
@@ -329,8 +331,7 @@ void World::applyGravity(const Vec2& g) {
 }
 
 void World::setGravity(const Vec2& g) {
-  if (const Problem p = gravityProblem(g); !p.empty())
-    throw std::invalid_argument("gravity: " + p.text());
+  if (const Problem p = gravityProblem(g); !p.empty()) throw std::invalid_argument(p.text());
   applyGravity(g);
   if (!command_log_) return;
   WorldCommand c = command(WorldCommand::Kind::kSetGravity, BlockId());
@@ -341,7 +342,7 @@ void World::setGravity(const Vec2& g) {
 std::string applyCommand(World& world, const WorldCommand& c) {
   if (c.kind == WorldCommand::Kind::kSetGravity) {
     if (const Problem p = World::gravityProblem(c.vector); !p.empty())
-      return "cannot set gravity: " + p.text();
+      return "cannot set gravity: " + p.message;
     world.setGravity(c.vector);
     return "";
   }

@@ -60,6 +60,35 @@ Problem frameProblem(const std::string& frame) {
   }
 }
 
+Problem runtimeProblem(const NodeParams& p) {
+  auto finite = [](double v, double lo, bool open) {
+    return std::isfinite(v) && (open ? v > lo : v >= lo);
+  };
+  const std::pair<const char*, double> rates[] = {
+      {"rates/particles", p.particles_rate}, {"rates/blocks", p.blocks_rate},
+      {"rates/stats", p.stats_rate},         {"rates/image", p.image_rate},
+      {"rates/clock", p.clock_rate},         {"rates/terrain", p.terrain_rate}};
+  for (const auto& [key, v] : rates)
+    if (!finite(v, 0, false))
+      return {std::string("~") + key, "must be >= 0 Hz (0: off), got " + std::to_string(v)};
+  if (p.cloud_decimation < 1) return {"~cloud_decimation", "must be >= 1"};
+  if (!finite(p.real_time_factor, 0, false))
+    return {"~real_time_factor", "must be >= 0 (0: as fast as possible)"};
+  if (!finite(p.cmd_vel_timeout, 0, false))
+    return {"~cmd_vel_timeout",
+            "must be a finite number >= 0 s (0: never), got " + std::to_string(p.cmd_vel_timeout)};
+  if (!finite(p.follow_tf_time_constant, 0, true))
+    return {"~follow_tf_time_constant",
+            "must be a finite number > 0 s, got " + std::to_string(p.follow_tf_time_constant)};
+  if (!(p.follow_tf_max_speed > 0) || !(p.follow_tf_max_speed <= limits::kSpeed.max)) {
+    char m[160];
+    std::snprintf(m, sizeof m, "must be in (0, %g] m/s (the speed cap of every block), got %g",
+                  limits::kSpeed.max, p.follow_tf_max_speed);
+    return {"~follow_tf_max_speed", m};
+  }
+  return {};
+}
+
 bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
   if (!pnh.getParam("scene", p.scene) || p.scene.empty()) {
     error =
@@ -127,7 +156,6 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
     return fail("parameter ~fixed_frame " + f.message);
   if (const Problem f = frameProblem(p.tf_prefix); !f.empty())
     return fail("parameter ~tf_prefix " + f.message);
-  if (decimation < 1) return fail("parameter ~cloud_decimation must be >= 1");
   auto nonNegative = [&](const char* key, double v, const char* unit) {
     if (v >= 0 && std::isfinite(v)) return true;
     error = std::string("parameter ~") + key + " must be a finite number >= 0 " + unit + ", got " +
@@ -135,20 +163,8 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
     return false;
   };
   if (!nonNegative("terrain/resolution", p.terrain_resolution, "m (0: the cell size)") ||
-      !nonNegative("force_arrow_scale", p.force_arrow_scale, "m per N/m (0: automatic)") ||
-      !nonNegative("cmd_vel_timeout", p.cmd_vel_timeout, "s (0: never)"))
+      !nonNegative("force_arrow_scale", p.force_arrow_scale, "m per N/m (0: automatic)"))
     return false;
-  if (!(p.follow_tf_time_constant > 0) || !std::isfinite(p.follow_tf_time_constant))
-    return fail("parameter ~follow_tf_time_constant must be a finite number > 0 s, got " +
-                std::to_string(p.follow_tf_time_constant));
-  if (!(p.follow_tf_max_speed > 0) || !(p.follow_tf_max_speed <= limits::kSpeed.max)) {
-    char m[160];
-    std::snprintf(m, sizeof m,
-                  "parameter ~follow_tf_max_speed must be in (0, %g] m/s (the speed cap of every "
-                  "block), got %g",
-                  limits::kSpeed.max, p.follow_tf_max_speed);
-    return fail(m);
-  }
   if (!(p.robot_rounding > 0 && p.robot_rounding <= 0.1))
     return fail("parameter ~robot_rounding must be in (0, 0.1] m, got " +
                 std::to_string(p.robot_rounding));
@@ -168,7 +184,7 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
       return fail("parameter ~follow_tf/" + block + ": frame " + f.message);
   }
   if (bag_decimation < 1) return fail("parameter ~bag_cloud_decimation must be >= 1");
-  p.cloud_decimation = decimation;
+  p.cloud_decimation = decimation;  // checked with the run-time settings below
   p.record_def.cloud_decimation = bag_decimation;
   if (p.image.width < 16 || p.image.width > 8192)
     return fail("parameter ~image/width must be 16 to 8192 px");
@@ -185,8 +201,7 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
   }
   // Its range depends on the quantity, which the scene may choose: checked in chooseImageScale.
   if (pnh.hasParam("image/max_value")) p.image_request.max_value = max_value;
-  if (!(p.real_time_factor >= 0) || !std::isfinite(p.real_time_factor))
-    return fail("parameter ~real_time_factor must be >= 0 (0: as fast as possible)");
+  if (const Problem r = runtimeProblem(p); !r.empty()) return fail("parameter " + r.text());
   if (end == "pause") {
     p.end_action = EndAction::kPause;
   } else if (end == "shutdown") {

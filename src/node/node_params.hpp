@@ -85,6 +85,11 @@ struct NodeParams {
 inline constexpr std::size_t kMaxFrameLength = 256;
 Problem frameProblem(const std::string& frame);
 
+// What is wrong with the settings a user may also change while the node runs
+// (dynamic_reconfigure, reconfigure.hpp): the publishing rates and decimation, the real-time
+// factor and the obstacle drivers' settings; the key names the parameter. Empty when sound.
+Problem runtimeProblem(const NodeParams& params);
+
 // Fills params from the private node handle; false with a message on a bad value.
 bool loadParams(const ros::NodeHandle& pnh, NodeParams& params, std::string& error);
 

@@ -37,28 +37,24 @@ bool Publishers::Channel::due(Real t, bool force, bool always) {
 Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParams& params,
                        const std::string& scene_text, const World& world)
     : params_(params), pnh_(pnh) {
-  particles_ = {pnh.advertise<sensor_msgs::PointCloud2>("particles", 2, true),
-                SampleClock(params.particles_rate), true};
-  blocks_ = {pnh.advertise<mpm_sdem::BlockStates>("blocks", 10), SampleClock(params.blocks_rate)};
-  poses_ = {pnh.advertise<geometry_msgs::PoseArray>("block_poses", 10),
-            SampleClock(params.blocks_rate)};
+  particles_ = {pnh.advertise<sensor_msgs::PointCloud2>("particles", 2, true), SampleClock(), true};
+  blocks_ = {pnh.advertise<mpm_sdem::BlockStates>("blocks", 10), SampleClock()};
+  poses_ = {pnh.advertise<geometry_msgs::PoseArray>("block_poses", 10), SampleClock()};
   // Latched: a late listener (rostopic echo -n1) gets the last one at once, paused or not.
-  stats_ = {pnh.advertise<mpm_sdem::SimStats>("stats", 10, true), SampleClock(params.stats_rate)};
-  image_ = {pnh.advertise<sensor_msgs::Image>("image", 1), SampleClock(params.image_rate)};
+  stats_ = {pnh.advertise<mpm_sdem::SimStats>("stats", 10, true), SampleClock()};
+  image_ = {pnh.advertise<sensor_msgs::Image>("image", 1), SampleClock()};
   // FEM bodies' triangles coloured by von Mises stress, at the blocks' rate; latched, so a
   // late listener sees them while paused.
   if (world.femBodies()) {
-    fem_ = {pnh.advertise<visualization_msgs::Marker>("fem_mesh", 2, true),
-            SampleClock(params.blocks_rate), true};
-    fem_nodes_ = {pnh.advertise<sensor_msgs::PointCloud2>("fem_nodes", 2, true),
-                  SampleClock(params.blocks_rate), true};
+    fem_ = {pnh.advertise<visualization_msgs::Marker>("fem_mesh", 2, true), SampleClock(), true};
+    fem_nodes_ = {pnh.advertise<sensor_msgs::PointCloud2>("fem_nodes", 2, true), SampleClock(),
+                  true};
   }
-  markers_ = {pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, true),
-              SampleClock(params.blocks_rate), true};
-  arrows_ = {pnh.advertise<visualization_msgs::MarkerArray>("force_arrows", 1, true),
-             SampleClock(params.blocks_rate), true};
-  terrain_ = {pnh.advertise<sensor_msgs::PointCloud2>("terrain", 2, true),
-              SampleClock(params.terrain_rate), true};
+  markers_ = {pnh.advertise<visualization_msgs::MarkerArray>("markers", 1, true), SampleClock(),
+              true};
+  arrows_ = {pnh.advertise<visualization_msgs::MarkerArray>("force_arrows", 1, true), SampleClock(),
+             true};
+  terrain_ = {pnh.advertise<sensor_msgs::PointCloud2>("terrain", 2, true), SampleClock(), true};
   // What a listener needs to read the numbers (latched on the parameter server).
   pnh.setParam("convention/plane",
                "2D plane strain in the x-y plane of the fixed frame, y up against gravity; z is "
@@ -73,13 +69,22 @@ Publishers::Publishers(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePara
   scene_ = pnh.advertise<std_msgs::String>("scene", 1, true);
   bool use_sim_time = false;
   nh.param("/use_sim_time", use_sim_time, false);
-  if (use_sim_time) {
-    clock_thread_ = std::make_unique<ClockPublisher>(nh);
-    clock_.clock = SampleClock(params.clock_rate);
-  }
+  if (use_sim_time) clock_thread_ = std::make_unique<ClockPublisher>(nh);
+  setRates();
   std_msgs::String text;
   text.data = scene_text;
   scene_.publish(text);
+}
+
+void Publishers::setRates() {
+  const NodeParams& p = params_;
+  particles_.clock = SampleClock(p.particles_rate);
+  stats_.clock = SampleClock(p.stats_rate);
+  image_.clock = SampleClock(p.image_rate);
+  terrain_.clock = SampleClock(p.terrain_rate);
+  for (Channel* c : {&blocks_, &poses_, &fem_, &fem_nodes_, &markers_, &arrows_})
+    c->clock = SampleClock(p.blocks_rate);
+  clock_.clock = SampleClock(clock_thread_ ? p.clock_rate : 0);  // only with /use_sim_time
 }
 
 void Publishers::restart(const World& world) {

@@ -45,6 +45,9 @@ class Publishers {
   Problem terrainProblem(const World& world) const;
   // Restart the rate schedules at the world's time (after a reset).
   void restart(const World& world);
+  // Each channel's schedule at the parameters' rates, due at once: at the start, and when
+  // dynamic_reconfigure changed them.
+  void setRates();
 
  private:
   struct Channel {

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <limits>
 #include <thread>
+#include <tuple>
 
 #include "mpm_sdem/core/checkpoint.hpp"
 #include "mpm_sdem/ros/checkpoint_source.hpp"
@@ -51,6 +52,7 @@ SimLoop::SimLoop(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParams& pa
   drivers_.sync(*world_, true);
   startRun();
   publishers_.blocksChanged(*world_);
+  reconfigure_ = std::make_unique<Reconfigure>(pnh, commands_, settings());
 }
 
 SimLoop::~SimLoop() {
@@ -350,6 +352,7 @@ Reply SimLoop::reset() {
   publishers_.blocksChanged(*world_);
   publishers_.publish(*world_, status(), true);
   restartPacing();
+  reconfigure_->publish(settings());  // the scene's gravity again
   std::string note = paused_ ? "; still paused" : "";
   if (was_recording && !recording_)
     note +=
@@ -358,6 +361,55 @@ Reply SimLoop::reset() {
   return {
       true,
       "reset to t = 0 (spawned obstacles removed, held loads and velocity commands ended)" + note};
+}
+
+RuntimeSettings SimLoop::settings() const {
+  return {params_, world_->def().solver.gravity};
+}
+
+Reply SimLoop::applySettings(const RuntimeSettings& s) {
+  NodeParams& p = params_;
+  const NodeParams& q = s.params;
+  std::string changed;
+  auto note = [&changed](const char* name, double from, double to) {
+    if (from == to) return false;
+    char text[128];
+    std::snprintf(text, sizeof text, "%s%s %g -> %g", changed.empty() ? "" : ", ", name, from, to);
+    changed += text;
+    return true;
+  };
+  if (note("real_time_factor", p.real_time_factor, q.real_time_factor)) {
+    p.real_time_factor = q.real_time_factor;
+    restartPacing();
+  }
+  bool rates = false;
+  for (auto [name, from, to] : {std::tuple{"particles_rate", &p.particles_rate, q.particles_rate},
+                                std::tuple{"blocks_rate", &p.blocks_rate, q.blocks_rate},
+                                std::tuple{"stats_rate", &p.stats_rate, q.stats_rate},
+                                std::tuple{"image_rate", &p.image_rate, q.image_rate},
+                                std::tuple{"terrain_rate", &p.terrain_rate, q.terrain_rate},
+                                std::tuple{"clock_rate", &p.clock_rate, q.clock_rate}})
+    if (note(name, *from, to)) *from = to, rates = true;
+  if (rates) publishers_.setRates();
+  if (note("cloud_decimation", p.cloud_decimation, q.cloud_decimation))
+    p.cloud_decimation = q.cloud_decimation;
+  // The drivers read these before every step; the velocities they give are recorded commands.
+  for (auto [name, from, to] :
+       {std::tuple{"cmd_vel_timeout", &p.cmd_vel_timeout, q.cmd_vel_timeout},
+        std::tuple{"follow_tf_time_constant", &p.follow_tf_time_constant,
+                   q.follow_tf_time_constant},
+        std::tuple{"follow_tf_max_speed", &p.follow_tf_max_speed, q.follow_tf_max_speed}})
+    if (note(name, *from, to)) *from = to;
+  const Vec2 g = world_->def().solver.gravity;
+  if (note("gravity_x", g.x(), s.gravity.x()) | note("gravity_y", g.y(), s.gravity.y())) {
+    world_->setGravity(s.gravity);  // checked by the callback; a command in the bag
+    noteRequest("gravity set to (" + std::to_string(s.gravity.x()) + ", " +
+                std::to_string(s.gravity.y()) + ") m/s^2");
+  }
+  if (changed.empty()) return {true, "nothing changed"};
+  ROS_INFO("dynamic_reconfigure at t = %.6g s: %s", world_->time(), changed.c_str());
+  publishers_.publish(*world_, status(), true);
+  return {true, changed};
 }
 
 Reply SimLoop::step(long n) {

@@ -21,6 +21,7 @@
 #include "node_params.hpp"
 #include "obstacle_drivers.hpp"
 #include "publishers.hpp"
+#include "reconfigure.hpp"
 #include "robot_links.hpp"
 
 namespace mpm_sdem::node {
@@ -52,6 +53,8 @@ class SimLoop {
   void blocksChanged();
   // A request that changed the world (said in the error if the state then fails).
   void noteRequest(const std::string& what);
+  // dynamic_reconfigure's settings (reconfigure.hpp), checked by its callback: applied now.
+  Reply applySettings(const RuntimeSettings& settings);
 
  private:
   // One step and its outputs; false when the state became non-finite or the step collapsed
@@ -71,6 +74,7 @@ class SimLoop {
   void restartPacing();
   void pace();
   void logProgress(bool force);
+  RuntimeSettings settings() const;
 
   NodeParams params_;
   Scene scene_;
@@ -82,6 +86,7 @@ class SimLoop {
   ObstacleDrivers drivers_;
   RobotLinks robot_links_;  // a robot description's links, spawned as their tf arrives
   Publishers publishers_;
+  std::unique_ptr<Reconfigure> reconfigure_;  // made last: its callback queues commands
   // The recordings and their outputs (a failed one is dropped by sim_, closed here).
   std::unique_ptr<BagRecorder> bag_;
   std::unique_ptr<render::VideoRecorder> video_;

@@ -7,6 +7,10 @@
 // - node_resume.test: a node started with ~resume from a runner's bag continues /clock, tf and
 //   the bag from the time asked for (its bag's checkpoint before it, then the steps to it): its
 //   bag equals the uninterrupted run's.
+// - node_reconfigure.test: dynamic_reconfigure's ~set_parameters changes gravity and the
+//   real-time factor between steps; an out-of-range gravity is refused and the values in effect
+//   come back; the gravity is a recorded command, so the runner replays the node's bag exactly.
+#include <dynamic_reconfigure/Reconfigure.h>
 #include <geometry_msgs/Twist.h>
 #include <gtest/gtest.h>
 #include <mpm_sdem/ApplyObstacleWrench.h>
@@ -21,6 +25,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <set>
 
 #include "ros_helpers.hpp"
@@ -237,6 +242,76 @@ TEST(Resume, NodeContinuesClockTfAndBagFromACheckpoint) {
   EXPECT_EQ(test::differingTopics(whole, resumed), std::vector<std::string>{})
       << "topics whose messages differ between the uninterrupted run and the resumed one";
   fs::remove_all(dir);
+}
+
+namespace {
+
+// ~set_parameters with the given doubles; the values in effect it answers with, by name.
+std::map<std::string, double> reconfigure(const std::map<std::string, double>& values) {
+  dynamic_reconfigure::Reconfigure r;
+  for (const auto& [name, value] : values) {
+    dynamic_reconfigure::DoubleParameter d;
+    d.name = name;
+    d.value = value;
+    r.request.config.doubles.push_back(d);
+  }
+  EXPECT_TRUE(ros::service::call(test::kNs + "set_parameters", r));
+  std::map<std::string, double> out;
+  for (const auto& d : r.response.config.doubles) out[d.name] = d.value;
+  return out;
+}
+
+}  // namespace
+
+TEST(Reconfigure, GravityAndPacingChangeBetweenStepsAndReplay) {
+  test::NodeClient& n = *g_node;
+  const std::string node_bag = param("bag");
+  ASSERT_TRUE(ros::service::waitForService(test::kNs + "set_parameters", ros::Duration(20)));
+  ASSERT_TRUE(waitFor([&] { return n.stats.has(); }, 20));
+  // The server starts with the values the node runs with: its parameter and the scene's gravity.
+  std::map<std::string, double> now = reconfigure({});
+  EXPECT_EQ(now["real_time_factor"], 0.5);
+  EXPECT_EQ(now["gravity_x"], 0.0);
+  EXPECT_EQ(now["gravity_y"], -9.81);
+  // Accepted while paused: applied before the first step.
+  now = reconfigure({{"gravity_x", 2.0}, {"gravity_y", -5.0}, {"real_time_factor", 1.0}});
+  EXPECT_EQ(now["gravity_x"], 2.0);
+  EXPECT_EQ(now["gravity_y"], -5.0);
+  EXPECT_EQ(now["real_time_factor"], 1.0);
+  // Each component in its range, the vector past 1e4 m/s^2: refused, the values in effect back.
+  now = reconfigure({{"gravity_x", 9000.0}, {"gravity_y", -9000.0}});
+  EXPECT_EQ(now["gravity_x"], 2.0);
+  EXPECT_EQ(now["gravity_y"], -5.0);
+  ASSERT_TRUE(n.trigger("resume"));
+  ASSERT_TRUE(waitFor([&] { return n.stats.get().sim_time > 0.3; }, 30));
+  // A change while running: applied between two steps.
+  reconfigure({{"gravity_y", -12.0}});
+  ASSERT_TRUE(waitFor([&] { return fs::exists(node_bag); }, 60))
+      << node_bag << " never appeared: the node did not reach its end and close the bag";
+  // Both changes of gravity are in the bag, at their times.
+  std::vector<double> gravity_y;
+  {
+    rosbag::Bag bag(node_bag, rosbag::bagmode::Read);
+    for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
+      const auto c = m.instantiate<RecordedCommand>();
+      if (!c || c->kind != RecordedCommand::SET_GRAVITY) continue;
+      gravity_y.push_back(c->vector.y);
+      if (gravity_y.size() == 1) {
+        EXPECT_EQ(c->time, 0.0) << "applied before the first step";
+      }
+    }
+  }
+  EXPECT_EQ(gravity_y, (std::vector<double>{-5.0, -12.0}));
+  // The runner under the node's commands: the same bag, but the stats.
+  const std::string replay = node_bag + ".replay.bag";
+  ASSERT_EQ(run(std::string(MPM_SDEM_RUNNER) + " " + param("scene") +
+                " --set time.end=0.6 --threads 1 --quiet --replay-commands " + node_bag +
+                " --out " + node_bag + ".out --bag " + replay),
+            0);
+  EXPECT_EQ(test::differingTopics(node_bag, replay), std::vector<std::string>{})
+      << "topics whose messages differ between the node's run and its replay";
+  fs::remove(replay);
+  fs::remove_all(node_bag + ".out");
 }
 
 int main(int argc, char** argv) {
