@@ -2,8 +2,8 @@
 // the world that wrote it, in every kind of scene (each coupling scheme, both block contact
 // models, disc clusters, FEM bodies, SPH, blocks added and removed and gravity changed while
 // running); and a damaged checkpoint, one from another build, or one that does not fit the world
-// is refused with the reason. Checked: dropping the block springs' history or the IMP pair lists from the checkpoint
-// fails it (13,524 and 13,556 values differ), and so does dropping the gravity.
+// is refused with the reason. Checked: dropping the block springs' history or the IMP pair lists
+// from the checkpoint fails it (13,524 and 13,556 values differ), and so does dropping the gravity.
 #include <gtest/gtest.h>
 #include <zlib.h>
 

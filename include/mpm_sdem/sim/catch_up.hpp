@@ -1,7 +1,7 @@
 /// \file
-/// A run resumed from a checkpoint before the time it was asked to resume at (BAG@TIME: a bag
-/// keeps one checkpoint per simulated second by default) is brought up to that time as the run
-/// that recorded it took it: the same steps, landed on the same end time, under the commands it
+/// A run resumed from a checkpoint before the time it was asked to resume at (BAG\@TIME: a
+/// bag keeps one checkpoint per simulated second by default) is brought up to that time as the
+/// run that recorded it took it: the same steps, landed on the same end time, under the commands it
 /// recorded, each applied when due. Runs are bit-identical whatever the threads, so the state
 /// reached is the recorded run's state at that step, and a run resumed there continues it to
 /// the bit. The cost is the simulation of the gap (at most the checkpoints' spacing).
