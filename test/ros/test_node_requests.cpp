@@ -11,11 +11,13 @@
 #include <unistd.h>
 #include <visualization_msgs/Marker.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <thread>
 
 #include "ros_helpers.hpp"
 
@@ -62,6 +64,25 @@ void expectRefused(bool success, const std::string& message, const Bad& bad) {
 
 // Runs `cmd`, which writes its output to `log` (started with `args`): it must exit with status 1
 // within its timeout, its output holding `reason`.
+void expectExitNaming(const std::string& cmd, const std::filesystem::path& log,
+                      const std::string& args, const std::string& reason);
+
+// The processes a refusal test starts, two at a time (each only reads its parameters and
+// exits: no OpenMP work, and their logs and node names are their own).
+struct Refusal {
+  std::string cmd, log, args, reason;
+};
+void expectAllExitNaming(const std::vector<Refusal>& cases) {
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t i = next++; i < cases.size(); i = next++)
+      expectExitNaming(cases[i].cmd, cases[i].log, cases[i].args, cases[i].reason);
+  };
+  std::thread other(work);
+  work();
+  other.join();
+}
+
 void expectExitNaming(const std::string& cmd, const std::filesystem::path& log,
                       const std::string& args, const std::string& reason) {
   const int status = std::system(cmd.c_str());
@@ -392,6 +413,7 @@ TEST(Requests, BadParametersStopTheNodeBeforeItSimulates) {
       {"robot_links=tool", "~robot_links must be a list of link names"},
       {"_robot_rounding:=0", "~robot_rounding"}};
   int k = 0;
+  std::vector<Refusal> runs;
   for (const auto& [args, reason] : cases) {
     const fs::path log = dir / ("log" + std::to_string(k++));
     const std::string name = "bad" + std::to_string(k);
@@ -404,8 +426,9 @@ TEST(Requests, BadParametersStopTheNodeBeforeItSimulates) {
     const std::string rest = dict ? args.substr(space) : args;
     const std::string cmd = set + "timeout 30 " + MPM_SDEM_NODE + " __name:=" + name +
                             " _scene:=" + scene + " " + rest + " >" + log.string() + " 2>&1";
-    expectExitNaming(cmd, log, args, reason);
+    runs.push_back({cmd, log.string(), args, reason});
   }
+  expectAllExitNaming(runs);
   for (const auto& e : fs::directory_iterator(dir)) {
     const std::string name = e.path().filename().string();
     EXPECT_TRUE(name.rfind("log", 0) == 0 || name == "a_directory.bag") << "left behind: " << name;
@@ -435,12 +458,14 @@ TEST(Requests, BadParametersStopTheExampleController) {
       {"_kp:=fast", "~kp = 'fast'"},
       {"_filter:=.nan", "~filter = nan"}};
   int k = 0;
+  std::vector<Refusal> runs;
   for (const auto& [args, reason] : cases) {
     const fs::path log = dir / ("log" + std::to_string(k++));
     const std::string cmd = "timeout 30 /usr/bin/python3 " + script + " __name:=badc" +
                             std::to_string(k) + " " + args + " >" + log.string() + " 2>&1";
-    expectExitNaming(cmd, log, args, reason);
+    runs.push_back({cmd, log.string(), args, reason});
   }
+  expectAllExitNaming(runs);
   fs::remove_all(dir);
 }
 
