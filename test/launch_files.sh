@@ -9,10 +9,10 @@ set -euo pipefail
 src="$1"
 runner="$2"
 export ROS_PACKAGE_PATH="$src${ROS_PACKAGE_PATH:+:$ROS_PACKAGE_PATH}"
-status=0
-for f in "$src"/launch/*.launch; do
-  [ "$(basename "$f")" = sim.launch ] && continue
-  nodes=$(roslaunch --nodes "$f" 2>&1) || { echo "FAIL $f: $nodes"; status=1; continue; }
+# One launch file: "ok" or "FAIL" lines; its exit status.
+check() {
+  local f="$1" status=0
+  nodes=$(roslaunch --nodes "$f" 2>&1) || { echo "FAIL $f: $nodes"; return 1; }
   grep -qx /mpm_sdem <<<"$nodes" || { echo "FAIL $f: no /mpm_sdem node ($nodes)"; status=1; }
   params=$(roslaunch --dump-params "$f")
   scene=$(sed -n 's|^/mpm_sdem/scene: ||p' <<<"$params")
@@ -23,7 +23,7 @@ for f in "$src"/launch/*.launch; do
   if [ ! -f "$scene" ]; then
     echo "FAIL $f: scene '$scene' is not a file"
     status=1
-  elif ! "$runner" "$scene" "${sets[@]}" --set time.end=0.01 --set output.interval=0.01 --vtk-every 0.005 --quiet --out "$out" >/dev/null 2>&1; then
+  elif ! "$runner" "$scene" "${sets[@]}" --set time.end=0.01 --set output.interval=0.01 --vtk-every 0.005 --threads 1 --quiet --out "$out" >/dev/null 2>&1; then
     echo "FAIL $f: the runner refuses $scene"
     status=1
   elif ! grep -q 'file="points_000002.vtu"' "$out/vtk/points.pvd" 2>/dev/null; then
@@ -33,5 +33,13 @@ for f in "$src"/launch/*.launch; do
     echo "ok   $(basename "$f"): $(basename "$scene")${sets:+ ${sets[*]}}"
     rm -rf "$out"
   fi
-done
+  return $status
+}
+export -f check
+export runner
+# Two at a time (roslaunch's start-up is most of each; the runner on one thread each).
+status=0
+for f in "$src"/launch/*.launch; do
+  [ "$(basename "$f")" = sim.launch ] || printf '%s\0' "$f"
+done | xargs -0 -P 2 -I{} bash -c 'check "$1"' _ {} || status=1
 exit $status
