@@ -1,7 +1,5 @@
 #include "reconfigure.hpp"
 
-#include <tuple>
-
 #include "mpm_sdem/core/world.hpp"
 #include "sim_loop.hpp"
 
@@ -45,15 +43,6 @@ RuntimeSettings fromConfig(const mpm_sdem::NodeConfig& c, RuntimeSettings s) {
   return s;
 }
 
-// The settings' values, to compare.
-auto values(const RuntimeSettings& s) {
-  const NodeParams& p = s.params;
-  return std::make_tuple(p.real_time_factor, p.particles_rate, p.cloud_decimation, p.blocks_rate,
-                         p.stats_rate, p.image_rate, p.terrain_rate, p.clock_rate,
-                         p.cmd_vel_timeout, p.follow_tf_time_constant, p.follow_tf_max_speed,
-                         s.gravity.x(), s.gravity.y());
-}
-
 }  // namespace
 
 Reconfigure::Reconfigure(const ros::NodeHandle& pnh, CommandQueue& queue,
@@ -81,7 +70,7 @@ void Reconfigure::onChange(mpm_sdem::NodeConfig& config, std::uint32_t /*level*/
     config = toConfig(current_);
     return;
   }
-  if (values(next) == values(current_)) return;  // the first call, or nothing new
+  // The loop says "nothing changed" (and logs nothing) when nothing did: the first call.
   current_ = next;
   queue_.post([next](SimLoop& sim) { return sim.applySettings(next); });
 }
