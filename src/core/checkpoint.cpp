@@ -168,8 +168,8 @@ struct CheckpointAccess {
   static void save(Out& ar, World& w) {
     ar(w.time_, w.steps_, w.velocity_lag_, w.stress_lag_, w.point_loads_, w.commands_);
     ar(w.def_.solver.gravity);  // setGravity may have changed the scene's
-    w.particles_.forEachColumn([&ar](auto& column) { ar(column); });
-    w.tiles_.stateIo(ar);
+    w.mpm_.particles().forEachColumn([&ar](auto& column) { ar(column); });
+    w.mpm_.tiles().stateIo(ar);
     ar(w.sph_ != nullptr, w.blocks_ != nullptr, w.fem_ != nullptr, w.coupling_ != nullptr);
     if (w.sph_) w.sph_->stateIo(ar);
     if (w.blocks_) saveBlocks(ar, *w.blocks_);
@@ -184,15 +184,15 @@ struct CheckpointAccess {
     if (!World::gravityProblem(gravity).empty())
       throw CheckpointError("the saved gravity is out of range");
     w.applyGravity(gravity);  // before the blocks: their Box2D world is rebuilt with it
-    Particles& P = w.particles_;
+    Particles& P = w.mpm_.particles();
     P.forEachColumn([&ar](auto& column) { ar(column); });
     bool equal = true;
     P.forEachColumn([&](const auto& column) { equal = equal && column.size() == P.x.size(); });
     if (!equal) throw CheckpointError("the saved particle columns disagree in length");
-    for (const World::PointLoad& l : w.point_loads_)
+    for (const PointLoads::Load& l : w.point_loads_.loads())
       if (l.particle < 0 || static_cast<std::size_t>(l.particle) >= P.size())
         throw CheckpointError("a saved point load names no particle");
-    w.tiles_.stateIo(ar);
+    w.mpm_.tiles().stateIo(ar);
     bool sph = false, blocks = false, fem = false, coupling = false;
     ar(sph, blocks, fem, coupling);
     auto require = [](bool ok, const char* what) {

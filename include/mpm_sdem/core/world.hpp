@@ -12,17 +12,11 @@
 #include "mpm_sdem/core/coupling/coupling.hpp"
 #include "mpm_sdem/core/fem/fem_bodies.hpp"
 #include "mpm_sdem/core/limits.hpp"
-#include "mpm_sdem/core/mpm/boundary.hpp"
-#include "mpm_sdem/core/mpm/grid.hpp"
-#include "mpm_sdem/core/mpm/kernels.hpp"
-#include "mpm_sdem/core/mpm/material.hpp"
-#include "mpm_sdem/core/mpm/particles.hpp"
-#include "mpm_sdem/core/mpm/shapes.hpp"
-#include "mpm_sdem/core/mpm/solver.hpp"
-#include "mpm_sdem/core/mpm/tiles.hpp"
-#include "mpm_sdem/core/profile.hpp"
+#include "mpm_sdem/core/mpm/mpm_solver.hpp"
+#include "mpm_sdem/core/mpm/point_loads.hpp"
 #include "mpm_sdem/core/rigid/blocks.hpp"
 #include "mpm_sdem/core/sph/sph.hpp"
+#include "mpm_sdem/core/time_step.hpp"
 #include "mpm_sdem/core/types.hpp"
 #include "mpm_sdem/core/world_command.hpp"
 
@@ -32,38 +26,6 @@ namespace detail {
 struct SphState;
 struct SphWorld;
 }  // namespace detail
-
-/// How the step is chosen (scene section `time`).
-struct TimeStepDef {
-  bool automatic = true;  ///< CFL bound, re-evaluated every step
-  Real fixed = 0;         ///< s, when !automatic
-  Real cfl = 0.3;         ///< kappa_1 of seed 000 eq. 51: dt = cfl * h / max(c_p + |v_p|)
-  Real max = std::numeric_limits<Real>::infinity();  ///< s, upper bound on the automatic step
-  /// kappa_2 of seed 000 eq. 51: dt <= 2 pi kappa_2 sqrt(m_min / k_n) for every spring contact,
-  /// m_min the lightest mass on either side (an IMP spring acts on one light material point).
-  Real contact_factor = 0.1;
-};
-
-/// The flume's side walls, parallel to the simulation plane, of a quasi-2D flow (Jop,
-/// Forterre & Pouliquen 2005): a body force of 2 mu_w p / W per unit volume against the material's
-/// velocity, p the points' pressure (none in tension). width 0: none (a plane-strain slice).
-struct SidewallsDef {
-  Real width = 0;     ///< W, the channel's width between the walls (m)
-  Real friction = 0;  ///< mu_w, Coulomb coefficient of the material on the walls
-};
-
-/// The simulated box and what bounds it (scene section `domain`).
-struct DomainDef {
-  ///@{
-  /// Corners (m); each extent an integer number of cells.
-  Vec2 min{0, 0}, max{1, 1};
-  ///@}
-  ///@{
-  /// The four sides' walls.
-  WallDef left, right, bottom, top;
-  ///@}
-  SidewallsDef sidewalls;  ///< the flume's walls parallel to the plane; none by default
-};
 
 /// Everything a World is made from: what a scene file describes, in SI units.
 struct WorldDef {
@@ -83,25 +45,6 @@ struct WorldDef {
 /// Whether the domain's periodic sides are well posed (left and right together, at least five
 /// cells across, material alone): "" or why not. Checked by the scene parser and by World.
 Problem periodicProblem(const WorldDef& def);
-
-/// Whether a world of this domain, cell and bodies fits in memory (limits::memoryProblem, with
-/// the bodies' points counted on their bounding boxes): "" or why not. Checked before anything
-/// is allocated, by the scene parser and by World.
-Problem sizeProblem(const DomainDef& domain, Real cell_size, const std::vector<BodyDef>& bodies);
-
-/// Which term set the time step.
-/// kElement: the FEM bodies' elements (FemBodies::elementStep times kappa_1).
-/// kViscous: a fluid's viscous diffusion (h^2 / (2 nu) times kappa_1).
-/// kSph: the SPH particles' signal speed over the smoothing length (detail::sphSignalSpeed).
-enum class StepLimit { kFixed, kCfl, kContact, kElement, kViscous, kSph, kMax };
-/// The term's name as outputs print it ("cfl", "contact", ...).
-const char* stepLimitName(StepLimit limit);
-
-/// A stable step and the term that set it.
-struct TimeStepChoice {
-  Real dt = 0;                          ///< s
-  StepLimit limit = StepLimit::kFixed;  ///< the term that set it
-};
 
 /// What a step did.
 struct StepInfo {
@@ -178,7 +121,7 @@ class World {
   const WorldDef& def() const { return def_; }
   /// Each material's parameters as the constitutive updates use them, in WorldDef::materials'
   /// order.
-  const std::vector<MaterialParams>& materialParams() const { return params_; }
+  const std::vector<MaterialParams>& materialParams() const { return mpm_.params(); }
   /// The rigid blocks, or nullptr in a scene without any (no block or coupling work is done).
   /// Changed only through World (addBlock, removeBlock, setBlockPose, setBlockVelocity), which
   /// keeps the coupling in step.
@@ -192,21 +135,15 @@ class World {
   ///@{
   /// The material points (structure of arrays); changing them between steps is allowed (tests,
   /// set-up), their number is not.
-  const Particles& particles() const { return particles_; }
-  Particles& particles() { return particles_; }
+  const Particles& particles() const { return mpm_.particles(); }
+  Particles& particles() { return mpm_.particles(); }
   ///@}
   /// The background grid of the last step.
-  const Grid& grid() const { return grid_; }
+  const Grid& grid() const { return mpm_.grid(); }
   /// Memory held, in bytes: the particle columns with their tile bins, and the grid arrays.
-  /// Nodes the last step cleared and updated (the tiles within reach of a particle).
-  struct Memory {
-    std::size_t particle_bytes = 0;  ///< the particle columns and their tile bins
-    std::size_t grid_bytes = 0;      ///< the grid arrays
-    std::size_t grid_nodes = 0;      ///< nodes of the whole domain
-    std::size_t active_nodes = 0;    ///< nodes the last step cleared and updated
-  };
+  using Memory = MpmSolver::Memory;
   /// What the world holds now.
-  Memory memory() const;
+  Memory memory() const { return mpm_.memory(); }
   /// Simulated time (s).
   Time time() const { return time_; }
   /// The time the material points' velocities are at: the leapfrog keeps them half a step
@@ -215,9 +152,9 @@ class World {
   /// Steps taken since the start (a resumed run continues the count).
   long stepCount() const { return steps_; }
   /// Wall time per stage since the start or the last resetProfile().
-  const Profile& profile() const { return profile_; }
+  const Profile& profile() const { return mpm_.profile(); }
   /// Starts the stages' timing afresh.
-  void resetProfile() { profile_ = Profile(); }
+  void resetProfile() { mpm_.profile() = Profile(); }
   /// Whether the step shares its work among the OpenMP threads: SPH worlds, and worlds of at
   /// least SolverDef::parallel_min_points points; the others step on the calling thread alone.
   bool sharesWork() const;
@@ -229,33 +166,11 @@ class World {
   /// The coupling springs' stable step (seed 000 eq. 51, second term): the step's bound, or the
   /// substep of subcycled springs.
   Real springStep(Real kappa2) const;
+  /// The points binned by tile (with SPH: and the SPH particles' kinds and band).
   void binParticles();
-  /// f(first, end) for each run of consecutive nodes of the tiles (Tiles::nodeRuns), in parallel.
-  template <class F>
-  void forActiveNodes(const std::vector<int>& tiles, F&& f);
-  void clearGrid();
-  void particleToGrid(bool momentum, bool force);
-  /// damp: local damping on the nodal force (internal, gravity and the coupling's forces).
-  void gridVelocity(Real kick, bool after_force, bool damp = true);
-  /// Local damping on the whole of a step's velocity change, for a coupling that changes the
-  /// velocities after the update (its impulses are part of the force the damping must see).
-  void dampVelocityChange(Real kick);
-  /// USF: with side walls, the new pressure's wall load too (one pass over the points).
-  void stressAndInternalForce(Real dt);
-  /// The side walls' friction (SidewallsDef): what the points' pressure lets the walls resist on
-  /// each node (after the stress; sidewallLoad for USL, stressAndInternalForce for USF), then
-  /// that resistance on the nodes' velocities after the kick.
-  void sidewallLoad();
-  void sidewallFriction(Real kick);
-  /// The wall load's nodes zeroed where points are (nullptr: no side walls), and 2 mu_w / W (1/m).
-  Real* clearedSidewallLoad();
-  Real sidewallCoefficient() const;
-  /// Periodic in x: nodes i and i + cells_x are one node, so each gets the sum of both.
-  void foldPeriodic(std::initializer_list<std::vector<Real>*> fields);
-  bool periodicX() const { return def_.domain.left.type == WallType::kPeriodic; }
-  void gridToParticle(Real dt, StepInfo& info);
-  void constitutiveUpdate(Real dt);
-  void applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const;
+  /// The step's velocity change after a coupling's correction: damped (SolverDef::damping) as
+  /// a whole, and the walls again (a correction may push into one).
+  void correctedWalls(Real kick);
   void couplingStage(Real dt, Real kick, void (Coupling::*stage)(CouplingStep&));
   void stepBodies(Real dt);
   /// StepInfo::block_problem and, for a block's state, finite.
@@ -279,14 +194,7 @@ class World {
   bool hasContactBodies() const { return contactBodies() && contactBodies()->shapeCount() > 0; }
 
   WorldDef def_;
-  std::vector<MaterialParams> params_;
-  Particles particles_;
-  Grid grid_;
-  Tiles tiles_;
-  std::vector<Tiles::NodeRun> node_runs_;  ///< scratch of forActiveNodes
-  /// Per node: the side walls' largest friction force (N/m), when the domain has side walls.
-  std::vector<Real> sidewall_load_;
-  Profile profile_;
+  MpmSolver mpm_;  ///< the material points, the grid, the walls and the transfers
   std::unique_ptr<Blocks> blocks_;
   std::unique_ptr<FemBodies> fem_;
   std::unique_ptr<ContactSet> set_;  ///< when there are blocks and FEM bodies
@@ -296,18 +204,7 @@ class World {
   /// (kg/m; impSpringScale) and the largest scale.
   Real lightest_point_ = 0;
   Real largest_spring_scale_ = 1;
-  /// h^2 / (2 nu) of the most viscous fluid (s); infinite without one.
-  Real viscous_dt_ = std::numeric_limits<Real>::infinity();
-  struct PointLoad {
-    int particle;
-    Vec2 force;   ///< N/m
-    Vec2 offset;  ///< m, from the point
-    template <class Archive>
-    void serialize(Archive& ar) {
-      ar(particle, force, offset);
-    }
-  };
-  std::vector<PointLoad> point_loads_;  ///< few and rarely used: a list, not a column
+  PointLoads point_loads_;  ///< setPointLoad's
   /// setGravity without the log (a checkpoint's gravity).
   void applyGravity(const Vec2& gravity);
   Time time_ = 0;

@@ -8,7 +8,7 @@ namespace mpm_sdem {
 namespace {
 
 // The integrals of 1, x, y and x^2 + y^2 over a region, from its boundary.
-struct Moments {
+struct ArcMoments {
   Real area = 0, x = 0, y = 0, polar = 0;
 };
 
@@ -16,14 +16,14 @@ struct Moments {
 // area from (x dy - y dx) / 2, x from x^2 dy / 2, y from -y^2 dx / 2, x^2 + y^2 from
 // (x^3 dy - y^3 dx) / 3, with x = c_x + r cos t, y = c_y + r sin t; each a trigonometric
 // polynomial of degree at most 4 in t, integrated in closed form (primitive at b minus at a).
-Moments arcMoments(const Vec2& c, Real r, Real a, Real b) {
+ArcMoments arcMoments(const Vec2& c, Real r, Real a, Real b) {
   auto primitive = [&](Real t) {
     const Real C = std::cos(t), S = std::sin(t), s2 = std::sin(2 * t), s4 = std::sin(4 * t);
     const Real cc = t / 2 + s2 / 4, ss = t / 2 - s2 / 4;           // of cos^2, sin^2
     const Real ccc = S - S * S * S / 3, sss = -C + C * C * C / 3;  // of cos^3, sin^3
     const Real c4 = 3 * t / 8 + s2 / 4 + s4 / 32, s4i = 3 * t / 8 - s2 / 4 + s4 / 32;
     const Real cx = c.x(), cy = c.y();
-    Moments m;
+    ArcMoments m;
     m.area = (r * r * t + r * cx * S - r * cy * C) / 2;
     m.x = r / 2 * (cx * cx * S + 2 * cx * r * cc + r * r * ccc);
     m.y = r / 2 * (-cy * cy * C + 2 * cy * r * ss + r * r * sss);
@@ -32,7 +32,7 @@ Moments arcMoments(const Vec2& c, Real r, Real a, Real b) {
                cy * cy * cy * C + 3 * cy * cy * r * ss + 3 * cy * r * r * sss + r * r * r * s4i);
     return m;
   };
-  const Moments pb = primitive(b), pa = primitive(a);
+  const ArcMoments pb = primitive(b), pa = primitive(a);
   return {pb.area - pa.area, pb.x - pa.x, pb.y - pa.y, pb.polar - pa.polar};
 }
 
@@ -81,9 +81,9 @@ bool coveredArcs(const std::vector<Disc>& discs, std::size_t i,
 }  // namespace
 
 MassProperties discUnionMass(const std::vector<Disc>& discs, Real density) {
-  Moments sum;
+  ArcMoments sum;
   std::vector<std::pair<Real, Real>> covered;
-  auto add = [&](const Moments& m) {
+  auto add = [&](const ArcMoments& m) {
     sum.area += m.area;
     sum.x += m.x;
     sum.y += m.y;

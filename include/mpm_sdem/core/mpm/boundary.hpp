@@ -18,6 +18,27 @@ struct WallDef {
   Real friction = 0;                ///< Coulomb coefficient, kFriction only
 };
 
+/// The flume's side walls, parallel to the simulation plane, of a quasi-2D flow (Jop,
+/// Forterre & Pouliquen 2005): a body force of 2 mu_w p / W per unit volume against the material's
+/// velocity, p the points' pressure (none in tension). width 0: none (a plane-strain slice).
+struct SidewallsDef {
+  Real width = 0;     ///< W, the channel's width between the walls (m)
+  Real friction = 0;  ///< mu_w, Coulomb coefficient of the material on the walls
+};
+
+/// The simulated box and what bounds it (scene section `domain`).
+struct DomainDef {
+  ///@{
+  /// Corners (m); each extent an integer number of cells.
+  Vec2 min{0, 0}, max{1, 1};
+  ///@}
+  ///@{
+  /// The four sides' walls.
+  WallDef left, right, bottom, top;
+  ///@}
+  SidewallsDef sidewalls;  ///< the flume's walls parallel to the plane; none by default
+};
+
 /// n is the unit normal pointing out of the domain (into the wall). Material moving away from the
 /// wall is left alone (it may separate); moving into it, the normal velocity is removed and, for a
 /// Coulomb wall, the tangential speed is reduced by friction * |normal velocity removed| without
