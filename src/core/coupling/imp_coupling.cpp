@@ -150,11 +150,10 @@ void ImpCoupling::beginSubcycle(CouplingStep& s) {
       substepping_.push_back(g);
     });
   });
-  // The nodes' forces were spent by the velocity update: around the contacts they now sum the
-  // springs' impulses.
-  for (const Substepping& g : substepping_)
-    for (int k = 0; k < g.stencil.count; ++k)
-      G.force_x[g.stencil.node[k]] = G.force_y[g.stencil.node[k]] = 0;
+  if (impulse_x_.size() != G.mass.size()) {  // the first step, or a grid of another size
+    impulse_x_.assign(G.mass.size(), 0);
+    impulse_y_.assign(G.mass.size(), 0);
+  }
 }
 
 void ImpCoupling::correctGridVelocity(CouplingStep& s) {
@@ -168,8 +167,8 @@ void ImpCoupling::correctGridVelocity(CouplingStep& s) {
   const Real h = s.dt / n;
   auto where = [&](int g, int p) -> Vec2 { return Vec2(P.x[p], P.y[p]) + substepping_[g].shift; };
   // The velocity the grid's nodes have gained from the springs so far: impulse over mass.
-  auto gained = [&G](int i) -> Vec2 {
-    return G.mass[i] > 0 ? Vec2(G.force_x[i], G.force_y[i]) / G.mass[i] : Vec2(0, 0);
+  auto gained = [this, &G](int i) -> Vec2 {
+    return G.mass[i] > 0 ? Vec2(impulse_x_[i], impulse_y_[i]) / G.mass[i] : Vec2(0, 0);
   };
   for (int k = 0; k < n; ++k) {
     // Eq. 43 at the substep's start, the reactions on the bodies (eq. 49-50), the impulses on
@@ -184,7 +183,7 @@ void ImpCoupling::correctGridVelocity(CouplingStep& s) {
           B.pushForce(b, -force, point);
           c.point = point;
           sub.impulse += h * force;
-          if (!sub.sph) sub.stencil.spread(G.force_x, G.force_y, h * force);
+          if (!sub.sph) sub.stencil.spread(impulse_x_, impulse_y_, h * force);
         },
         [this](int g) { return substepping_[g].apart; });
     B.substep(h, s.body_substep, h / s.dt);
@@ -206,7 +205,7 @@ void ImpCoupling::correctGridVelocity(CouplingStep& s) {
       const Vec2 dv = gained(i);
       G.vel_x[i] += dv.x();
       G.vel_y[i] += dv.y();
-      G.force_x[i] = G.force_y[i] = 0;  // once per node
+      impulse_x_[i] = impulse_y_[i] = 0;  // once per node
     }
     ContactPair& c = search_.pairs()[sub.pair];
     if (sub.impulse.x() == 0 && sub.impulse.y() == 0) continue;

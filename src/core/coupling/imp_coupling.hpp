@@ -82,6 +82,9 @@ class ImpCoupling final : public Coupling {
   void beginSubcycle(CouplingStep& s);
   ContactSearch search_;
   std::vector<Substepping> substepping_;
+  // Per grid node, the springs' impulses so far in this step (N s/m): zero outside the step's
+  // contact stencils, and zero again once the grid has them.
+  std::vector<Real> impulse_x_, impulse_y_;
 };
 
 }  // namespace mpm_sdem
