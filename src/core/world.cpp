@@ -39,6 +39,7 @@ World::World(const WorldDef& def)
     if (const Problem p = schemeProblem(def.coupling.scheme, true, false); !p.empty())
       throw std::invalid_argument(p.text());
     fem_ = std::make_unique<FemBodies>(def.fem_bodies, def.solver.gravity);
+    if (def.time_step.fem_subcycled) fem_->setMaxSubstep(def.time_step.cfl * fem_->elementStep());
   }
   if (blocks_ || fem_) {
     linkContactBodies();
@@ -141,7 +142,12 @@ TimeStepChoice World::stepBound(Real cfl, Real kappa2) const {
         detail::sphStableStep(*sph_, mpm_.particles(), mpm_.tiles(), mpm_.params(), cfl);
     choice.takeShorter(dt, StepLimit::kSph);
   }
-  if (fem_) choice.takeShorter(cfl * fem_->elementStep(), StepLimit::kElement);
+  if (fem_) {
+    // Subcycled, the elements bound their substeps, at most kMaxElementSubsteps to a step.
+    constexpr Real kMaxElementSubsteps = 1000;
+    const Real substeps = def_.time_step.fem_subcycled ? kMaxElementSubsteps : 1;
+    choice.takeShorter(substeps * cfl * fem_->elementStep(), StepLimit::kElement);
+  }
   // The springs between bodies never bound this step (the bodies take substeps within their
   // own bound).
   if (hasContactBodies() && coupling_->hasSprings()) {

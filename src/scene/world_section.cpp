@@ -126,7 +126,8 @@ void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
 }
 
 void parseTime(const Context& ctx, const MapReader& top, Scene& s) {
-  MapReader t(ctx, top.node("time"), "time", {"end", "dt", "cfl", "dt_max", "contact_factor"});
+  MapReader t(ctx, top.node("time"), "time",
+              {"end", "dt", "cfl", "dt_max", "contact_factor", "fem_integration"});
   s.end_time = t.number("end", limits::kEndTime);
   TimeStepDef& ts = s.world.time_step;
   if (t.has("dt") && !(t.node("dt").IsScalar() && t.node("dt").Scalar() == "auto")) {
@@ -151,6 +152,8 @@ void parseTime(const Context& ctx, const MapReader& top, Scene& s) {
     t.require(ts.automatic, "dt_max", "applies only with dt: auto");
     ts.max = t.number("dt_max", limits::kTimeStep);
   }
+  ts.fem_subcycled = t.choice<bool>("fem_integration", {{"explicit", false}, {"subcycled", true}},
+                                    ts.fem_subcycled);
 }
 
 }  // namespace mpm_sdem::scene

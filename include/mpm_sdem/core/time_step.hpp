@@ -17,6 +17,10 @@ struct TimeStepDef {
   /// kappa_2 of seed 000 eq. 51: dt <= 2 pi kappa_2 sqrt(m_min / k_n) for every spring contact,
   /// m_min the lightest mass on either side (an IMP spring acts on one light material point).
   Real contact_factor = 0.1;
+  /// FEM bodies: false, one step per material step (their element step times kappa_1 bounds
+  /// it); true, multi-rate: substeps of at most kappa_1 times the element step within the
+  /// material's step (FemBodies::setMaxSubstep).
+  bool fem_subcycled = false;
 };
 
 /// Which term set the time step.

@@ -378,6 +378,24 @@ void FemBodies::beginCoupling(Real dt) {
   for (Load& c : coupling_) c = Load();
   std::fill(cfx_.begin(), cfx_.end(), Real(0));
   std::fill(cfy_.begin(), cfy_.end(), Real(0));
+  const int n = substepsFor(dt);
+  if (n > 1) {
+    // Multi-rate: the nodes' motion free of the material over the step, in the elements' own
+    // substeps (one explicit step of dt past the element step would amplify the stiff modes,
+    // not predict them). step() then takes this motion and adds the material's impulse as a
+    // kick at its end (a split of the step: the elements, then the contact), so that the
+    // nodes end the step at the velocity the material's contact saw: trial + impulse / m.
+    saved_x_ = x_, saved_y_ = y_, saved_vx_ = vx_, saved_vy_ = vy_;
+    for (int k = 0; k < n; ++k) {
+      if (k > 0) internalForces();
+      advance(dt / n, true);
+    }
+    tvx_ = vx_, tvy_ = vy_;
+    free_x_ = x_, free_y_ = y_, free_vx_ = vx_, free_vy_ = vy_;
+    x_ = saved_x_, y_ = saved_y_, vx_ = saved_vx_, vy_ = saved_vy_;
+    internalForces();
+    return;
+  }
   for (std::size_t k = 0; k < x_.size(); ++k) {
     if (inv_mass_[k] == 0) {
       tvx_[k] = held_velocity_[k].x();
@@ -466,7 +484,40 @@ void FemBodies::meetSurroundings(int k, Real dt) {
   vy_[k] = v.y();
 }
 
+void FemBodies::advance(Real h, bool surroundings) {
+  for (std::size_t k = 0; k < x_.size(); ++k) {
+    if (inv_mass_[k] == 0) {
+      vx_[k] = held_velocity_[k].x();
+      vy_[k] = held_velocity_[k].y();
+    } else {
+      vx_[k] += h * (fx_[k] * inv_mass_[k] + gravity_.x() - alpha_[k] * vx_[k]);
+      vy_[k] += h * (fy_[k] * inv_mass_[k] + gravity_.y() - alpha_[k] * vy_[k]);
+      if (surroundings && on_boundary_[k]) meetSurroundings(static_cast<int>(k), h);
+    }
+    x_[k] += h * vx_[k];
+    y_[k] += h * vy_[k];
+  }
+}
+
 int FemBodies::step(Real dt, Real) {
+  const int n = substepsFor(dt);
+  if (n > 1) {
+    // beginCoupling's free motion, then the contact forces' impulse as a kick at the step's
+    // end, with the displacement it would have given over the step: momentum exact, and the
+    // nodes' velocity the one the material's contact assumed.
+    for (std::size_t k = 0; k < x_.size(); ++k) {
+      x_[k] = free_x_[k];
+      y_[k] = free_y_[k];
+      vx_[k] = free_vx_[k];  // the trial velocities have the impulses of some schemes too
+      vy_[k] = free_vy_[k];
+      if (inv_mass_[k] == 0) continue;
+      vx_[k] += dt * cfx_[k] * inv_mass_[k];
+      vy_[k] += dt * cfy_[k] * inv_mass_[k];
+      if (on_boundary_[k]) meetSurroundings(static_cast<int>(k), dt);
+    }
+    refreshSegments();
+    return n;
+  }
   for (std::size_t k = 0; k < x_.size(); ++k) {
     if (inv_mass_[k] == 0) {
       vx_[k] = held_velocity_[k].x();

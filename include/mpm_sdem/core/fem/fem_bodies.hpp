@@ -10,6 +10,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -135,6 +136,15 @@ class FemBodies final : public ContactBodies {
   /// reduced by stiffness damping to (h / c_p)(sqrt(1 + xi^2) - xi) with xi = beta c_p / h.
   /// World multiplies it by kappa_1 (seed 000 eq. 51's CFL factor).
   Real elementStep() const { return element_step_; }
+  /// Multi-rate stepping: the nodes take substeps of at most max_substep (s) within each
+  /// material step, their internal forces evaluated anew in each, the material's forces held
+  /// at the step's mean (momentum exact); infinity (the default): one step per material step,
+  /// which the element step must then bound.
+  void setMaxSubstep(Real max_substep) { max_substep_ = max_substep; }
+  /// How many substeps a step of dt takes (1 without multi-rate stepping).
+  int substepsFor(Real dt) const {
+    return dt > max_substep_ ? static_cast<int>(std::ceil(dt / max_substep_)) : 1;
+  }
 
   /// What the nodes meet besides the material: the domain walls and the shapes of `obstacles`
   /// that forces do not move (static and kinematic blocks); nullptr for none.
@@ -171,7 +181,9 @@ class FemBodies final : public ContactBodies {
   BodyPose pose(int s) const override;
   Real movedSince(int s, const BodyPose& then) const override;
   /// Internal forces at the current positions (eq. 20) and the trial velocities: each free node's
-  /// velocity after dt under them, gravity and damping (eq. 17); held nodes take their velocity.
+  /// velocity after dt under them, gravity and damping (eq. 17), over the substeps of
+  /// setMaxSubstep (the internal forces anew in each, the state then put back); held nodes take
+  /// their velocity.
   void beginCoupling(Real dt) override;
   Vec2 trialVelocityAt(int s, const Vec2& x) const override;
   /// Eq. 46 and 53: a force at a point of a segment goes to its nodes by phi_J.
@@ -186,6 +198,9 @@ class FemBodies final : public ContactBodies {
   /// No substeps: the element step joins the world's step bound instead.
   Real stableStep(Real) const override { return std::numeric_limits<Real>::infinity(); }
   /// v^{n+1/2} = trial + dt f_contact / m; the walls and obstacles; x^{n+1} = x^n + dt v^{n+1/2}.
+  /// Multi-rate (substepsFor(dt) > 1): beginCoupling's free motion over the substeps, then the
+  /// contact forces' impulse dt f_contact / m as a kick at the end with its displacement dt
+  /// times that. max_substep (the blocks') is not the elements' bound.
   int step(Real dt, Real max_substep) override;
 
  private:
@@ -217,6 +232,9 @@ class FemBodies final : public ContactBodies {
   void internalForces();
   void refreshSegments();
   void meetSurroundings(int k, Real dt);
+  /// One substep of h of every node under the internal forces, gravity and damping, free of
+  /// the material; with surroundings, the walls and obstacles met.
+  void advance(Real h, bool surroundings);
 
   std::vector<FemBodyDef> defs_;
   std::vector<Body> bodies_;
@@ -233,6 +251,11 @@ class FemBodies final : public ContactBodies {
   std::vector<Load> coupling_;
   Vec2 gravity_{0, 0};
   Real element_step_ = std::numeric_limits<Real>::infinity();
+  Real max_substep_ = std::numeric_limits<Real>::infinity();  ///< setMaxSubstep's
+  /// beginCoupling's copy of the nodes' state while it runs the free substeps.
+  std::vector<Real> saved_x_, saved_y_, saved_vx_, saved_vy_;
+  /// Multi-rate: the nodes' state at the end of the step's free motion (beginCoupling's).
+  std::vector<Real> free_x_, free_y_, free_vx_, free_vy_;
   Real lightest_ = std::numeric_limits<Real>::infinity();
   Real max_zeta_ = 0;
   /// Surroundings.
