@@ -1,5 +1,7 @@
 /// \file
-/// The MPM world: definitions in, a step pipeline, state out. No ROS, YAML or OpenCV here.
+/// The world: the MPM solver, the contact bodies (blocks, FEM bodies), their coupling and the
+/// SPH region composed; definitions in, the step as the seed's sequence of stages, state out.
+/// No ROS, YAML or OpenCV here.
 #pragma once
 
 #include <initializer_list>
@@ -56,10 +58,11 @@ struct StepInfo {
   std::string block_problem;
 };
 
-/// The simulation: material points on a background grid (MPM), with rigid blocks, FEM bodies and
-/// SPH particles as a scene asks, advanced one step at a time through a pipeline of named, timed
-/// stages (docs/architecture.md). Built from a WorldDef; changed between steps
-/// only through its own calls, so that the coupling stays in step and every change is logged.
+/// The simulation: material points on a background grid (MpmSolver), with rigid blocks, FEM
+/// bodies and SPH particles as a scene asks, advanced one step at a time through named, timed
+/// stages, each subsystem at its own rate (docs/architecture.md, The step). Built from a
+/// WorldDef; changed between steps only through its own calls (world_changes.cpp), so that the
+/// coupling stays in step and every change is logged.
 class World {
  public:
   /// Throws std::invalid_argument on a definition the scene layer should have refused.
