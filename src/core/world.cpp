@@ -39,7 +39,15 @@ World::World(const WorldDef& def)
     if (const Problem p = schemeProblem(def.coupling.scheme, true, false); !p.empty())
       throw std::invalid_argument(p.text());
     fem_ = std::make_unique<FemBodies>(def.fem_bodies, def.solver.gravity);
-    if (def.time_step.fem_subcycled) fem_->setMaxSubstep(def.time_step.cfl * fem_->elementStep());
+    if (def.time_step.fem_subcycled) {
+      // The subcycled springs step the bodies in their contact substeps (FemBodies::substep),
+      // within one free motion of the step: the two splits do not nest.
+      if (def.coupling.normal_integration == ContactIntegration::kSubcycled)
+        throw std::invalid_argument(
+            "time.fem_integration: subcycled does not combine with "
+            "coupling.normal_integration: subcycled");
+      fem_->setMaxSubstep(def.time_step.cfl * fem_->elementStep());
+    }
   }
   if (blocks_ || fem_) {
     linkContactBodies();

@@ -218,6 +218,11 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
               std::string(c.normal_integration == ContactIntegration::kExact ? "'exact'"
                                                                              : "'subcycled'") +
                   " applies to the IMP schemes only (" + impSchemes() + ")");
+    r.require(
+        c.normal_integration != ContactIntegration::kSubcycled || !s.world.time_step.fem_subcycled,
+        "normal_integration",
+        "'subcycled' does not combine with time.fem_integration: subcycled (the contact "
+        "substeps step the FEM bodies themselves); choose one of the two");
     c.block_points_per_cell = r.integer("block_points_per_cell", c.block_points_per_cell);
     r.require(c.block_points_per_cell >= 1 && c.block_points_per_cell <= 8, "block_points_per_cell",
               "must be 1 to 8 points per cell side, got " + num(c.block_points_per_cell));

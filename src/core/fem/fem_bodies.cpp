@@ -503,8 +503,9 @@ int FemBodies::step(Real dt, Real) {
   const int n = substepsFor(dt);
   if (n > 1) {
     // beginCoupling's free motion, then the contact forces' impulse as a kick at the step's
-    // end, with the displacement it would have given over the step: momentum exact, and the
-    // nodes' velocity the one the material's contact assumed.
+    // end: momentum exact, and the nodes' velocity the one the material's contact assumed. No
+    // displacement of the kick over this step (it moved surface nodes past their elements):
+    // the next step's substeps carry it, with the elements' response.
     for (std::size_t k = 0; k < x_.size(); ++k) {
       x_[k] = free_x_[k];
       y_[k] = free_y_[k];

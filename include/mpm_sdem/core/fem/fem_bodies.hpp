@@ -199,8 +199,8 @@ class FemBodies final : public ContactBodies {
   Real stableStep(Real) const override { return std::numeric_limits<Real>::infinity(); }
   /// v^{n+1/2} = trial + dt f_contact / m; the walls and obstacles; x^{n+1} = x^n + dt v^{n+1/2}.
   /// Multi-rate (substepsFor(dt) > 1): beginCoupling's free motion over the substeps, then the
-  /// contact forces' impulse dt f_contact / m as a kick at the end with its displacement dt
-  /// times that. max_substep (the blocks') is not the elements' bound.
+  /// contact forces' impulse dt f_contact / m as a kick at the end (moving the nodes from the
+  /// next step on). max_substep (the blocks') is not the elements' bound.
   int step(Real dt, Real max_substep) override;
 
  private:
