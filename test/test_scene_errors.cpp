@@ -6,6 +6,8 @@
 #include <sys/stat.h>
 #include <cstdlib>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -52,6 +54,35 @@ TEST(SceneErrors, TwoMultiRateSplitsAreRefused) {
                                          "coupling.normal_integration=subcycled"};
   expectError(errorOf("valid.yaml", both), "--set coupling.normal_integration=subcycled",
               "coupling.normal_integration", "does not combine with time.fem_integration");
+}
+
+// The table of models (material.hpp) lists each row at its enum's place, and the scene refuses
+// every model's key on a material of another model, naming the models that have it: the sand of
+// valid.yaml (Drucker-Prager) and the water of valid_fluid.yaml (fluid) take each foreign key.
+TEST(SceneErrors, EachModelsKeysAreItsOwn) {
+  const std::vector<MaterialTraits>& models = materialModels();
+  for (std::size_t i = 0; i < models.size(); ++i)
+    EXPECT_EQ(static_cast<std::size_t>(models[i].model), i) << models[i].name;
+  const std::pair<const char*, MaterialModel> scenes[] = {
+      {"valid.yaml", MaterialModel::kDruckerPrager}, {"valid_fluid.yaml", MaterialModel::kFluid}};
+  int refused = 0;
+  for (const auto& [file, model] : scenes) {
+    const std::string material = model == MaterialModel::kFluid ? "water" : "sand";
+    for (const MaterialTraits& t : models) {
+      for (const MaterialKey& k : t.keys) {
+        const std::vector<MaterialKey>& own = materialTraits(model).keys;
+        if (std::any_of(own.begin(), own.end(),
+                        [&](const MaterialKey& o) { return std::string(o.key) == k.key; }))
+          continue;
+        const std::string set = "materials." + material + "." + k.key + "=0.5";
+        expectError(errorOf(file, {set}), "--set " + set, std::string("materials[0].") + k.key,
+                    "applies only to model: ");
+        EXPECT_NE(errorOf(file, {set}).find(t.name), std::string::npos) << set;
+        ++refused;
+      }
+    }
+  }
+  EXPECT_GE(refused, 12);  // every key of the four models, from one scene or the other
 }
 
 // A cluster of discs listed, or a shape filled with discs (the wedge's 2.2 cm outline takes

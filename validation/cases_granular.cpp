@@ -2,6 +2,7 @@
 // (seed 000 sec. 7), the chute (Bagnold) and the column collapse (Lube et al.).
 #include "cases.hpp"
 #include "mpm_sdem/core/mpm/kernels.hpp"
+#include "mpm_sdem/core/mpm/materials/drucker_prager.hpp"
 #include "mpm_sdem/core/stepper.hpp"
 
 #include "mpm_sdem/mesh/mesher.hpp"

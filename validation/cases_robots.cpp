@@ -1,6 +1,7 @@
 // Worlds of the robot cases: the driven wheel and the blade against Reece's equation.
 #include "cases.hpp"
 #include "mpm_sdem/core/checkpoint.hpp"
+#include "mpm_sdem/core/mpm/materials/drucker_prager.hpp"
 #include "mpm_sdem/core/stepper.hpp"
 
 #include "mpm_sdem/mesh/mesher.hpp"

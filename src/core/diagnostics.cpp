@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "mpm_sdem/core/fem/fem_bodies.hpp"
 #include "mpm_sdem/core/mpm/constitutive.hpp"
@@ -22,6 +23,9 @@ Diagnostics measure(const World& world) {
   const Vec2 g = world.def().solver.gravity;
   const Vec2 base = world.def().domain.min;
   const bool apic = carriesAffine(world.def().solver.transfer);
+  std::vector<char> reports_mach;  // per material, looked up once
+  for (const MaterialParams& mp : params)
+    reports_mach.push_back(materialTraits(mp.model).reports_mach);
   Diagnostics d;
   Real mx = 0, my = 0;
   for (std::size_t p = 0; p < P.size(); ++p) {
@@ -41,7 +45,7 @@ Diagnostics measure(const World& world) {
     d.mass += m;
     d.max_speed = std::fmax(d.max_speed, std::sqrt(v2));
     const MaterialParams& mp = params[P.material[p]];
-    if (mp.model == MaterialModel::kFluid)
+    if (reports_mach[P.material[p]])
       d.max_mach = std::fmax(d.max_mach, std::sqrt(v2 / squaredWaveSpeed(mp, P.J[p])));
   }
   if (d.mass > 0) d.center_of_mass = Vec2(mx, my) / d.mass;

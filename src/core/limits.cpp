@@ -12,12 +12,16 @@
 
 namespace mpm_sdem::limits {
 
-namespace {
-
-std::string num(Real v) {
+std::string shown(Real v) {
   char s[32];
   std::snprintf(s, sizeof s, "%.6g", v);
   return s;
+}
+
+namespace {
+
+std::string num(Real v) {
+  return shown(v);
 }
 
 std::string gib(double bytes) {

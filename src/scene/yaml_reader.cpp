@@ -58,7 +58,7 @@ void Context::fail(const YAML::Node& at, const std::string& key, const std::stri
 }
 
 MapReader::MapReader(const Context& ctx, const YAML::Node& node, std::string path,
-                     std::initializer_list<const char*> keys)
+                     const std::vector<const char*>& keys)
     : ctx_(ctx), node_(node), path_(std::move(path)) {
   if (!node_.IsMap()) {
     ctx_.fail(node_, path_.empty() ? "(top level)" : path_,

@@ -34,7 +34,7 @@ class Context {
 class MapReader {
  public:
   MapReader(const Context& ctx, const YAML::Node& node, std::string path,
-            std::initializer_list<const char*> keys);
+            const std::vector<const char*>& keys);
 
   bool has(const char* key) const;
   YAML::Node node(const char* key) const;  // required

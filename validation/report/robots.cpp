@@ -15,6 +15,7 @@
 #include "cases.hpp"
 #include "mpm_sdem/core/diagnostics.hpp"
 #include "mpm_sdem/core/mpm/material.hpp"
+#include "mpm_sdem/core/mpm/materials/drucker_prager.hpp"
 #include "mpm_sdem/core/stepper.hpp"
 #include "mpm_sdem/core/world.hpp"
 #include "mpm_sdem/scene/scene.hpp"

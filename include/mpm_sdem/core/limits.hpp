@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <initializer_list>
+#include <limits>
 #include <string>
 
 #include "mpm_sdem/core/problem.hpp"
@@ -57,6 +58,13 @@ inline constexpr Range kScalePressure{0, 1e13, "Pa", true};  ///< the stiffest m
 inline constexpr Real kMinTimeStep = kTimeStep.min;
 inline constexpr std::size_t kMaxNameLength = 64;       ///< characters of a name
 inline constexpr std::size_t kMaxSceneBytes = 1 << 20;  ///< scene files are a few kB
+
+/// Any finite number in a unit: for a value whose bounds another check states with its reason.
+inline constexpr Range anyIn(const char* unit) {
+  return {-std::numeric_limits<Real>::max(), std::numeric_limits<Real>::max(), unit};
+}
+/// A number as messages show it (6 significant digits).
+std::string shown(Real v);
 
 /// Empty when v lies in r, else "must be in [min, max] unit, got v" (NaN and infinity never lie).
 Problem rangeProblem(Real v, const Range& r);

@@ -53,7 +53,7 @@ MpmSolver::MpmSolver(const DomainDef& domain, Real cell_size, const SolverDef& s
   tiles_.periodic_x = periodicX();
   for (const MaterialDef& m : materials) {
     params_.push_back(makeMaterialParams(m));
-    if (m.model == MaterialModel::kFluid && m.viscosity > 0)
+    if (m.viscosity > 0)  // a fluid's (no other model reads it)
       viscous_dt_ = std::fmin(viscous_dt_, cell_size * cell_size * m.density / (2 * m.viscosity));
   }
 
@@ -117,8 +117,8 @@ TimeStepChoice MpmSolver::materialStep(Real cfl, Real longest) const {
 #pragma omp parallel for simd schedule(static) reduction(max : fastest)
     for (long p = 0; p < n; ++p) fastest = faster(fastest, p);
   };
-  if (params_.size() == 1 && params_[0].model != MaterialModel::kFluid) {
-    // One solid material: no lookup and no pow, so the loop vectorises.
+  if (params_.size() == 1 && !materialTraits(params_[0].model).own_wave_speed) {
+    // One material with a solid's wave speed: no lookup and no pow, so the loop vectorises.
     const Real k = params_[0].modulus_over_density, loose = params_[0].separation;
     fastestWith([k, loose](long, Real J) { return J > loose ? Real(0) : k * J; });
   } else {

@@ -21,14 +21,14 @@ struct StressBatch {
   int count = 0;
 };
 
-// Whether a material's update runs in batches: Drucker-Prager's return, whose square root,
-// division and branches the lanes share. Measured and left point by point (bench/README.md,
-// issue 42): the linear elastic update, which costs about as much as gathering a batch; the
-// granular return (a settled column: 261 M points/s alone, 150 M batched, Highway's logarithm
-// against libm's and both branches in every lane; a collapsing one: the same time per step); a
-// fluid's Tait pressure.
+// Whether a material's update runs in batches: its row's batches_stress (material.hpp), true for
+// Drucker-Prager's return, whose square root, division and branches the lanes share. Measured and
+// left point by point (bench/README.md, issue 42): the linear elastic update, which costs about as
+// much as gathering a batch; the granular return (a settled column: 261 M points/s alone, 150 M
+// batched, Highway's logarithm against libm's and both branches in every lane; a collapsing one:
+// the same time per step); a fluid's Tait pressure.
 inline bool batchesStress(const MaterialParams& m) {
-  return m.model == MaterialModel::kDruckerPrager;
+  return m.batches_stress;
 }
 
 // The stress and volume of the batch's points over dt, as updatePointStress does one point:

@@ -53,32 +53,21 @@ void forEachParticleByColour(const Tiles& T, Body&& body) {
   forEachParticleByColour(T, body, body);
 }
 
-// The stress and volume of one point over dt with its velocity gradient L_p: Jaumann-rate
-// elasticity (eq. 21-25), V^{n+1} = det(I + dt L) V^n, then the Drucker-Prager return (eq.
-// 31-35) or the mu(I) one with the new volume (granularReturn); a fluid's stress from its new J
-// and L (fluidStress).
+// The stress and volume of one point over dt with its velocity gradient L_p, by its model's
+// update (constitutive.hpp: V^{n+1} = det(I + dt L) V^n, then, for a solid, Jaumann-rate
+// elasticity, eq. 21-25, and its return; a fluid's stress from its new J and L), and no stress
+// beyond the separation volume ratio.
 [[gnu::always_inline]] inline void updatePointStress(const MaterialParams& m, Particles& P, long p,
                                                      Real dt) {
   const VelocityGradient L{P.lxx[p], P.lxy[p], P.lyx[p], P.lyy[p]};
-  if (m.model == MaterialModel::kFluid) {
-    P.J[p] *= (1 + dt * L.xx) * (1 + dt * L.yy) - dt * dt * L.xy * L.yx;
-    const Stress s = fluidStress(m, P.J[p], L);
-    P.sxx[p] = s.xx;
-    P.syy[p] = s.yy;
-    P.sxy[p] = s.xy;
-    P.szz[p] = s.zz;
-    return;
-  }
-  Stress s{P.sxx[p], P.syy[p], P.sxy[p], P.szz[p]};
-  s = jaumannElasticUpdate(m, s, L, dt);
-  P.J[p] *= (1 + dt * L.xx) * (1 + dt * L.yy) - dt * dt * L.xy * L.yx;
-  if (m.model == MaterialModel::kDruckerPrager) druckerPragerReturn(m, s);
-  if (m.model == MaterialModel::kGranular) granularReturn(m, s, P.J[p], dt);
+  Real J = P.J[p];
+  const Stress s = updateStress(m, {P.sxx[p], P.syy[p], P.sxy[p], P.szz[p]}, L, J, dt);
+  P.J[p] = J;
   P.sxx[p] = s.xx;
   P.syy[p] = s.yy;
   P.sxy[p] = s.xy;
   P.szz[p] = s.zz;
-  if (P.J[p] > m.separation) P.sxx[p] = P.syy[p] = P.sxy[p] = P.szz[p] = 0;
+  if (J > m.separation) P.sxx[p] = P.syy[p] = P.sxy[p] = P.szz[p] = 0;
 }
 
 // Points waiting to have their stress updated together (updateStressBatch, issue 42): add(p)

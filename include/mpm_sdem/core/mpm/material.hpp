@@ -1,16 +1,23 @@
 /// \file
-/// Materials: user-facing definitions and the derived constants the constitutive update reads.
+/// Materials: what a scene declares (MaterialDef), the constants the constitutive update reads
+/// (MaterialParams), and the table of models, each describing itself in one row (MaterialTraits,
+/// as the coupling schemes do). A model's keys, checks, constants and stress update live in its
+/// own files under core/mpm/materials/; constitutive.hpp dispatches the hot update among them.
 #pragma once
 
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
+#include "mpm_sdem/core/limits.hpp"
+#include "mpm_sdem/core/problem.hpp"
 #include "mpm_sdem/core/types.hpp"
 
 namespace mpm_sdem {
 
-/// A material's constitutive model (scene key materials[].model).
+/// A material's constitutive model (scene key materials[].model), in the order of the table of
+/// models (materialModels()).
 enum class MaterialModel {
   kLinearElastic,  ///< Hooke's law in rate form (seed 000 eq. 30)
   kDruckerPrager,  ///< seed 000 eq. 31-35: elastic-perfectly plastic with a tension cut-off
@@ -61,20 +68,10 @@ struct MaterialDef {
   Real viscosity = 0;      ///< eta (Pa s)
 };
 
-/// The steepest friction angle a Drucker-Prager material may ask for (rad). Eq. 35's cone matches
-/// Mohr-Coulomb in plane strain only when the plastic flow is associated; with less dilation the
-/// out-of-plane stress settles where the plastic flow has no out-of-plane part, and the in-plane
-/// angle the flowing material holds is asin(q_phi) (flowingFrictionAngle). q_phi never exceeds
-/// sqrt(3)/2, so no material flows at an angle above 60 deg: friction_angle 80 deg flowed like
-/// 58.9 deg. Angles up to this limit are accepted and their flowing angle documented.
-constexpr Real kMaxFrictionAngle = M_PI / 3;
-/// The in-plane friction angle of the flowing material without dilation: asin(q_phi(phi)), e.g.
-/// 28.7 deg for 30, 40.9 for 45, 50.8 for 60 (rad in, rad out).
-Real flowingFrictionAngle(Real friction_angle);
-
 /// Derived constants, computed once. Kept small: the constitutive loop reads one per particle.
 struct MaterialParams {
   MaterialModel model = MaterialModel::kLinearElastic;  ///< as the definition
+  bool batches_stress = false;                          ///< as its row (MaterialTraits)
   ///@{
   /// K, G, lambda = K - 2G/3 (Pa)
   Real bulk = 0, shear = 0, lame = 0;
@@ -103,17 +100,53 @@ struct MaterialParams {
   ///@}
 };
 
-/// Squared wave speed of a point of volume ratio J (m^2/s^2), the CFL term of seed 000 eq. 51:
-/// a solid's constant modulus over the current density rho0 / J; Tait's dp/drho =
-/// c0^2 J^(1 - gamma) for a fluid; none when the grains have separated.
-inline Real squaredWaveSpeed(const MaterialParams& m, Real J) {
-  if (J > m.separation) return 0;
-  if (m.model == MaterialModel::kFluid)
-    return m.modulus_over_density * std::pow(J, 1 - m.tait_gamma);
-  return m.modulus_over_density * J;
-}
+/// How a model's stiffness is given.
+enum class MaterialStiffness {
+  kModuli,      ///< a solid's: youngs_modulus and poisson_ratio, or bulk_modulus and shear_modulus
+  kSoundSpeed,  ///< a fluid's: sound_speed (bulk modulus density c0^2), no shear modulus
+};
 
-/// The derived constants of a definition.
+/// One scene key of a model (materials[].key): the definition's field it sets, its range in the
+/// scene's unit, whether it may be left out, and the factor from the scene's unit to SI.
+struct MaterialKey {
+  const char* key;            ///< as the scene names it
+  Real MaterialDef::*field;   ///< the definition's field
+  limits::Range range;        ///< in the scene's unit; checked at the key's line
+  bool required = false;      ///< without it the material is refused
+  Real fallback = 0;          ///< in the scene's unit, when not required and left out
+  Real to_si = 1;             ///< scene unit -> SI (deg -> rad: kDeg)
+  const char* why = nullptr;  ///< the range's reason, added to its message
+};
+
+/// What a constitutive model is, in one row: its scene name and keys, how its stiffness is given,
+/// which checks and constants it adds to the common ones (elasticity, density), and how its
+/// update runs. Each model defines its row in its own file (core/mpm/materials/); the table
+/// (materialModels) lists them in the enum's order.
+struct MaterialTraits {
+  MaterialModel model;            ///< its enum value
+  const char* name;               ///< the scene's model: value
+  MaterialStiffness stiffness;    ///< moduli or sound speed
+  std::vector<MaterialKey> keys;  ///< its own keys, beyond the common ones
+  /// Checks that span keys, once they are read (a key-tagged Problem; empty when none).
+  Problem (*check)(const MaterialDef&);
+  /// Its own constants, after the common ones (MaterialParams' bulk, shear, lame, wave speed).
+  void (*derive)(const MaterialDef&, MaterialParams&);
+  /// Whether its stress update runs in SIMD batches (stress_batch.hpp): measured per model.
+  bool batches_stress = false;
+  /// Whether its wave speed depends on J otherwise than a solid's (modulus J / rho0): the CFL
+  /// loop then looks each point's model up.
+  bool own_wave_speed = false;
+  /// Whether the diagnostics report its Mach number (a weakly compressible fluid's density error
+  /// grows as its square).
+  bool reports_mach = false;
+};
+
+/// Every model, in the enum's order.
+const std::vector<MaterialTraits>& materialModels();
+/// A model's row.
+const MaterialTraits& materialTraits(MaterialModel model);
+
+/// The derived constants of a definition: the common ones, then the model's own (derive).
 MaterialParams makeMaterialParams(const MaterialDef& def);
 
 }  // namespace mpm_sdem
