@@ -17,13 +17,17 @@ Problem rangeOf(const char* key, Real v, const limits::Range& r) {
   return p.empty() ? p : p.under(key);
 }
 
-// The rotation of a triangle's deformation gradient, R of F = R S with S symmetric (2D polar
-// decomposition); the identity for the linear model.
-Mat2 corotation(const Mat2& F, FemModel model) {
-  if (model != FemModel::kCorotational) return Mat2::Identity();
-  const Real angle = std::atan2(F(1, 0) - F(0, 1), F(0, 0) + F(1, 1));
-  const Real c = std::cos(angle), s = std::sin(angle);
-  return (Mat2() << c, -s, s, c).finished();
+// The rotation of a triangle's deformation gradient, R = [c -s; s c] of F = R S with S symmetric
+// (2D polar decomposition): the angle of (F00 + F11, F10 - F01), without trigonometry. The
+// identity for the linear model, and for an F whose angle is undefined (both zero).
+struct Rotation {
+  Real c = 1, s = 0;
+};
+Rotation corotation(Real f00, Real f01, Real f10, Real f11, FemModel model) {
+  if (model != FemModel::kCorotational) return {};
+  const Real a = f00 + f11, b = f10 - f01, r = std::sqrt(a * a + b * b);
+  if (!(r > 0)) return {};
+  return {a / r, b / r};
 }
 
 // Outward normal of a boundary segment a -> b (the body on its left), unit.
@@ -306,42 +310,58 @@ Real FemBodies::movedSince(int s, const BodyPose& then) const {
 }
 
 void FemBodies::internalForces() {
-  // Eq. 20 per triangle: f_K = -A sigma grad N_K, with F = sum_K x_K (x) grad N_K. The
-  // corotational form polar-decomposes F = R S, applies the linear law to eps = sym(S) - I and
-  // rotates the stress back (P = R sigma); the linear form takes R = I.
+  // Eq. 20 per triangle: f_K = -A P grad N_K, with F = sum_K x_K (x) grad N_K. The corotational
+  // form polar-decomposes F = R S, applies the linear law to eps = sym(S) - I and rotates the
+  // stress back (P = R sigma); the linear form takes R = I. Written out in components: the
+  // substeps of multi-rate bodies call this tens of times per material step.
   std::fill(fx_.begin(), fx_.end(), Real(0));
   std::fill(fy_.begin(), fy_.end(), Real(0));
   for (std::size_t i = 0; i < elements_.size(); ++i) {
     const Element& e = elements_[i];
     const FemBodyDef& d = defs_[e.body];
-    Mat2 F = Mat2::Zero(), Fdot = Mat2::Zero();
+    Real f00 = 0, f01 = 0, f10 = 0, f11 = 0;
     for (int k = 0; k < 3; ++k) {
       const int n = e.node[k];
-      const Vec2 g(e.dndx[k][0], e.dndx[k][1]);
-      F += Vec2(x_[n], y_[n]) * g.transpose();
-      Fdot += Vec2(vx_[n], vy_[n]) * g.transpose();
+      f00 += x_[n] * e.dndx[k][0];
+      f01 += x_[n] * e.dndx[k][1];
+      f10 += y_[n] * e.dndx[k][0];
+      f11 += y_[n] * e.dndx[k][1];
     }
-    const Mat2 R = corotation(F, d.model);
-    const Mat2 S = R.transpose() * F;
-    const Mat2 eps = Real(0.5) * (S + S.transpose()) - Mat2::Identity();
-    const Real tr = eps.trace();
-    Mat2 sigma = e.lambda * tr * Mat2::Identity() + 2 * e.mu * eps;
+    const Rotation R = corotation(f00, f01, f10, f11, d.model);
+    // S = R^T F; eps = sym(S) - I.
+    const Real e00 = R.c * f00 + R.s * f10 - 1, e11 = -R.s * f01 + R.c * f11 - 1;
+    const Real e01 = Real(0.5) * (R.c * f01 + R.s * f11 - R.s * f00 + R.c * f10);
+    const Real tr = e00 + e11;
+    Real s00 = e.lambda * tr + 2 * e.mu * e00, s11 = e.lambda * tr + 2 * e.mu * e11;
+    Real s01 = 2 * e.mu * e01;
     stress_[i].zz = e.lambda * tr;
     if (d.stiffness_damping > 0) {  // Rayleigh's beta K v: the linear law on the strain rate
-      const Mat2 Sdot = R.transpose() * Fdot;
-      const Mat2 rate = Real(0.5) * (Sdot + Sdot.transpose());
-      sigma += d.stiffness_damping * (e.lambda * rate.trace() * Mat2::Identity() + 2 * e.mu * rate);
+      Real v00 = 0, v01 = 0, v10 = 0, v11 = 0;
+      for (int k = 0; k < 3; ++k) {
+        const int n = e.node[k];
+        v00 += vx_[n] * e.dndx[k][0];
+        v01 += vx_[n] * e.dndx[k][1];
+        v10 += vy_[n] * e.dndx[k][0];
+        v11 += vy_[n] * e.dndx[k][1];
+      }
+      const Real r00 = R.c * v00 + R.s * v10, r11 = -R.s * v01 + R.c * v11;
+      const Real r01 = Real(0.5) * (R.c * v01 + R.s * v11 - R.s * v00 + R.c * v10);
+      const Real b = d.stiffness_damping, rtr = r00 + r11;
+      s00 += b * (e.lambda * rtr + 2 * e.mu * r00);
+      s11 += b * (e.lambda * rtr + 2 * e.mu * r11);
+      s01 += b * 2 * e.mu * r01;
     }
-    const Mat2 P = R * sigma;
+    // P = R sigma; the nodal forces -A P grad N_K; the Cauchy stress R sigma R^T.
+    const Real p00 = R.c * s00 - R.s * s01, p01 = R.c * s01 - R.s * s11;
+    const Real p10 = R.s * s00 + R.c * s01, p11 = R.s * s01 + R.c * s11;
     for (int k = 0; k < 3; ++k) {
-      const Vec2 f = -e.area * P * Vec2(e.dndx[k][0], e.dndx[k][1]);
-      fx_[e.node[k]] += f.x();
-      fy_[e.node[k]] += f.y();
+      const Real g0 = e.dndx[k][0], g1 = e.dndx[k][1];
+      fx_[e.node[k]] -= e.area * (p00 * g0 + p01 * g1);
+      fy_[e.node[k]] -= e.area * (p10 * g0 + p11 * g1);
     }
-    const Mat2 cauchy = R * sigma * R.transpose();
-    stress_[i].xx = cauchy(0, 0);
-    stress_[i].yy = cauchy(1, 1);
-    stress_[i].xy = cauchy(0, 1);
+    stress_[i].xx = p00 * R.c - p01 * R.s;
+    stress_[i].yy = p10 * R.s + p11 * R.c;
+    stress_[i].xy = p00 * R.s + p01 * R.c;
   }
 }
 
@@ -351,7 +371,8 @@ Real FemBodies::strainEnergy() const {
     Mat2 F = Mat2::Zero();
     for (int k = 0; k < 3; ++k)
       F += position(e.node[k]) * Vec2(e.dndx[k][0], e.dndx[k][1]).transpose();
-    const Mat2 R = corotation(F, defs_[e.body].model);
+    const Rotation r = corotation(F(0, 0), F(0, 1), F(1, 0), F(1, 1), defs_[e.body].model);
+    const Mat2 R = (Mat2() << r.c, -r.s, r.s, r.c).finished();
     const Mat2 S = R.transpose() * F;
     const Mat2 eps = Real(0.5) * (S + S.transpose()) - Mat2::Identity();
     sum += e.area * (e.mu * eps.squaredNorm() + Real(0.5) * e.lambda * eps.trace() * eps.trace());
