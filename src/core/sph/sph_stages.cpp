@@ -38,13 +38,14 @@ void binWithSph(SphState& s, const SphWorld& w) {
 
 void sphStress(SphState& s, const SphWorld& w, Real stress_dt) {
   StageTimer timer(w.profile, Stage::kSph);
-  sphVelocityGradient(w.particles, w.tiles, w.grid, s.settings, w.materials, stress_dt, s.columns);
+  sphVelocityGradient(w.particles, w.tiles, w.grid, s.settings, w.materials, stress_dt, s.columns,
+                      s.pairs);
 }
 
 void sphForces(SphState& s, const SphWorld& w) {
   StageTimer timer(w.profile, Stage::kSph);
-  s.mu_max = sphAcceleration(w.particles, w.tiles, w.grid, s.settings, w.materials,
-                             w.solver.gravity, s.columns);
+  s.mu_max = sphAcceleration(w.particles, w.tiles, s.settings, w.materials, w.solver.gravity,
+                             s.columns, s.pairs);
 }
 
 void sphMove(SphState& s, const SphWorld& w, Real dt, Real kick, long& clamped, bool& finite) {

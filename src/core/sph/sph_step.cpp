@@ -1,5 +1,7 @@
 #include "sph/sph_step.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -178,10 +180,17 @@ void markBand(const Particles& P, const Grid& G, KernelType kernel, Tiles& T,
 
 void sphVelocityGradient(Particles& P, const Tiles& T, const Grid& G, const SphSettings& s,
                          const std::vector<MaterialParams>& materials, Real stress_dt,
-                         SphColumns& c) {
+                         SphColumns& c, SphPairs& pairs) {
+  pairs.lists.resize(static_cast<std::size_t>(omp_get_max_threads()));
+  for (auto& l : pairs.lists) l.clear();  // their capacity stays: no allocation once grown
+  for (auto* v : {&pairs.list, &pairs.start, &pairs.count}) v->resize(P.size());
   withSphKernel(s.kernel, [&](auto k) {
     using K = decltype(k);
     forEachSph(T, [&](int a) {
+      const int thread = omp_get_thread_num();
+      std::vector<SphPairs::Pair>& list = pairs.lists[thread];
+      pairs.list[a] = thread;
+      pairs.start[a] = static_cast<int>(list.size());
       // A = sum_b m_b (v_b - v_a) (x) grad W and M = sum_b m_b (x_b - x_a) (x) grad W: for a
       // linear field v = L0 x, A = L0 M, so L = A M^-1 is exact wherever M is invertible (Bonet
       // and Lok 1999). Without the correction L = A / rho_a: eq. 2.9 with the volume m_b / rho_a
@@ -190,6 +199,7 @@ void sphVelocityGradient(Particles& P, const Tiles& T, const Grid& G, const SphS
       const Real vxa = P.vx[a], vya = P.vy[a];
       Real axx = 0, axy = 0, ayx = 0, ayy = 0, mxx = 0, mxy = 0, myx = 0, myy = 0;
       forNeighbours<K>(P, T, G, a, s.support, [&](int b, Real dx, Real dy, Real gx, Real gy) {
+        list.push_back({b, dx, dy, gx, gy});
         const Real m = P.mass[b], dvx = P.vx[b] - vxa, dvy = P.vy[b] - vya;
         axx += m * dvx * gx;
         axy += m * dvx * gy;
@@ -201,6 +211,7 @@ void sphVelocityGradient(Particles& P, const Tiles& T, const Grid& G, const SphS
         myx -= m * dy * gx;
         myy -= m * dy * gy;
       });
+      pairs.count[a] = static_cast<int>(list.size()) - pairs.start[a];
       const Real rho = density(P, a);
       const Real det = mxx * myy - mxy * myx;
       const bool corrected = s.corrected && det > kMinCorrectedDet * rho * rho;
@@ -228,14 +239,11 @@ void sphVelocityGradient(Particles& P, const Tiles& T, const Grid& G, const SphS
   });
 }
 
-Real sphAcceleration(const Particles& P, const Tiles& T, const Grid& G, const SphSettings& s,
+Real sphAcceleration(const Particles& P, const Tiles& T, const SphSettings& s,
                      const std::vector<MaterialParams>& materials, const Vec2& gravity,
-                     SphColumns& c) {
+                     SphColumns& c, const SphPairs& pairs) {
   Real mu_max = 0;
-  withSphKernel(s.kernel, [&](auto k) {
-    using K = decltype(k);
-    // Declared in here: clang 14 cannot capture the enclosing function's locals in a lambda
-    // inside an OpenMP region inside this generic lambda.
+  {
     const Real hs = s.smoothingLength(), eps = Real(0.01) * hs * hs;
     const long tiles = static_cast<long>(T.start.size()) - 1;
 #pragma omp parallel for schedule(dynamic, 16) reduction(max : mu_max)
@@ -247,7 +255,10 @@ Real sphAcceleration(const Particles& P, const Tiles& T, const Grid& G, const Sp
         const Real ca = std::sqrt(squaredWaveSpeed(materials[P.material[a]], P.J[a]));
         const Real cxx = c.cxx[a], cxy = c.cxy[a], cyx = c.cyx[a], cyy = c.cyy[a];
         Real fx = 0, fy = 0;
-        forNeighbours<K>(P, T, G, a, s.support, [&](int b, Real dx, Real dy, Real gx, Real gy) {
+        const SphPairs::Pair* pair = pairs.lists[pairs.list[a]].data() + pairs.start[a];
+        for (int n = 0; n < pairs.count[a]; ++n) {
+          const int b = pair[n].b;
+          const Real dx = pair[n].dx, dy = pair[n].dy, gx = pair[n].gx, gy = pair[n].gy;
           // C_a grad W and C_b grad W (a material point borrows C_a: it has no correction of
           // its own, and is not moved by these forces).
           const Real gax = cxx * gx + cxy * gy, gay = cyx * gx + cyy * gy;
@@ -276,12 +287,12 @@ Real sphAcceleration(const Particles& P, const Tiles& T, const Grid& G, const Sp
           }
           fx += P.mass[b] * tx;
           fy += P.mass[b] * ty;
-        });
+        }
         c.ax[a] = fx + gravity.x();
         c.ay[a] = fy + gravity.y();
       }
     }
-  });
+  }
   return mu_max;
 }
 

@@ -24,6 +24,19 @@ struct SphColumns {
   void resize(std::size_t n);
 };
 
+// The neighbour pairs of the first pass, kept for the second: both read the positions x^n, so
+// the second pass reads the pairs (in the first pass's order) instead of searching again. Each
+// thread appends to its own list; an SPH particle's pairs are count[a] entries of list[a]'s
+// list from start[a]. Scratch of one step, not checkpointed (each step's first pass fills it).
+struct SphPairs {
+  struct Pair {
+    int b;
+    Real dx, dy, gx, gy;  // x_a - x_b (m) and grad W_ab with respect to x_a (1/m^3)
+  };
+  std::vector<std::vector<Pair>> lists;  // one per thread
+  std::vector<int> list, start, count;   // per particle, read only at SPH particles
+};
+
 struct SphSettings {
   SphKernel kernel = SphKernel::kCubicSpline;
   Real support = 0;  // kernel radius R (m), at most Tiles::kSize cells
@@ -37,6 +50,7 @@ struct SphState {
   SphSettings settings;
   std::vector<char> sph_body;  // per body: all its points are SPH particles
   SphColumns columns;
+  SphPairs pairs;                    // the first pass's pairs for the second (scratch)
   std::vector<std::uint32_t> stamp;  // markBand's node scratch
   std::uint32_t now = 0;
   Real mu_max = 0;  // the last force pass's largest approach |mu_ab| (m/s)
@@ -65,16 +79,18 @@ void markBand(const Particles& P, const Grid& G, KernelType kernel, Tiles& T,
 // material points included (eq. 2.9 with the correction), then the stress and volume over
 // stress_dt by the material's own update (updatePointStress), as the material points do in
 // stressAndInternalForce.
+// The pairs it finds are kept in pairs for the second pass.
 void sphVelocityGradient(Particles& P, const Tiles& T, const Grid& G, const SphSettings& s,
                          const std::vector<MaterialParams>& materials, Real stress_dt,
-                         SphColumns& c);
+                         SphColumns& c, SphPairs& pairs);
 
 // Second pass: each SPH particle's acceleration from the stresses of its neighbours (eq. 2.6)
-// with the artificial viscosity (eq. 2.7-2.8) and gravity, into c.ax, c.ay. Returns the largest
-// |mu_ab| of an approaching pair (m/s), for the viscous term of the time step.
-Real sphAcceleration(const Particles& P, const Tiles& T, const Grid& G, const SphSettings& s,
+// with the artificial viscosity (eq. 2.7-2.8) and gravity, into c.ax, c.ay, over the first
+// pass's pairs. Returns the largest |mu_ab| of an approaching pair (m/s), for the viscous term
+// of the time step.
+Real sphAcceleration(const Particles& P, const Tiles& T, const SphSettings& s,
                      const std::vector<MaterialParams>& materials, const Vec2& gravity,
-                     SphColumns& c);
+                     SphColumns& c, const SphPairs& pairs);
 
 // v += kick a (with local damping, as the grid's nodes get it), x += dt v.
 void sphKickDrift(Particles& P, const Tiles& T, const SphColumns& c, Real kick, Real damping,
