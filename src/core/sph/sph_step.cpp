@@ -182,13 +182,13 @@ void sphVelocityGradient(Particles& P, const Tiles& T, const Grid& G, const SphS
                          const std::vector<MaterialParams>& materials, Real stress_dt,
                          SphColumns& c, SphPairs& pairs) {
   pairs.lists.resize(static_cast<std::size_t>(omp_get_max_threads()));
-  for (auto& l : pairs.lists) l.clear();  // their capacity stays: no allocation once grown
+  for (auto& l : pairs.lists) l.pairs.clear();  // their capacity stays: no allocation once grown
   for (auto* v : {&pairs.list, &pairs.start, &pairs.count}) v->resize(P.size());
   withSphKernel(s.kernel, [&](auto k) {
     using K = decltype(k);
     forEachSph(T, [&](int a) {
       const int thread = omp_get_thread_num();
-      std::vector<SphPairs::Pair>& list = pairs.lists[thread];
+      std::vector<SphPairs::Pair>& list = pairs.lists[thread].pairs;
       pairs.list[a] = thread;
       pairs.start[a] = static_cast<int>(list.size());
       // A = sum_b m_b (v_b - v_a) (x) grad W and M = sum_b m_b (x_b - x_a) (x) grad W: for a
@@ -199,7 +199,7 @@ void sphVelocityGradient(Particles& P, const Tiles& T, const Grid& G, const SphS
       const Real vxa = P.vx[a], vya = P.vy[a];
       Real axx = 0, axy = 0, ayx = 0, ayy = 0, mxx = 0, mxy = 0, myx = 0, myy = 0;
       forNeighbours<K>(P, T, G, a, s.support, [&](int b, Real dx, Real dy, Real gx, Real gy) {
-        list.push_back({b, dx, dy, gx, gy});
+        list.push_back({b, gx, gy});
         const Real m = P.mass[b], dvx = P.vx[b] - vxa, dvy = P.vy[b] - vya;
         axx += m * dvx * gx;
         axy += m * dvx * gy;
@@ -255,10 +255,11 @@ Real sphAcceleration(const Particles& P, const Tiles& T, const SphSettings& s,
         const Real ca = std::sqrt(squaredWaveSpeed(materials[P.material[a]], P.J[a]));
         const Real cxx = c.cxx[a], cxy = c.cxy[a], cyx = c.cyx[a], cyy = c.cyy[a];
         Real fx = 0, fy = 0;
-        const SphPairs::Pair* pair = pairs.lists[pairs.list[a]].data() + pairs.start[a];
+        const SphPairs::Pair* pair = pairs.lists[pairs.list[a]].pairs.data() + pairs.start[a];
+        const Real xa = P.x[a], ya = P.y[a];  // x_a - x_b as the first pass computed it
         for (int n = 0; n < pairs.count[a]; ++n) {
           const int b = pair[n].b;
-          const Real dx = pair[n].dx, dy = pair[n].dy, gx = pair[n].gx, gy = pair[n].gy;
+          const Real dx = xa - P.x[b], dy = ya - P.y[b], gx = pair[n].gx, gy = pair[n].gy;
           // C_a grad W and C_b grad W (a material point borrows C_a: it has no correction of
           // its own, and is not moved by these forces).
           const Real gax = cxx * gx + cxy * gy, gay = cyx * gx + cyy * gy;

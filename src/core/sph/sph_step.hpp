@@ -31,10 +31,15 @@ struct SphColumns {
 struct SphPairs {
   struct Pair {
     int b;
-    Real dx, dy, gx, gy;  // x_a - x_b (m) and grad W_ab with respect to x_a (1/m^3)
+    Real gx, gy;  // grad W_ab with respect to x_a (1/m^3)
   };
-  std::vector<std::vector<Pair>> lists;  // one per thread
-  std::vector<int> list, start, count;   // per particle, read only at SPH particles
+  // One per thread, each on cache lines of its own: a push writes the list's end, and two
+  // threads writing one line would pass it between their cores at every pair.
+  struct alignas(64) List {
+    std::vector<Pair> pairs;
+  };
+  std::vector<List> lists;
+  std::vector<int> list, start, count;  // per particle, read only at SPH particles
 };
 
 struct SphSettings {
