@@ -85,6 +85,18 @@ TEST(SceneErrors, EachModelsKeysAreItsOwn) {
   EXPECT_GE(refused, 12);  // every key of the four models, from one scene or the other
 }
 
+// Scaled inertia scales the material points' only: FEM bodies and SPH particles, which would keep
+// theirs, are refused with it at their section's key; out of range at its own.
+TEST(SceneErrors, InertiaScaleOnlyForMaterialPoints) {
+  expectError(errorOf("valid_fem.yaml", {"solver.inertia_scale=4"}), "valid_fem.yaml", "fem_bodies",
+              "do not combine with solver.inertia_scale");
+  expectError(errorOf("valid_sph.yaml", {"solver.inertia_scale=4"}), "valid_sph.yaml", "sph",
+              "does not combine with solver.inertia_scale");
+  expectError(errorOf("valid.yaml", {"solver.inertia_scale=0.5"}), "--set solver.inertia_scale=0.5",
+              "solver.inertia_scale", "must be in [1, 10000]");
+  EXPECT_EQ(errorOf("valid.yaml", {"solver.inertia_scale=4"}), "");
+}
+
 // A cluster of discs listed, or a shape filled with discs (the wedge's 2.2 cm outline takes
 // 2 x 2 discs of 4 mm at the default pitch of 8 mm).
 TEST(SceneErrors, ClustersParse) {

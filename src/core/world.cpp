@@ -27,11 +27,16 @@ World::World(const WorldDef& def)
   largest_spring_scale_ = 0;
   for (std::size_t q = 0; q < points.size(); ++q) {
     const Real scale = impSpringScale(def.coupling.stiffness_per, points, q, def.cell_size);
-    lightest_point_ = std::fmin(lightest_point_, points.mass[q] / scale);
+    // The springs move the point's inertial mass (SolverDef::inertia_scale).
+    lightest_point_ = std::fmin(lightest_point_, points.mass[q] * def.solver.inertia_scale / scale);
     largest_spring_scale_ = std::fmax(largest_spring_scale_, scale);
   }
   if (!(largest_spring_scale_ > 0)) largest_spring_scale_ = 1;
 
+  if (def.solver.inertia_scale != 1 && (def.sph.enabled() || !def.fem_bodies.empty()))
+    throw std::invalid_argument(
+        "solver.inertia_scale: scales the material points' inertia only; FEM bodies and SPH "
+        "particles would keep theirs (use 1 with them)");
   if (def.sph.enabled()) initSph();
   if (!def.blocks.empty())
     blocks_ = std::make_unique<Blocks>(def.blocks, def.block_contact, def.solver.gravity);
@@ -122,6 +127,7 @@ CouplingDef World::resolvedCoupling() const {
 void World::initCoupling() {
   coupling_ = makeCoupling(resolvedCoupling(), def_.domain.min, def_.domain.max, def_.cell_size,
                            def_.bodies);
+  coupling_->setInertiaScale(def_.solver.inertia_scale);
 }
 
 void World::linkContactBodies() {
@@ -220,6 +226,7 @@ StepInfo World::step(Real dt) {
     if (sph_) detail::sphStress(*sph_, sphWorld(), stress_lag_);
     mpm.particleToGrid(true, false);
     mpm.foldMomentum();
+    mpm.scaleInertia();
     mpm.gridVelocity(0, false);
     mpm.stressAndInternalForce(stress_lag_);  // and the side walls' load
     if (sph_)
@@ -228,6 +235,7 @@ StepInfo World::step(Real dt) {
     mpm.particleToGrid(true, true);
     mpm.sidewallLoad();
     mpm.foldMomentum();
+    mpm.scaleInertia();
     mpm.gridVelocity(0, false);
   }
   spreadPointLoads();

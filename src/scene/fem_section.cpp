@@ -10,6 +10,10 @@ void parseFemBodies(const Context& ctx, const MapReader& top, Scene& s) {
   if (!top.has("fem_bodies")) return;
   const YAML::Node list = top.node("fem_bodies");
   if (!list.IsSequence()) ctx.fail(list, "fem_bodies", "expected a list of FEM bodies");
+  if (s.world.solver.inertia_scale != 1)
+    ctx.fail(list, "fem_bodies",
+             "do not combine with solver.inertia_scale (it scales the material points' inertia "
+             "only, and the bodies would keep theirs): set it to 1 or remove the bodies");
   const DomainDef& dom = s.world.domain;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string path = "fem_bodies[" + std::to_string(i) + "]";

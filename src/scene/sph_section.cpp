@@ -7,6 +7,10 @@ namespace mpm_sdem::scene {
 
 void parseSph(const Context& ctx, const MapReader& top, Scene& s) {
   if (!top.has("sph")) return;
+  if (s.world.solver.inertia_scale != 1)
+    ctx.fail(top.node("sph"), "sph",
+             "does not combine with solver.inertia_scale (it scales the material points' inertia "
+             "only, and SPH particles would keep theirs): set it to 1 or remove the region");
   MapReader r(ctx, top.node("sph"), "sph",
               {"regions", "bodies", "kernel", "smoothing_length", "viscosity_alpha",
                "viscosity_beta", "corrected_gradient"});

@@ -84,7 +84,7 @@ void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
   if (!top.has("solver")) return;
   MapReader r(ctx, top.node("solver"), "solver",
               {"kernel", "transfer", "pic_fraction", "asflip_relaxation_time", "stress_update",
-               "gravity", "damping"});
+               "gravity", "damping", "inertia_scale"});
   SolverDef& sol = s.world.solver;
   sol.kernel = r.choice<KernelType>("kernel",
                                     {{"quadratic_bspline", KernelType::kQuadraticBSpline},
@@ -123,6 +123,7 @@ void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
   r.require(
       sol.damping >= 0 && sol.damping < 1, "damping",
       "must be in [0, 1) (0 = none; 0.05 to 0.2 settles a static state), got " + num(sol.damping));
+  sol.inertia_scale = r.number("inertia_scale", limits::kInertiaScale, sol.inertia_scale);
 }
 
 void parseTime(const Context& ctx, const MapReader& top, Scene& s) {

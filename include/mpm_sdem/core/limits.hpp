@@ -38,7 +38,9 @@ inline constexpr Range kStiffness{1, 1e13, "N/m per m"};  ///< contact springs
 inline constexpr Range kFriction{0, 10, ""};              ///< Coulomb coefficients
 inline constexpr Range kArtificialViscosity{0, 10, ""};   ///< SPH alpha, beta (1 is strong)
 inline constexpr Range kRestitution{0, 1, "", true};      ///< 0 would need an infinite damper
-inline constexpr Range kSpeed{0, 1e3, "m/s"};      ///< fastest point of a body, block or command
+inline constexpr Range kInertiaScale{1, 1e4,
+                                     ""};      ///< solver.inertia_scale: 1 (off) to 100x the step
+inline constexpr Range kSpeed{0, 1e3, "m/s"};  ///< fastest point of a body, block or command
 inline constexpr Range kGravity{0, 1e4, "m/s^2"};  ///< magnitude: 1000 g, beyond any centrifuge
 /// Loads held on a block from outside (the node's ~apply_obstacle_wrench): the acceleration they
 /// give its fastest point, all together, at most the strongest gravity accepted; and the speed

@@ -47,7 +47,7 @@ bool ImpCoupling::springForce(ContactPair& c, int b, const CoreDistance& d, cons
   const Real vn = v.dot(d.normal);
   const Real scale = impSpringScale(def_.stiffness_per, P, p, cell_size);
   const Real kn = scale * def_.normal_stiffness, kt = scale * def_.tangential_stiffness;
-  const Real m = reducedMass(P.mass[p], B.mass(b));
+  const Real m = reducedMass(P.mass[p] * inertia_scale_, B.mass(b));  // the point's inertia
   const Real gamma = 2 * B.dampingRatio(b) * std::sqrt(kn * m);
   // Eq. 43's normal force; exact: the step's mean force of the same spring-dashpot.
   const Real fn = exact ? clippedSpringImpulse(m, kn, gamma, xi, -vn, dt) / dt

@@ -54,7 +54,8 @@ MpmSolver::MpmSolver(const DomainDef& domain, Real cell_size, const SolverDef& s
   for (const MaterialDef& m : materials) {
     params_.push_back(makeMaterialParams(m));
     if (m.viscosity > 0)  // a fluid's (no other model reads it)
-      viscous_dt_ = std::fmin(viscous_dt_, cell_size * cell_size * m.density / (2 * m.viscosity));
+      viscous_dt_ = std::fmin(viscous_dt_, cell_size * cell_size * m.density *
+                                               solver.inertia_scale / (2 * m.viscosity));
   }
 
   std::size_t count = 0;
@@ -117,12 +118,16 @@ TimeStepChoice MpmSolver::materialStep(Real cfl, Real longest) const {
 #pragma omp parallel for simd schedule(static) reduction(max : fastest)
     for (long p = 0; p < n; ++p) fastest = faster(fastest, p);
   };
+  // The inertia's scale s divides every squared wave speed (SolverDef::inertia_scale).
+  const Real inv_s = 1 / def_.inertia_scale;
   if (params_.size() == 1 && !materialTraits(params_[0].model).own_wave_speed) {
     // One material with a solid's wave speed: no lookup and no pow, so the loop vectorises.
-    const Real k = params_[0].modulus_over_density, loose = params_[0].separation;
+    const Real k = params_[0].modulus_over_density * inv_s, loose = params_[0].separation;
     fastestWith([k, loose](long, Real J) { return J > loose ? Real(0) : k * J; });
   } else {
-    fastestWith([this, &P](long p, Real J) { return squaredWaveSpeed(params_[P.material[p]], J); });
+    fastestWith([this, &P, inv_s](long p, Real J) {
+      return squaredWaveSpeed(params_[P.material[p]], J) * inv_s;
+    });
   }
   const Real cfl_dt = fastest > 0 ? cfl * grid_.h / fastest : std::numeric_limits<Real>::infinity();
   TimeStepChoice choice{longest, StepLimit::kMax};
@@ -195,7 +200,8 @@ void MpmSolver::gridVelocity(Real kick, bool after_force, bool damp) {
     applyWalls(G.vel0_x, G.vel0_y);
     return;
   }
-  const Real gx = def_.gravity.x(), gy = def_.gravity.y();
+  // The weight m g of the true mass: the grid's mass is the inertial one, s m.
+  const Real gx = def_.gravity.x() / def_.inertia_scale, gy = def_.gravity.y() / def_.inertia_scale;
   const Real damping = damp ? def_.damping : Real(0);
   forActiveNodes(tiles_.active, [&](int first, int end) {
     const Real *m = G.mass.data(), *fx = G.force_x.data(), *fy = G.force_y.data();
@@ -211,6 +217,17 @@ void MpmSolver::gridVelocity(Real kick, bool after_force, bool damp) {
     }
   });
   applyWalls(G.vel_x, G.vel_y);
+}
+
+void MpmSolver::scaleInertia() {
+  const Real s = def_.inertia_scale;
+  if (s == 1) return;
+  StageTimer timer(profile_, Stage::kGridUpdate);
+  Grid& G = grid_;
+  forActiveNodes(tiles_.active, [&G, s](int first, int end) {
+    for (auto* a : {&G.mass, &G.mom_x, &G.mom_y})
+      for (int i = first; i < end; ++i) (*a)[i] *= s;
+  });
 }
 
 void MpmSolver::dampVelocityChange(Real kick) {

@@ -172,6 +172,9 @@ class Coupling {
   virtual void loadState(cereal::BinaryInputArchive&) {}
   ///@}
 
+  /// The material's inertia over its mass (SolverDef::inertia_scale): a point's springs and
+  /// dashpots move s m.
+  void setInertiaScale(Real s) { inertia_scale_ = s; }
   /// Which scheme this is.
   CouplingScheme scheme() const { return def_.scheme; }
   /// Settings with defaults resolved (r_p, V_d, inset in metres).
@@ -183,6 +186,7 @@ class Coupling {
 
  protected:
   friend struct detail::CheckpointAccess;
+  Real inertia_scale_ = 1;  ///< SolverDef::inertia_scale
   /// def with its defaults resolved.
   explicit Coupling(const CouplingDef& def) : def_(def) {}
   CouplingDef def_;         ///< the settings, defaults resolved

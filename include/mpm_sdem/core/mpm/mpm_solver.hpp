@@ -91,6 +91,9 @@ class MpmSolver {
   void foldMomentum() { foldPeriodic({&grid_.mass, &grid_.mom_x, &grid_.mom_y}); }
   void foldForces() { foldPeriodic({&grid_.force_x, &grid_.force_y, &sidewall_load_}); }
   ///@}
+  /// The nodes' mass and momentum times SolverDef::inertia_scale (their velocity unchanged):
+  /// from here on the grid's mass is the inertial one; gravity keeps the true weight.
+  void scaleInertia();
   /// The nodal velocities: without after_force, v0 = p / m (eq. 20); with it, the kick by the
   /// nodal force and gravity (eq. 11, 17), with local damping unless !damp. Walls applied.
   void gridVelocity(Real kick, bool after_force, bool damp = true);

@@ -36,6 +36,14 @@ struct SolverDef {
   /// by damping * |F| against the node's velocity. It removes kinetic energy without changing
   /// the static equilibrium; for settling quasi-static states only (0 = off).
   Real damping = 0;
+  /// Inertia scaling for quasi-static scenes (dimensionless, >= 1): the material's density in
+  /// the momentum balance is s rho, while its weight (rho g) and its stress keep the true
+  /// density. Static equilibria are unchanged; the wave speed falls by sqrt(s), so the CFL step
+  /// grows by sqrt(s); every acceleration of the material falls by s (free fall at g / s), and
+  /// its inertial stresses rho v^2 grow by s. For slow tools in sand only: keep
+  /// s rho v^2 / p well below 1 (docs/method.md, Quasi-static scenes). Not with FEM bodies or
+  /// SPH particles, whose inertia it would leave true. 1: off.
+  Real inertia_scale = 1;
   /// A world of fewer material points and no SPH steps on the calling thread alone:
   /// below this, starting and ending a step's ~24 parallel regions (3.5 us each on two cores
   /// here) costs more than sharing its work saves (docs/performance.md). Speed only: the results
