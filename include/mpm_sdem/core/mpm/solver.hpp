@@ -40,9 +40,10 @@ struct SolverDef {
   /// the momentum balance is s rho, while its weight (rho g) and its stress keep the true
   /// density. Static equilibria are unchanged; the wave speed falls by sqrt(s), so the CFL step
   /// grows by sqrt(s); every acceleration of the material falls by s (free fall at g / s), and
-  /// its inertial stresses rho v^2 grow by s. For slow tools in sand only: keep
-  /// s rho v^2 / p well below 1 (docs/method.md, Quasi-static scenes). Not with FEM bodies or
-  /// SPH particles, whose inertia it would leave true. 1: off.
+  /// the world is the unscaled one with every speed sqrt(s) times larger: admissible where the
+  /// answer at sqrt(s) times the tool's speed is the answer at its speed (docs/method.md,
+  /// Quasi-static scenes). Not with FEM bodies or SPH particles, whose inertia it would leave
+  /// true. 1: off.
   Real inertia_scale = 1;
   /// A world of fewer material points and no SPH steps on the calling thread alone:
   /// below this, starting and ending a step's ~24 parallel regions (3.5 us each on two cores
