@@ -30,6 +30,35 @@ Rotation corotation(Real f00, Real f01, Real f10, Real f11, FemModel model) {
   return {a / r, b / r};
 }
 
+// A 2 x 2 tensor in components.
+struct Tensor2 {
+  Real xx = 0, xy = 0, yx = 0, yy = 0;
+};
+
+// sum_K a_K (x) grad N_K over a triangle's nodes: F for the positions, its rate for the
+// velocities.
+template <class Element>
+Tensor2 nodalGradient(const Element& e, const std::vector<Real>& ax, const std::vector<Real>& ay) {
+  Tensor2 g;
+  for (int k = 0; k < 3; ++k) {
+    const int n = e.node[k];
+    g.xx += ax[n] * e.dndx[k][0];
+    g.xy += ax[n] * e.dndx[k][1];
+    g.yx += ay[n] * e.dndx[k][0];
+    g.yy += ay[n] * e.dndx[k][1];
+  }
+  return g;
+}
+
+// sym(R^T A), the corotated frame's symmetric part (its yx equals its xy).
+Tensor2 corotatedSymmetric(const Rotation& R, const Tensor2& A) {
+  Tensor2 e;
+  e.xx = R.c * A.xx + R.s * A.yx;
+  e.yy = -R.s * A.xy + R.c * A.yy;
+  e.xy = e.yx = Real(0.5) * (R.c * A.xy + R.s * A.yy - R.s * A.xx + R.c * A.yx);
+  return e;
+}
+
 // Outward normal of a boundary segment a -> b (the body on its left), unit.
 Vec2 outwardNormal(const Vec2& a, const Vec2& b) {
   const Vec2 e = b - a;
@@ -319,37 +348,21 @@ void FemBodies::internalForces() {
   for (std::size_t i = 0; i < elements_.size(); ++i) {
     const Element& e = elements_[i];
     const FemBodyDef& d = defs_[e.body];
-    Real f00 = 0, f01 = 0, f10 = 0, f11 = 0;
-    for (int k = 0; k < 3; ++k) {
-      const int n = e.node[k];
-      f00 += x_[n] * e.dndx[k][0];
-      f01 += x_[n] * e.dndx[k][1];
-      f10 += y_[n] * e.dndx[k][0];
-      f11 += y_[n] * e.dndx[k][1];
-    }
-    const Rotation R = corotation(f00, f01, f10, f11, d.model);
-    // S = R^T F; eps = sym(S) - I.
-    const Real e00 = R.c * f00 + R.s * f10 - 1, e11 = -R.s * f01 + R.c * f11 - 1;
-    const Real e01 = Real(0.5) * (R.c * f01 + R.s * f11 - R.s * f00 + R.c * f10);
-    const Real tr = e00 + e11;
-    Real s00 = e.lambda * tr + 2 * e.mu * e00, s11 = e.lambda * tr + 2 * e.mu * e11;
-    Real s01 = 2 * e.mu * e01;
+    const Tensor2 F = nodalGradient(e, x_, y_);
+    const Rotation R = corotation(F.xx, F.xy, F.yx, F.yy, d.model);
+    Tensor2 eps = corotatedSymmetric(R, F);  // S = R^T F; eps = sym(S) - I
+    eps.xx -= 1;
+    eps.yy -= 1;
+    const Real tr = eps.xx + eps.yy;
+    Real s00 = e.lambda * tr + 2 * e.mu * eps.xx, s11 = e.lambda * tr + 2 * e.mu * eps.yy;
+    Real s01 = 2 * e.mu * eps.xy;
     stress_[i].zz = e.lambda * tr;
     if (d.stiffness_damping > 0) {  // Rayleigh's beta K v: the linear law on the strain rate
-      Real v00 = 0, v01 = 0, v10 = 0, v11 = 0;
-      for (int k = 0; k < 3; ++k) {
-        const int n = e.node[k];
-        v00 += vx_[n] * e.dndx[k][0];
-        v01 += vx_[n] * e.dndx[k][1];
-        v10 += vy_[n] * e.dndx[k][0];
-        v11 += vy_[n] * e.dndx[k][1];
-      }
-      const Real r00 = R.c * v00 + R.s * v10, r11 = -R.s * v01 + R.c * v11;
-      const Real r01 = Real(0.5) * (R.c * v01 + R.s * v11 - R.s * v00 + R.c * v10);
-      const Real b = d.stiffness_damping, rtr = r00 + r11;
-      s00 += b * (e.lambda * rtr + 2 * e.mu * r00);
-      s11 += b * (e.lambda * rtr + 2 * e.mu * r11);
-      s01 += b * 2 * e.mu * r01;
+      const Tensor2 rate = corotatedSymmetric(R, nodalGradient(e, vx_, vy_));
+      const Real b = d.stiffness_damping, rtr = rate.xx + rate.yy;
+      s00 += b * (e.lambda * rtr + 2 * e.mu * rate.xx);
+      s11 += b * (e.lambda * rtr + 2 * e.mu * rate.yy);
+      s01 += b * 2 * e.mu * rate.xy;
     }
     // P = R sigma; the nodal forces -A P grad N_K; the Cauchy stress R sigma R^T.
     const Real p00 = R.c * s00 - R.s * s01, p01 = R.c * s01 - R.s * s11;
@@ -368,14 +381,13 @@ void FemBodies::internalForces() {
 Real FemBodies::strainEnergy() const {
   Real sum = 0;
   for (const Element& e : elements_) {
-    Mat2 F = Mat2::Zero();
-    for (int k = 0; k < 3; ++k)
-      F += position(e.node[k]) * Vec2(e.dndx[k][0], e.dndx[k][1]).transpose();
-    const Rotation r = corotation(F(0, 0), F(0, 1), F(1, 0), F(1, 1), defs_[e.body].model);
-    const Mat2 R = (Mat2() << r.c, -r.s, r.s, r.c).finished();
-    const Mat2 S = R.transpose() * F;
-    const Mat2 eps = Real(0.5) * (S + S.transpose()) - Mat2::Identity();
-    sum += e.area * (e.mu * eps.squaredNorm() + Real(0.5) * e.lambda * eps.trace() * eps.trace());
+    const Tensor2 F = nodalGradient(e, x_, y_);
+    Tensor2 eps = corotatedSymmetric(corotation(F.xx, F.xy, F.yx, F.yy, defs_[e.body].model), F);
+    eps.xx -= 1;
+    eps.yy -= 1;
+    const Real tr = eps.xx + eps.yy;
+    const Real norm2 = eps.xx * eps.xx + 2 * eps.xy * eps.xy + eps.yy * eps.yy;
+    sum += e.area * (e.mu * norm2 + Real(0.5) * e.lambda * tr * tr);
   }
   return sum;
 }
