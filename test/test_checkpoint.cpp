@@ -147,6 +147,20 @@ TEST(Checkpoint, SphRegionResumesBitIdentically) {
   expectResumeIdentical(scene("test/data/valid_sph.yaml"), 0.10, 0.14);
 }
 
+// The bed asleep at t1 as the rock falls (SolverDef::sleep), woken by its landing before t2:
+// the tiles' states and quiet times are saved, the sleepers' grid share rebuilt from them.
+TEST(Checkpoint, SleepingMaterialResumesBitIdentically) {
+  WorldDef def = scene("config/scenes/rock_into_bed.yaml", {"grid.cell_size=0.01"});
+  def.blocks.at(0).position = Vec2(0.15, 0.215);
+  def.blocks.at(0).velocity = Vec2(0, 0);
+  def.solver.sleep.speed = 0.01;
+  def.solver.sleep.margin = 0.01;
+  World probe(def);
+  runUntil(probe, 0.12);
+  ASSERT_GT(probe.sleep().sleepingPoints(), 0) << "nothing sleeps at t1";
+  expectResumeIdentical(def, 0.12, 0.25);
+}
+
 TEST(Checkpoint, BlocksAddedAndRemovedWhileRunningAreRestored) {
   // The second world is built from the scene alone: the checkpoint brings the new block, the
   // removed one's absence and the ids (a removed slot's generation).

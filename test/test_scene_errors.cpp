@@ -97,6 +97,24 @@ TEST(SceneErrors, InertiaScaleOnlyForMaterialPoints) {
   EXPECT_EQ(errorOf("valid.yaml", {"solver.inertia_scale=4"}), "");
 }
 
+// Sleeping material: USF and material points only (refused at solver.sleep_speed with the
+// reason), its other keys only with a sleep speed, each in its range.
+TEST(SceneErrors, SleepingMaterialWhereItIsWellPosed) {
+  expectError(errorOf("valid.yaml", {"solver.sleep_speed=0.01", "solver.stress_update=usl"}),
+              "valid.yaml", "solver.sleep_speed", "needs stress_update: usf");
+  expectError(errorOf("valid_sph.yaml", {"solver.sleep_speed=0.01"}), "valid_sph.yaml",
+              "solver.sleep_speed", "no SPH and no FEM bodies");
+  expectError(errorOf("valid_fem.yaml", {"solver.sleep_speed=0.01"}), "valid_fem.yaml",
+              "solver.sleep_speed", "no SPH and no FEM bodies");
+  expectError(errorOf("valid.yaml", {"solver.sleep_time=0.1"}), "--set solver.sleep_time=0.1",
+              "solver.sleep_time", "applies only with sleep_speed > 0");
+  expectError(errorOf("valid.yaml", {"solver.sleep_speed=2"}), "--set solver.sleep_speed=2",
+              "solver.sleep_speed", "must be in [0, 1]");
+  EXPECT_EQ(errorOf("valid.yaml", {"solver.sleep_speed=0.01", "solver.sleep_time=0.1",
+                                   "solver.sleep_margin=0.02"}),
+            "");
+}
+
 // A cluster of discs listed, or a shape filled with discs (the wedge's 2.2 cm outline takes
 // 2 x 2 discs of 4 mm at the default pitch of 8 mm).
 TEST(SceneErrors, ClustersParse) {

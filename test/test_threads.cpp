@@ -86,3 +86,17 @@ TEST(Threads, SphRegionIsBitIdenticalOnOneAndTwoThreads) {
   const Snapshot one = run(def, 1, 0.15), two = run(def, 2, 0.15);
   expectIdentical(one, two);
 }
+
+// The rock of test_sleep lands on a sleeping bed (SolverDef::sleep): the awake points' runs in
+// G2P and the sleepers' grid share are shared among threads.
+TEST(Threads, SleepingBedIsBitIdenticalOnOneAndTwoThreads) {
+  WorldDef def =
+      loadScene(test::sourcePath("config/scenes/rock_into_bed.yaml"), {"grid.cell_size=0.01"})
+          .world;
+  def.blocks.at(0).position = Vec2(0.15, 0.215);
+  def.blocks.at(0).velocity = Vec2(0, 0);
+  def.solver.sleep.speed = 0.01;
+  def.solver.sleep.margin = 0.01;
+  const Snapshot one = run(def, 1, 0.25), two = run(def, 2, 0.25);  // asleep, then woken
+  expectIdentical(one, two);
+}

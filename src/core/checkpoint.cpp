@@ -175,6 +175,7 @@ struct CheckpointAccess {
     if (w.blocks_) saveBlocks(ar, *w.blocks_);
     if (w.fem_) w.fem_->stateIo(ar);
     if (w.coupling_) saveCoupling(ar, *w.coupling_);
+    w.mpm_.sleep().stateIo(ar);
   }
 
   static void load(In& ar, World& w) {
@@ -225,6 +226,12 @@ struct CheckpointAccess {
       if (!w.coupling_) w.initCoupling();
       loadCoupling(ar, *w.coupling_);
     }
+    Sleep& sleep = w.mpm_.sleep();
+    const std::size_t tiles = sleep.asleep_.size();
+    sleep.stateIo(ar);
+    if (sleep.asleep_.size() != tiles || sleep.quiet_.size() != tiles)
+      throw CheckpointError("the saved sleeping tiles are not this world's");
+    sleep.rebuild(P, w.def_.solver.kernel);
   }
 };
 

@@ -22,6 +22,7 @@ World& World::operator=(World&&) noexcept = default;
 World::World(const WorldDef& def)
     : def_(def), mpm_(def.domain, def.cell_size, def.solver, def.materials, def.bodies) {
   if (const Problem p = periodicProblem(def); !p.empty()) throw std::invalid_argument(p.text());
+  if (const Problem p = sleepProblem(def); !p.empty()) throw std::invalid_argument(p.text());
   const Particles& points = mpm_.particles();
   lightest_point_ = std::numeric_limits<Real>::infinity();
   largest_spring_scale_ = 0;
@@ -256,11 +257,32 @@ StepInfo World::step(Real dt) {
   stage(&Coupling::afterMaterialStep);
   if (coupled && !coupling_->subcycles()) stepBodies(dt);  // else in correctGridVelocity
   if (blocks_) checkBlocks(info);
+  sleepAndWake(dt);
   velocity_lag_ = Real(0.5) * dt;
   time_ += dt;
   ++steps_;
   ++mpm.profile().steps;
   return info;
+}
+
+void World::sleepAndWake(Real dt) {
+  Sleep& sleep = mpm_.sleep();
+  if (!sleep.on()) return;
+  // Every block keeps the tiles within the margin of its box awake, moving or not (a block at
+  // rest on the material may be pushed again by the node); so does every point load.
+  if (hasContactBodies()) {
+    const ContactBodies& bodies = *contactBodies();
+    for (int b = 0; b < bodies.shapeCount(); ++b) {
+      const Box box = bodies.bounds(b);
+      sleep.keepAwake(box.min, box.max);
+    }
+  }
+  const Particles& P = mpm_.particles();
+  for (const PointLoads::Load& l : point_loads_.loads()) {
+    const Vec2 x(P.x[l.particle], P.y[l.particle]);
+    sleep.keepAwake(x, x);
+  }
+  mpm_.sleepAndWake(dt);
 }
 
 void World::correctedWalls(Real kick) {
@@ -355,6 +377,22 @@ Problem periodicProblem(const WorldDef& def) {
                                 " cells across, so that no node has two images"};
   if (!def.blocks.empty() || !def.fem_bodies.empty() || def.sph.enabled())
     return {"domain.walls", "periodic sides are for material alone: no blocks, FEM bodies or SPH"};
+  return {};
+}
+
+Problem sleepProblem(const WorldDef& def) {
+  if (!def.solver.sleep.on()) return {};
+  const char* key = "solver.sleep_speed";
+  if (def.solver.stress_update != StressUpdate::kUsf)
+    return {key, "sleeping material needs stress_update: usf (USL updates every point's stress)"};
+  if (def.sph.enabled() || !def.fem_bodies.empty())
+    return {key, "sleeping material is for material points: no SPH and no FEM bodies"};
+  if (def.domain.sidewalls.width > 0)
+    return {key,
+            "sleeping material does not combine with side walls (their friction acts on "
+            "every node)"};
+  if (def.domain.left.type == WallType::kPeriodic)
+    return {key, "sleeping material does not combine with periodic sides"};
   return {};
 }
 

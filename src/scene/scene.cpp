@@ -100,6 +100,8 @@ Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& s
   parseSph(ctx, top, s);
   if (const Problem p = periodicProblem(s.world); !p.empty())
     ctx.fail(top.node("domain")["walls"], p.key, p.message);
+  if (const Problem p = sleepProblem(s.world); !p.empty())
+    ctx.fail(top.node("solver")["sleep_speed"], p.key, p.message);
 
   parseOutput(ctx, top, s);
   parseView(ctx, top, s);

@@ -84,7 +84,7 @@ void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
   if (!top.has("solver")) return;
   MapReader r(ctx, top.node("solver"), "solver",
               {"kernel", "transfer", "pic_fraction", "asflip_relaxation_time", "stress_update",
-               "gravity", "damping", "inertia_scale"});
+               "gravity", "damping", "inertia_scale", "sleep_speed", "sleep_time", "sleep_margin"});
   SolverDef& sol = s.world.solver;
   sol.kernel = r.choice<KernelType>("kernel",
                                     {{"quadratic_bspline", KernelType::kQuadraticBSpline},
@@ -124,6 +124,11 @@ void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
       sol.damping >= 0 && sol.damping < 1, "damping",
       "must be in [0, 1) (0 = none; 0.05 to 0.2 settles a static state), got " + num(sol.damping));
   sol.inertia_scale = r.number("inertia_scale", limits::kInertiaScale, sol.inertia_scale);
+  sol.sleep.speed = r.number("sleep_speed", limits::kSleepSpeed, sol.sleep.speed);
+  sol.sleep.time = r.number("sleep_time", limits::kSleepTime, sol.sleep.time);
+  sol.sleep.margin = r.number("sleep_margin", limits::kSleepMargin, sol.sleep.margin);
+  for (const char* key : {"sleep_time", "sleep_margin"})
+    r.require(!r.has(key) || sol.sleep.on(), key, "applies only with sleep_speed > 0");
 }
 
 void parseTime(const Context& ctx, const MapReader& top, Scene& s) {

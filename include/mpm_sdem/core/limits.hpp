@@ -39,8 +39,12 @@ inline constexpr Range kFriction{0, 10, ""};              ///< Coulomb coefficie
 inline constexpr Range kArtificialViscosity{0, 10, ""};   ///< SPH alpha, beta (1 is strong)
 inline constexpr Range kRestitution{0, 1, "", true};      ///< 0 would need an infinite damper
 inline constexpr Range kInertiaScale{1, 1e4,
-                                     ""};      ///< solver.inertia_scale: 1 (off) to 100x the step
-inline constexpr Range kSpeed{0, 1e3, "m/s"};  ///< fastest point of a body, block or command
+                                     ""};  ///< solver.inertia_scale: 1 (off) to 100x the step
+/// solver.sleep_speed: 0 (off) to 1 m/s, far above any rest a granular bed comes to.
+inline constexpr Range kSleepSpeed{0, 1, "m/s"};
+inline constexpr Range kSleepTime{0, 100, "s"};    ///< solver.sleep_time
+inline constexpr Range kSleepMargin{0, 100, "m"};  ///< solver.sleep_margin (0: two tiles)
+inline constexpr Range kSpeed{0, 1e3, "m/s"};      ///< fastest point of a body, block or command
 inline constexpr Range kGravity{0, 1e4, "m/s^2"};  ///< magnitude: 1000 g, beyond any centrifuge
 /// Loads held on a block from outside (the node's ~apply_obstacle_wrench): the acceleration they
 /// give its fastest point, all together, at most the strongest gravity accepted; and the speed

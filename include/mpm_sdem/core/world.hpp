@@ -48,6 +48,11 @@ struct WorldDef {
 /// cells across, material alone): "" or why not. Checked by the scene parser and by World.
 Problem periodicProblem(const WorldDef& def);
 
+/// Whether sleeping material (SolverDef::sleep) fits the world: USF and material points only
+/// (no SPH, FEM bodies, side walls or periodic sides): "" or why not. Checked by the scene
+/// parser and by World.
+Problem sleepProblem(const WorldDef& def);
+
 /// What a step did.
 struct StepInfo {
   Real dt = 0;         ///< s, the step taken
@@ -143,6 +148,8 @@ class World {
   ///@}
   /// The background grid of the last step.
   const Grid& grid() const { return mpm_.grid(); }
+  /// Which points sleep (SolverDef::sleep).
+  const Sleep& sleep() const { return mpm_.sleep(); }
   /// Memory held, in bytes: the particle columns with their tile bins, and the grid arrays.
   using Memory = MpmSolver::Memory;
   /// What the world holds now.
@@ -171,6 +178,9 @@ class World {
   Real springStep(Real kappa2) const;
   /// The points binned by tile (with SPH: and the SPH particles' kinds and band).
   void binParticles();
+  /// After a step of dt: the blocks and point loads keep their tiles awake, then the material's
+  /// tiles sleep or wake (SolverDef::sleep).
+  void sleepAndWake(Real dt);
   /// The step's velocity change after a coupling's correction: damped (SolverDef::damping) as
   /// a whole, and the walls again (a correction may push into one).
   void correctedWalls(Real kick);

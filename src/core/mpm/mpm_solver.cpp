@@ -93,6 +93,7 @@ MpmSolver::MpmSolver(const DomainDef& domain, Real cell_size, const SolverDef& s
   // Points in tile order from the start, so that the sweeps read them in sequence.
   tiles_.bin(particles_, grid_);
   particles_.permute(tiles_.order);
+  sleep_.init(def_.sleep, grid_, tiles_);
 }
 
 TimeStepChoice MpmSolver::materialStep(Real cfl, Real longest) const {
@@ -181,6 +182,10 @@ void MpmSolver::particleToGrid(bool momentum, bool force) {
   StageTimer timer(profile_, Stage::kP2G);
   detail::particleToGrid(def_.kernel, {momentum, force, momentum && carriesAffine(def_.transfer)},
                          particles_, grid_, tiles_);
+  // The sleepers' mass on the nodes the awake points use (the others are not updated).
+  if (sleep_.any() && momentum)
+    forActiveNodes(tiles_.active,
+                   [this](int first, int end) { sleep_.addMass(grid_, first, end); });
 }
 
 void MpmSolver::gridVelocity(Real kick, bool after_force, bool damp) {
@@ -329,13 +334,20 @@ void MpmSolver::stressAndInternalForce(Real dt) {
   detail::SidewallLoad walls;
   if (Real* load = clearedSidewallLoad()) walls = {sidewallCoefficient(), load};
   detail::stressAndInternalForce(def_.kernel, particles_, grid_, tiles_, params_, dt, walls);
+  if (sleep_.any())
+    forActiveNodes(tiles_.active,
+                   [this](int first, int end) { sleep_.addForce(grid_, first, end); });
 }
 
 void MpmSolver::gridToParticle(Real dt, const Tiles* material_points, long& clamped, bool& finite) {
   StageTimer timer(profile_, Stage::kG2P);
-  const detail::G2PSettings s{
-      def_.pic_fraction, dt,          domain_.min,
-      domain_.max,       periodicX(), detail::asflipKeep(dt, def_.asflip_relaxation_time)};
+  const detail::G2PSettings s{def_.pic_fraction,
+                              dt,
+                              domain_.min,
+                              domain_.max,
+                              periodicX(),
+                              detail::asflipKeep(dt, def_.asflip_relaxation_time),
+                              sleep_.any() ? &sleep_.runs() : nullptr};
   const bool usl = def_.stress_update == StressUpdate::kUsl;
   detail::gridToParticle(def_.kernel, def_.transfer, usl, particles_, grid_, s, clamped, finite,
                          material_points);
@@ -345,6 +357,12 @@ void MpmSolver::constitutiveUpdate(Real dt) {
   StageTimer timer(profile_, Stage::kConstitutive);
   if (dt == 0) return;
   detail::updateStresses(particles_, params_, dt);
+}
+
+void MpmSolver::sleepAndWake(Real dt) {
+  if (!sleep_.on()) return;
+  StageTimer timer(profile_, Stage::kSort);
+  sleep_.update(particles_, grid_, def_.kernel, dt);
 }
 
 void MpmSolver::reverseVelocities() {

@@ -474,14 +474,14 @@ template <TransferScheme kScheme, bool kGradient>
   hn::StoreU(hn::IfThenElse(finite, y, y0), d, P.y.data() + p0);
 }
 
-// The quadratic B-spline's G2P of points p0 .. p0 + lanes - 1 (fewer at the end, where the last
+// The quadratic B-spline's G2P of points p0 .. p0 + lanes - 1 (fewer before end, where the last
 // lanes repeat the last point).
 template <TransferScheme kScheme, bool kGradient>
-void laneBlock(Particles& P, const Grid& G, const G2PSettings& s, long p0, long& clamped,
+void laneBlock(Particles& P, const Grid& G, const G2PSettings& s, long p0, long end, long& clamped,
                int& bad) {
   constexpr size_t kMax = hn::MaxLanes(LaneTag());
   const long lanes = static_cast<long>(hn::Lanes(LaneTag()));
-  const long count = std::min(lanes, static_cast<long>(P.size()) - p0);
+  const long count = std::min(lanes, end - p0);
   Lanes m[kG2PSums];
   if (count == lanes) {
     laneSums<kScheme, kGradient>(G, hn::LoadU(LaneTag(), P.x.data() + p0),
@@ -530,14 +530,28 @@ void gridToParticle(Particles& P, const Grid& G, const G2PSettings& s, long& cla
     finishPoint<kScheme, kGradient>(P, p, rowSums<K, kScheme, kGradient>(P, G, p), s, clamped_here,
                                     bad_here);
   };
-  // The points of the grid sums, tile by tile in sorted order, or all in storage order.
-  const long count = T ? static_cast<long>(T->start.size()) - 1 : (n + lanes - 1) / lanes;
+  // The points of the grid sums, tile by tile in sorted order, or the awake runs, or all in
+  // storage order.
+  const long count = T         ? static_cast<long>(T->start.size()) - 1
+                     : s.awake ? static_cast<long>(s.awake->size())
+                               : (n + lanes - 1) / lanes;
   auto item = [&](long k, long& clamped_here, int& bad_here) __attribute__((always_inline)) {
     if (T) {
       for (int q = T->start[k]; q < T->mpm_end[k]; ++q) point(T->order[q], clamped_here, bad_here);
+    } else if (s.awake) {
+      const PointRun run = (*s.awake)[k];
+      for (long p = run.begin; p < run.end; p += lanes) {
+        if constexpr (kLanes) {
+          if (across) {
+            laneBlock<kScheme, kGradient>(P, G, s, p, run.end, clamped_here, bad_here);
+            continue;
+          }
+        }
+        point(p, clamped_here, bad_here);
+      }
     } else if (across) {
       if constexpr (kLanes)
-        laneBlock<kScheme, kGradient>(P, G, s, k * lanes, clamped_here, bad_here);
+        laneBlock<kScheme, kGradient>(P, G, s, k * lanes, n, clamped_here, bad_here);
     } else {
       point(k, clamped_here, bad_here);
     }

@@ -11,6 +11,7 @@
 #include "mpm_sdem/core/mpm/kernels.hpp"
 #include "mpm_sdem/core/mpm/material.hpp"
 #include "mpm_sdem/core/mpm/particles.hpp"
+#include "mpm_sdem/core/mpm/sleep.hpp"
 #include "mpm_sdem/core/mpm/solver.hpp"
 #include "mpm_sdem/core/mpm/tiles.hpp"
 #include "mpm_sdem/core/types.hpp"
@@ -31,6 +32,7 @@ struct G2PSettings {
   Vec2 lo, hi;              // domain box: points are kept inside it
   bool periodic_x = false;  // a point leaving by the left or right side enters by the other
   Real keep = 1;            // kAsflip: share of the departure kept this step (asflipKeep)
+  const std::vector<PointRun>* awake = nullptr;  // only these points (some sleep), or all
 };
 
 // P2G over the tiles T (the SPH particles of the transition band included, seed 001 sec. 4).

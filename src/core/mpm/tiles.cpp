@@ -24,23 +24,24 @@ void Tiles::init(const Grid& g) {
   retired.clear();
 }
 
-void Tiles::bin(const Particles& P, const Grid& g) {
-  sort(P, g, false);
+void Tiles::bin(const Particles& P, const Grid& g, bool asleep) {
+  sort(P, g, false, asleep);
   activate();
 }
 
 void Tiles::binByKind(const Particles& P, const Grid& g) {
-  sort(P, g, true);
+  sort(P, g, true, false);
 }
 
-void Tiles::sort(const Particles& P, const Grid& g, bool by_kind) {
+void Tiles::sort(const Particles& P, const Grid& g, bool by_kind, bool asleep) {
   const long n = static_cast<long>(P.size());
   key_.resize(n);
   order.resize(n);
   // Keys are tile * kinds + kind; one kind when kinds are not told apart.
   const int kinds = by_kind ? 2 : 1;
-  const int tiles = nx * ny * kinds;
-  counts_.resize(static_cast<std::size_t>(omp_get_max_threads()) * tiles);
+  // One bucket past the tiles holds the points not binned (awake or asleep, as not asked).
+  const int tiles = nx * ny * kinds, buckets = tiles + 1;
+  counts_.resize(static_cast<std::size_t>(omp_get_max_threads()) * buckets);
   const Real inv_h = g.inv_h, ox = g.origin.x(), oy = g.origin.y();
   const int last_x = nx - 1, last_y = ny - 1;
   // Counting sort in parallel: each thread counts its own contiguous range of points per tile,
@@ -49,32 +50,33 @@ void Tiles::sort(const Particles& P, const Grid& g, bool by_kind) {
   auto countingSort = [&] {
     const int threads = omp_get_num_threads(), me = omp_get_thread_num();
     const long lo = n * me / threads, hi = n * (me + 1) / threads;
-    int* count = counts_.data() + static_cast<std::size_t>(me) * tiles;
-    std::fill(count, count + tiles, 0);
+    int* count = counts_.data() + static_cast<std::size_t>(me) * buckets;
+    std::fill(count, count + buckets, 0);
+    const std::uint8_t want = asleep ? 1 : 0;
     for (long p = lo; p < hi; ++p) {
       // Points are kept inside the domain, so their cell lies inside the grid; the clamps only
       // guard against a non-finite position, which the step reports separately.
       const int a = static_cast<int>((P.x[p] - ox) * inv_h) / kSize;
       const int b = static_cast<int>((P.y[p] - oy) * inv_h) / kSize;
       const int t = std::clamp(a, 0, last_x) + std::clamp(b, 0, last_y) * nx;
-      key_[p] = by_kind ? 2 * t + P.kind[p] : t;
+      key_[p] = P.asleep[p] != want ? tiles : by_kind ? 2 * t + P.kind[p] : t;
       ++count[key_[p]];
     }
 #pragma omp barrier
 #pragma omp single
     {
       int next = 0;
-      for (int t = 0; t < tiles; ++t) {
-        if (t % kinds == 0) start[t / kinds] = next;
+      for (int t = 0; t < buckets; ++t) {
+        if (t == tiles) start[tiles / kinds] = next;
+        if (t < tiles && t % kinds == 0) start[t / kinds] = next;
         if (t % kinds == 1) mpm_end[t / kinds] = next;
         for (int k = 0; k < threads; ++k) {
-          int& c = counts_[static_cast<std::size_t>(k) * tiles + t];
+          int& c = counts_[static_cast<std::size_t>(k) * buckets + t];
           const int m = c;
           c = next;  // becomes this thread's write position in the tile
           next += m;
         }
       }
-      start[tiles / kinds] = next;
     }
     for (long p = lo; p < hi; ++p) order[count[key_[p]]++] = static_cast<int>(p);
   };

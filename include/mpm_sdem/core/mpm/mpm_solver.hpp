@@ -15,6 +15,7 @@
 #include "mpm_sdem/core/mpm/material.hpp"
 #include "mpm_sdem/core/mpm/particles.hpp"
 #include "mpm_sdem/core/mpm/shapes.hpp"
+#include "mpm_sdem/core/mpm/sleep.hpp"
 #include "mpm_sdem/core/mpm/solver.hpp"
 #include "mpm_sdem/core/mpm/tiles.hpp"
 #include "mpm_sdem/core/profile.hpp"
@@ -44,6 +45,11 @@ class MpmSolver {
   Grid& grid() { return grid_; }
   const Tiles& tiles() const { return tiles_; }
   Tiles& tiles() { return tiles_; }
+  ///@}
+  ///@{
+  /// Which points sleep (SolverDef::sleep).
+  const Sleep& sleep() const { return sleep_; }
+  Sleep& sleep() { return sleep_; }
   ///@}
   /// Each material's parameters as the constitutive updates use them.
   const std::vector<MaterialParams>& params() const { return params_; }
@@ -79,7 +85,7 @@ class MpmSolver {
 
   /// @name Stages, in the order of a step
   ///@{
-  /// The points binned by grid tile.
+  /// The awake points binned by grid tile.
   void bin();
   /// Zeroes the nodes the last step used.
   void clearGrid();
@@ -115,6 +121,9 @@ class MpmSolver {
   void gridToParticle(Real dt, const Tiles* material_points, long& clamped, bool& finite);
   /// USL: the stress update after G2P.
   void constitutiveUpdate(Real dt);
+  /// Between steps, after a step of dt: which tiles sleep from now on (Sleep::update; the
+  /// blocks' boxes given to sleep().keepAwake first).
+  void sleepAndWake(Real dt);
   ///@}
 
   /// Negates the points' velocities and affine matrices (World::reverseVelocities).
@@ -137,6 +146,7 @@ class MpmSolver {
   Particles particles_;
   Grid grid_;
   Tiles tiles_;
+  Sleep sleep_;
   std::vector<Tiles::NodeRun> node_runs_;  ///< scratch of forActiveNodes
   /// Per node: the side walls' largest friction force (N/m), when the domain has side walls.
   std::vector<Real> sidewall_load_;

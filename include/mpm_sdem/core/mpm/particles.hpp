@@ -46,6 +46,8 @@ struct Particles {
   std::vector<std::uint16_t> body;      ///< index of the body the point was filled from
   /// ParticleKind: updated from the grid (material point) or by the SPH sums (seed 001).
   std::vector<std::uint8_t> kind;
+  /// 1 while the point sleeps (SleepDef): it skips the step, at rest, its grid share kept.
+  std::vector<std::uint8_t> asleep;
 
   /// How many points.
   std::size_t size() const { return x.size(); }
@@ -63,6 +65,7 @@ struct Particles {
     f(material);
     f(body);
     f(kind);
+    f(asleep);
   }
   /// The same, read only.
   template <class F>

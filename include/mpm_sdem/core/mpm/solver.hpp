@@ -19,6 +19,20 @@ constexpr bool carriesAffine(TransferScheme t) {
 /// Update stress first (seed 000 sec. 2.2) or last.
 enum class StressUpdate { kUsf, kUsl };
 
+/// Sand at rest costs nothing (docs/method.md, Sleeping material): the points of a tile of
+/// Tiles::kSize^2 cells that have all stayed slower than speed for time, away from every block,
+/// skip the step, with their velocity set to zero and their share of the grid (mass and the
+/// internal force of their stress) kept. A tile wakes, with all its points, when a node its
+/// points read moves faster than speed, when an awake point enters it, or when a block comes
+/// within margin of it. USF and material points only (not with SPH, FEM bodies, side walls,
+/// periodic sides or point loads).
+struct SleepDef {
+  Real speed = 0;    ///< m/s: the speed below which points may sleep; 0: never
+  Real time = 0.05;  ///< s: how long a tile's points stay slower than speed before they sleep
+  Real margin = 0;   ///< m: how near a block keeps a tile awake; 0: two tiles (6 cells)
+  bool on() const { return speed > 0; }
+};
+
 /// The solver's choices (scene section `solver`).
 struct SolverDef {
   KernelType kernel = KernelType::kQuadraticBSpline;  ///< the grid's shape functions
@@ -45,6 +59,7 @@ struct SolverDef {
   /// Quasi-static scenes). Not with FEM bodies or SPH particles, whose inertia it would leave
   /// true. 1: off.
   Real inertia_scale = 1;
+  SleepDef sleep;  ///< sleeping material (off by default)
   /// A world of fewer material points and no SPH steps on the calling thread alone:
   /// below this, starting and ending a step's ~24 parallel regions (3.5 us each on two cores
   /// here) costs more than sharing its work saves (docs/performance.md). Speed only: the results

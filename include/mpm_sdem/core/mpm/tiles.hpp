@@ -48,9 +48,10 @@ struct Tiles {
   void init(const Grid& g);
   /// Bytes of the per-particle arrays (sort keys and order).
   std::size_t particleBytes() const { return (key_.capacity() + order.capacity()) * sizeof(int); }
-  /// Bin the particles by the cell they are in (stable counting sort, O(N + tiles)), every one
-  /// taking part in the grid sums; then activate().
-  void bin(const Particles& P, const Grid& g);
+  /// Bin the awake particles (Particles::asleep 0; with asleep, the sleeping ones instead) by
+  /// the cell they are in (stable counting sort, O(N + tiles)), every one taking part in the grid
+  /// sums; then activate(). The others follow the last tile in order, outside every tile.
+  void bin(const Particles& P, const Grid& g, bool asleep = false);
   /// Bin by tile and, within a tile, by Particles::kind (material points first). grid_end is
   /// mpm_end: the caller adds the SPH particles of the band, then calls activate().
   void binByKind(const Particles& P, const Grid& g);
@@ -75,7 +76,7 @@ struct Tiles {
   void stateIo(Archive& ar) {
     ar(start, order, mpm_end, grid_end, colour, active, previous, retired);
   }
-  void sort(const Particles& P, const Grid& g, bool by_kind);
+  void sort(const Particles& P, const Grid& g, bool by_kind, bool asleep);
 
   std::vector<int> key_;              ///< per particle, its tile (times 2, plus its kind)
   std::vector<int> counts_;           ///< per thread and tile: count, then write position

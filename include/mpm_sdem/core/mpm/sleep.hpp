@@ -1,0 +1,87 @@
+/// \file
+/// Sleeping material (SleepDef): points at rest, away from every block, skip the step and keep
+/// their share of the grid, as Box2D's islands sleep. The unit is the tile of Tiles (kSize^2
+/// cells): a tile's points sleep and wake together. Between steps, update() decides which tiles
+/// sleep from the points' speeds, the nodes' speeds of the last step and the blocks' boxes; the
+/// step then bins only the awake points (Tiles::bin), adds the sleepers' share to the nodes the
+/// awake points use (addMass, addForce) and moves only the awake points (runs()).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mpm_sdem/core/mpm/grid.hpp"
+#include "mpm_sdem/core/mpm/kernels.hpp"
+#include "mpm_sdem/core/mpm/particles.hpp"
+#include "mpm_sdem/core/mpm/solver.hpp"
+#include "mpm_sdem/core/mpm/tiles.hpp"
+#include "mpm_sdem/core/types.hpp"
+
+namespace mpm_sdem {
+
+/// A run of awake points [begin, end) in storage order: what G2P moves while some sleep.
+struct PointRun {
+  ///@{
+  /// Point indices of the run.
+  long begin, end;
+  ///@}
+};
+
+/// Which tiles sleep, and the sleepers' share of the grid (see the file's comment).
+class Sleep {
+ public:
+  /// Sized for the grid and its tiles; every point awake.
+  void init(const SleepDef& def, const Grid& g, const Tiles& t);
+  /// Whether points may sleep (SleepDef::on).
+  bool on() const { return def_.on(); }
+  /// Whether any point sleeps now.
+  bool any() const { return sleeping_points_ > 0; }
+  /// Points asleep now.
+  long sleepingPoints() const { return sleeping_points_; }
+
+  /// Keeps the tiles that overlap the box [lo, hi] grown by the margin awake (a block's box);
+  /// for the next update() only.
+  void keepAwake(const Vec2& lo, const Vec2& hi);
+  /// Between steps, after a step of dt (s) whose grid G holds the nodes' velocities: wakes the
+  /// sleeping tiles a fast node, an entering point or a block reaches, and puts to sleep the
+  /// awake tiles whose points have all been slower than SleepDef::speed for SleepDef::time and
+  /// that no block reaches (their points at rest: v = 0, B = 0, L = 0). Rebuilds the share and
+  /// the runs when a tile changed.
+  void update(Particles& P, const Grid& G, KernelType kernel, Real dt);
+  /// The sleepers' share rebuilt from the points (after a checkpoint is read).
+  void rebuild(const Particles& P, KernelType kernel);
+
+  ///@{
+  /// The sleepers' mass (after P2G) and internal force (after the stress sweep) added to the
+  /// nodes [first, end).
+  void addMass(Grid& G, int first, int end) const;
+  void addForce(Grid& G, int first, int end) const;
+  ///@}
+  /// The awake points as runs of at most kRun points in storage order (any() only).
+  const std::vector<PointRun>& runs() const { return runs_; }
+  /// Points per run: a multiple of every SIMD width, small enough to share among threads.
+  static constexpr long kRun = 256;
+
+ private:
+  friend struct detail::CheckpointAccess;
+  /// What outlives a step: the tiles' states and quiet times (the points' flags are a column
+  /// of Particles; the share and the runs are rebuilt from them).
+  template <class Archive>
+  void stateIo(Archive& ar) {
+    ar(asleep_, quiet_);
+  }
+  int tileOf(const Grid& G, Real x, Real y) const;
+
+  SleepDef def_;
+  int nx_ = 0, ny_ = 0;               ///< tiles per axis (Tiles::nx, ny)
+  Real margin_ = 0;                   ///< m
+  std::vector<std::uint8_t> asleep_;  ///< per tile, 1 while its points sleep
+  std::vector<Real> quiet_;           ///< per tile, how long its points have been slow (s)
+  std::vector<std::uint8_t> fast_, entered_, near_;  ///< per tile, scratch of update()
+  long sleeping_points_ = 0;
+  Tiles sleepers_;  ///< the sleeping points by tile (Tiles::bin with asleep)
+  Grid share_;      ///< their mass, (zero) momentum and internal force on the nodes
+  std::vector<PointRun> runs_;
+};
+
+}  // namespace mpm_sdem

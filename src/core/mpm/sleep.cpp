@@ -1,0 +1,146 @@
+#include "mpm_sdem/core/mpm/sleep.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sweeps.hpp"
+
+namespace mpm_sdem {
+
+void Sleep::init(const SleepDef& def, const Grid& g, const Tiles& t) {
+  def_ = def;
+  nx_ = t.nx;
+  ny_ = t.ny;
+  // Two tiles by default: a block is seen before it reaches a sleeping point's stencil, its
+  // contact reach or the contact search's Verlet margin, all within a few cells.
+  margin_ = def.margin > 0 ? def.margin : 2 * Tiles::kSize * g.h;
+  const std::size_t n = static_cast<std::size_t>(nx_) * ny_;
+  for (auto* a : {&asleep_, &fast_, &entered_, &near_}) a->assign(n, 0);
+  quiet_.assign(n, 0);
+  sleeping_points_ = 0;
+  runs_.clear();
+  if (!on()) return;
+  sleepers_.init(g);
+  share_.init(g.origin + Vec2(Grid::kPad * g.h, Grid::kPad * g.h), g.cells_x, g.cells_y, g.h);
+}
+
+int Sleep::tileOf(const Grid& G, Real x, Real y) const {
+  // As Tiles::sort bins a point.
+  const int a = static_cast<int>((x - G.origin.x()) * G.inv_h) / Tiles::kSize;
+  const int b = static_cast<int>((y - G.origin.y()) * G.inv_h) / Tiles::kSize;
+  return std::clamp(a, 0, nx_ - 1) + std::clamp(b, 0, ny_ - 1) * nx_;
+}
+
+void Sleep::keepAwake(const Vec2& lo, const Vec2& hi) {
+  if (!on() || nx_ == 0) return;
+  // Tiles are kSize cells of h from the grid's origin; the origin is Sleep-independent, so the
+  // tile's box is read back from its index.
+  const Real tile = Tiles::kSize * share_.h;
+  const Vec2 a = (lo - share_.origin).array() - margin_, b = (hi - share_.origin).array() + margin_;
+  const int i0 = std::clamp(static_cast<int>(std::floor(a.x() / tile)), 0, nx_ - 1);
+  const int i1 = std::clamp(static_cast<int>(std::floor(b.x() / tile)), 0, nx_ - 1);
+  const int j0 = std::clamp(static_cast<int>(std::floor(a.y() / tile)), 0, ny_ - 1);
+  const int j1 = std::clamp(static_cast<int>(std::floor(b.y() / tile)), 0, ny_ - 1);
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) near_[i + j * nx_] = 1;
+}
+
+void Sleep::update(Particles& P, const Grid& G, KernelType kernel, Real dt) {
+  if (!on()) return;
+  const long n = static_cast<long>(P.size());
+  const Real speed2 = def_.speed * def_.speed;
+  // Per tile: bit 1 an awake point is in it, bit 2 one of them is fast.
+  std::fill(fast_.begin(), fast_.end(), 0);
+  std::fill(entered_.begin(), entered_.end(), 0);
+  for (long p = 0; p < n; ++p) {
+    if (P.asleep[p]) continue;
+    const int t = tileOf(G, P.x[p], P.y[p]);
+    const bool fast = P.vx[p] * P.vx[p] + P.vy[p] * P.vy[p] > speed2;
+    fast_[t] |= fast ? 3 : 1;
+    entered_[t] |= asleep_[t];  // an awake point in a sleeping tile
+  }
+  // A node a tile's points read (cells c of the tile read nodes c - 1 .. c + 2) moving faster
+  // than the sleep speed: the load of a moving neighbour has reached the tile.
+  auto fastNode = [&](int t) {
+    const int a = (t % nx_) * Tiles::kSize, b = (t / nx_) * Tiles::kSize;
+    for (int j = std::max(b - 1, 0); j <= std::min(b + Tiles::kSize + 1, G.ny - 1); ++j) {
+      for (int i = std::max(a - 1, 0); i <= std::min(a + Tiles::kSize + 1, G.nx - 1); ++i) {
+        const int k = G.index(i, j);
+        if (G.vel_x[k] * G.vel_x[k] + G.vel_y[k] * G.vel_y[k] > speed2) return true;
+      }
+    }
+    return false;
+  };
+  bool changed = false;
+  for (std::size_t t = 0; t < asleep_.size(); ++t) {
+    if (asleep_[t]) {
+      if (near_[t] || entered_[t] || fastNode(static_cast<int>(t))) {
+        asleep_[t] = 0;
+        quiet_[t] = 0;
+        changed = true;
+      }
+    } else if (fast_[t]) {
+      quiet_[t] = near_[t] || (fast_[t] & 2) ? 0 : quiet_[t] + dt;
+      if (quiet_[t] >= def_.time) {
+        asleep_[t] = 1;
+        changed = true;
+      }
+    } else {
+      quiet_[t] = 0;  // empty: a point entering starts the count afresh
+    }
+  }
+  std::fill(near_.begin(), near_.end(), 0);
+  if (!changed) return;
+  for (long p = 0; p < n; ++p) {
+    const std::uint8_t tile_asleep = asleep_[tileOf(G, P.x[p], P.y[p])];
+    if (P.asleep[p] == tile_asleep) continue;
+    P.asleep[p] = tile_asleep;
+    if (!tile_asleep) continue;
+    // At rest: a sleeper holds no momentum, and its stress stays as it is.
+    for (auto* c : {&P.vx, &P.vy, &P.bxx, &P.bxy, &P.byx, &P.byy, &P.lxx, &P.lxy, &P.lyx, &P.lyy})
+      (*c)[p] = 0;
+  }
+  rebuild(P, kernel);
+}
+
+void Sleep::rebuild(const Particles& P, KernelType kernel) {
+  const long n = static_cast<long>(P.size());
+  sleeping_points_ = 0;
+  for (long p = 0; p < n; ++p) sleeping_points_ += P.asleep[p];
+  runs_.clear();
+  if (!on()) return;
+  share_.forEachField([](std::vector<Real>& a) { std::fill(a.begin(), a.end(), Real(0)); });
+  if (sleeping_points_ == 0) return;
+  // The share: P2G of the sleepers alone, mass and the internal force of their stress (their
+  // momentum is zero); always the whole of it, so that it depends on the points only.
+  sleepers_.bin(P, share_, true);
+  detail::particleToGrid(kernel, {true, true, false}, P, share_, sleepers_);
+  for (long p = 0; p < n;) {
+    if (P.asleep[p]) {
+      ++p;
+      continue;
+    }
+    const long begin = p;
+    while (p < n && !P.asleep[p] && p - begin < kRun) ++p;
+    runs_.push_back({begin, p});
+  }
+}
+
+void Sleep::addMass(Grid& G, int first, int end) const {
+  const Real* m = share_.mass.data();
+  Real* gm = G.mass.data();
+#pragma omp simd
+  for (int i = first; i < end; ++i) gm[i] += m[i];
+}
+
+void Sleep::addForce(Grid& G, int first, int end) const {
+  const Real *fx = share_.force_x.data(), *fy = share_.force_y.data();
+  Real *gx = G.force_x.data(), *gy = G.force_y.data();
+#pragma omp simd
+  for (int i = first; i < end; ++i) {
+    gx[i] += fx[i];
+    gy[i] += fy[i];
+  }
+}
+
+}  // namespace mpm_sdem
