@@ -1,6 +1,7 @@
 // Worlds of the robot cases: the driven wheel and the blade against Reece's equation.
 #include "cases.hpp"
 #include "mpm_sdem/core/checkpoint.hpp"
+#include "mpm_sdem/core/mpm/initial_stress.hpp"
 #include "mpm_sdem/core/mpm/materials/drucker_prager.hpp"
 #include "mpm_sdem/core/stepper.hpp"
 
@@ -162,31 +163,8 @@ WorldDef excavatorBlade(const Blade& c) {
 
 void layerWeightAsStress(World& w, Real spacing) {
   Particles& P = w.particles();
-  const MaterialDef& m = w.def().materials[0];
-  const Real nu =
-      (3 * m.bulk_modulus - 2 * m.shear_modulus) / (2 * (3 * m.bulk_modulus + m.shear_modulus));
-  const Real k0 = nu / (1 - nu), g = -w.def().solver.gravity.y();
-  const Real s = spacing;
-  std::map<long, Real> top;
-  for (std::size_t p = 0; p < P.size(); ++p) {
-    const long col = std::lround(P.x[p] / s - 0.5);
-    auto it = top.find(col);
-    if (it == top.end() || it->second < P.y[p]) top[col] = P.y[p];
-  }
-  for (std::size_t p = 0; p < P.size(); ++p) {
-    const Real z = top[std::lround(P.x[p] / s - 0.5)] + s / 2 - P.y[p];
-    P.syy[p] = -m.density * g * z;
-    P.sxx[p] = P.szz[p] = k0 * P.syy[p];
-    P.sxy[p] = 0;
-    if (m.model == MaterialModel::kGranular) {
-      // The granular pressure is K ln(1 / J), a function of the volume ratio: the point is
-      // given the J of that stress (sigma_m = K ln J), its unstressed volume V0 = V / J so that
-      // its volume V0 J stays the lattice's.
-      const Real J = std::exp((P.sxx[p] + P.syy[p] + P.szz[p]) / (3 * m.bulk_modulus));
-      P.J[p] = J;
-      P.volume0[p] /= J;
-    }
-  }
+  setLayerWeightAsStress(P, 0, P.size(), w.def().materials[0], -w.def().solver.gravity.y(), spacing,
+                         w.def().domain.min.x());
 }
 
 BladePush pushBlade(World& w, const Blade& c, Real travel) {

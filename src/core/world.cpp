@@ -219,7 +219,7 @@ StepInfo World::step(Real dt) {
     if (coupled) couplingStage(dt, kick, f);
   };
   stage(&Coupling::beforeStep);
-  binParticles();
+  binParticles(dt);
   mpm.clearGrid();
   if (def_.solver.stress_update == StressUpdate::kUsf) {
     // The SPH particles' velocity gradient and stress first: it needs no grid, and the band's
@@ -257,7 +257,6 @@ StepInfo World::step(Real dt) {
   stage(&Coupling::afterMaterialStep);
   if (coupled && !coupling_->subcycles()) stepBodies(dt);  // else in correctGridVelocity
   if (blocks_) checkBlocks(info);
-  sleepAndWake(dt);
   velocity_lag_ = Real(0.5) * dt;
   time_ += dt;
   ++steps_;
@@ -265,7 +264,7 @@ StepInfo World::step(Real dt) {
   return info;
 }
 
-void World::sleepAndWake(Real dt) {
+void World::keepBlocksAwake() {
   Sleep& sleep = mpm_.sleep();
   if (!sleep.on()) return;
   // Every block keeps the tiles within the margin of its box awake, moving or not (a block at
@@ -282,7 +281,6 @@ void World::sleepAndWake(Real dt) {
     const Vec2 x(P.x[l.particle], P.y[l.particle]);
     sleep.keepAwake(x, x);
   }
-  mpm_.sleepAndWake(dt);
 }
 
 void World::correctedWalls(Real kick) {
@@ -293,9 +291,10 @@ void World::correctedWalls(Real kick) {
   mpm_.applyWalls();
 }
 
-void World::binParticles() {
+void World::binParticles(Real dt) {
   if (sph_) return detail::binWithSph(*sph_, sphWorld());
-  mpm_.bin();
+  keepBlocksAwake();
+  mpm_.bin(dt);
 }
 
 void World::reverseVelocities() {

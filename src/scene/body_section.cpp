@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "mpm_sdem/core/limits.hpp"
+#include "mpm_sdem/core/mpm/initial_stress.hpp"
 #include "mpm_sdem/core/mpm/shapes.hpp"
 
 namespace mpm_sdem::scene {
@@ -66,7 +67,7 @@ void parseBodies(const Context& ctx, const MapReader& top, Scene& s,
     const std::string path = "bodies[" + std::to_string(i) + "]";
     MapReader r(ctx, list[i], path,
                 {"name", "material", "shape", "min", "max", "vertices", "center", "radius",
-                 "points_per_cell", "velocity"});
+                 "points_per_cell", "velocity", "initial_stress"});
     BodyDef b;
     b.name = r.name("name");
     const std::string mat = r.text("material");
@@ -85,6 +86,11 @@ void parseBodies(const Context& ctx, const MapReader& top, Scene& s,
     b.velocity = r.vec2("velocity", "m/s", b.velocity);
     r.require("velocity", limits::rangeProblem(b.velocity.norm(), limits::kSpeed),
               "its magnitude ");
+    b.geostatic = r.choice<bool>("initial_stress", {{"none", false}, {"geostatic", true}}, false);
+    if (b.geostatic) {
+      const std::string why = geostaticProblem(s.world.materials[b.material]);
+      r.require(why.empty(), "initial_stress", "geostatic: " + why);
+    }
 
     Vec2 lo, hi;
     bounds(b.shape, lo, hi);

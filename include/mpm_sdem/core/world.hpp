@@ -176,11 +176,11 @@ class World {
   /// The coupling springs' stable step (seed 000 eq. 51, second term): the step's bound, or the
   /// substep of subcycled springs.
   Real springStep(Real kappa2) const;
-  /// The points binned by tile (with SPH: and the SPH particles' kinds and band).
-  void binParticles();
-  /// After a step of dt: the blocks and point loads keep their tiles awake, then the material's
-  /// tiles sleep or wake (SolverDef::sleep).
-  void sleepAndWake(Real dt);
+  /// The points binned by tile for a step of dt (with SPH: and the SPH particles' kinds and
+  /// band; with sleeping material: which tiles sleep).
+  void binParticles(Real dt);
+  /// The blocks and point loads keep the tiles near them awake (SolverDef::sleep).
+  void keepBlocksAwake();
   /// The step's velocity change after a coupling's correction: damped (SolverDef::damping) as
   /// a whole, and the walls again (a correction may push into one).
   void correctedWalls(Real kick);

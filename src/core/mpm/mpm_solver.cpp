@@ -8,6 +8,7 @@
 
 #include "../parallel.hpp"
 #include "mpm_sdem/core/mpm/constitutive.hpp"
+#include "mpm_sdem/core/mpm/initial_stress.hpp"
 #include "sweeps.hpp"
 #include "transfer.hpp"
 
@@ -89,6 +90,9 @@ MpmSolver::MpmSolver(const DomainDef& domain, Real cell_size, const SolverDef& s
       particles_.body[p] = static_cast<std::uint16_t>(b);
       ++p;
     }
+    if (body.geostatic)
+      setLayerWeightAsStress(particles_, p - filled[b].size(), p, mat, -solver.gravity.y(), spacing,
+                             domain.min.x());
   }
   // Points in tile order from the start, so that the sweeps read them in sequence.
   tiles_.bin(particles_, grid_);
@@ -151,9 +155,12 @@ MpmSolver::Memory MpmSolver::memory() const {
   return m;
 }
 
-void MpmSolver::bin() {
+void MpmSolver::bin(Real dt) {
   StageTimer timer(profile_, Stage::kSort);
-  tiles_.bin(particles_, grid_);
+  const std::vector<PointRun>* awake = sleep_.any() ? &sleep_.runs() : nullptr;
+  tiles_.bin(particles_, grid_, false, awake);
+  if (sleep_.on() && sleep_.update(particles_, tiles_, grid_, def_.kernel, dt))
+    tiles_.rebin(particles_, grid_, sleep_.any() ? &sleep_.runs() : nullptr);
 }
 
 template <class F>
@@ -357,12 +364,6 @@ void MpmSolver::constitutiveUpdate(Real dt) {
   StageTimer timer(profile_, Stage::kConstitutive);
   if (dt == 0) return;
   detail::updateStresses(particles_, params_, dt);
-}
-
-void MpmSolver::sleepAndWake(Real dt) {
-  if (!sleep_.on()) return;
-  StageTimer timer(profile_, Stage::kSort);
-  sleep_.update(particles_, grid_, def_.kernel, dt);
 }
 
 void MpmSolver::reverseVelocities() {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "parallel.hpp"
 #include "sweeps.hpp"
 
 namespace mpm_sdem {
@@ -15,7 +16,7 @@ void Sleep::init(const SleepDef& def, const Grid& g, const Tiles& t) {
   // contact reach or the contact search's Verlet margin, all within a few cells.
   margin_ = def.margin > 0 ? def.margin : 2 * Tiles::kSize * g.h;
   const std::size_t n = static_cast<std::size_t>(nx_) * ny_;
-  for (auto* a : {&asleep_, &fast_, &entered_, &near_}) a->assign(n, 0);
+  for (auto* a : {&asleep_, &change_, &near_}) a->assign(n, 0);
   quiet_.assign(n, 0);
   sleeping_points_ = 0;
   runs_.clear();
@@ -45,22 +46,12 @@ void Sleep::keepAwake(const Vec2& lo, const Vec2& hi) {
     for (int i = i0; i <= i1; ++i) near_[i + j * nx_] = 1;
 }
 
-void Sleep::update(Particles& P, const Grid& G, KernelType kernel, Real dt) {
-  if (!on()) return;
-  const long n = static_cast<long>(P.size());
+bool Sleep::update(Particles& P, const Tiles& T, const Grid& G, KernelType kernel, Real dt) {
+  if (!on()) return false;
   const Real speed2 = def_.speed * def_.speed;
-  // Per tile: bit 1 an awake point is in it, bit 2 one of them is fast.
-  std::fill(fast_.begin(), fast_.end(), 0);
-  std::fill(entered_.begin(), entered_.end(), 0);
-  for (long p = 0; p < n; ++p) {
-    if (P.asleep[p]) continue;
-    const int t = tileOf(G, P.x[p], P.y[p]);
-    const bool fast = P.vx[p] * P.vx[p] + P.vy[p] * P.vy[p] > speed2;
-    fast_[t] |= fast ? 3 : 1;
-    entered_[t] |= asleep_[t];  // an awake point in a sleeping tile
-  }
   // A node a tile's points read (cells c of the tile read nodes c - 1 .. c + 2) moving faster
-  // than the sleep speed: the load of a moving neighbour has reached the tile.
+  // than the sleep speed: the load of a moving neighbour has reached the tile. The grid holds
+  // the last step's velocities; nodes no awake point used are zero.
   auto fastNode = [&](int t) {
     const int a = (t % nx_) * Tiles::kSize, b = (t / nx_) * Tiles::kSize;
     for (int j = std::max(b - 1, 0); j <= std::min(b + Tiles::kSize + 1, G.ny - 1); ++j) {
@@ -71,36 +62,52 @@ void Sleep::update(Particles& P, const Grid& G, KernelType kernel, Real dt) {
     }
     return false;
   };
+  // Each tile decides from its own awake points (binned at their current positions) and
+  // nodes, so the tiles decide in parallel.
+  detail::parallelFor(static_cast<long>(asleep_.size()), [&](long t) {
+    const int begin = T.start[t], end = T.mpm_end[t];
+    change_[t] = kStays;
+    if (asleep_[t]) {
+      // An awake point in a sleeping tile has entered it.
+      if (near_[t] || begin != end || fastNode(static_cast<int>(t))) change_[t] = kWakes;
+      return;
+    }
+    if (begin == end) {
+      quiet_[t] = 0;  // empty: a point entering starts the count afresh
+      return;
+    }
+    bool fast = near_[t];
+    for (int q = begin; q < end && !fast; ++q) {
+      const int p = T.order[q];
+      fast = P.vx[p] * P.vx[p] + P.vy[p] * P.vy[p] > speed2;
+    }
+    quiet_[t] = fast ? 0 : quiet_[t] + dt;
+    if (quiet_[t] >= def_.time) change_[t] = kSleeps;
+  });
+  std::fill(near_.begin(), near_.end(), 0);
   bool changed = false;
   for (std::size_t t = 0; t < asleep_.size(); ++t) {
-    if (asleep_[t]) {
-      if (near_[t] || entered_[t] || fastNode(static_cast<int>(t))) {
-        asleep_[t] = 0;
-        quiet_[t] = 0;
-        changed = true;
+    if (change_[t] == kWakes) {
+      asleep_[t] = 0;
+      quiet_[t] = 0;
+      for (int q = sleepers_.start[t]; q < sleepers_.mpm_end[t]; ++q)
+        P.asleep[sleepers_.order[q]] = 0;
+      changed = true;
+    } else if (change_[t] == kSleeps) {
+      asleep_[t] = 1;
+      for (int q = T.start[t]; q < T.mpm_end[t]; ++q) {
+        // At rest: a sleeper holds no momentum, and its stress stays as it is.
+        const int p = T.order[q];
+        P.asleep[p] = 1;
+        for (auto* c :
+             {&P.vx, &P.vy, &P.bxx, &P.bxy, &P.byx, &P.byy, &P.lxx, &P.lxy, &P.lyx, &P.lyy})
+          (*c)[p] = 0;
       }
-    } else if (fast_[t]) {
-      quiet_[t] = near_[t] || (fast_[t] & 2) ? 0 : quiet_[t] + dt;
-      if (quiet_[t] >= def_.time) {
-        asleep_[t] = 1;
-        changed = true;
-      }
-    } else {
-      quiet_[t] = 0;  // empty: a point entering starts the count afresh
+      changed = true;
     }
   }
-  std::fill(near_.begin(), near_.end(), 0);
-  if (!changed) return;
-  for (long p = 0; p < n; ++p) {
-    const std::uint8_t tile_asleep = asleep_[tileOf(G, P.x[p], P.y[p])];
-    if (P.asleep[p] == tile_asleep) continue;
-    P.asleep[p] = tile_asleep;
-    if (!tile_asleep) continue;
-    // At rest: a sleeper holds no momentum, and its stress stays as it is.
-    for (auto* c : {&P.vx, &P.vy, &P.bxx, &P.bxy, &P.byx, &P.byy, &P.lxx, &P.lxy, &P.lyx, &P.lyy})
-      (*c)[p] = 0;
-  }
-  rebuild(P, kernel);
+  if (changed) rebuild(P, kernel);
+  return changed;
 }
 
 void Sleep::rebuild(const Particles& P, KernelType kernel) {

@@ -24,19 +24,33 @@ void Tiles::init(const Grid& g) {
   retired.clear();
 }
 
-void Tiles::bin(const Particles& P, const Grid& g, bool asleep) {
-  sort(P, g, false, asleep);
+void Tiles::bin(const Particles& P, const Grid& g, bool asleep,
+                const std::vector<PointRun>* awake) {
+  sort(P, g, false, asleep, awake);
+  activate();
+}
+
+void Tiles::rebin(const Particles& P, const Grid& g, const std::vector<PointRun>* awake) {
+  sort(P, g, false, false, awake);
+  active.swap(previous);  // activate() swaps them back: previous is the last step's again
   activate();
 }
 
 void Tiles::binByKind(const Particles& P, const Grid& g) {
-  sort(P, g, true, false);
+  sort(P, g, true, false, nullptr);
 }
 
-void Tiles::sort(const Particles& P, const Grid& g, bool by_kind, bool asleep) {
+void Tiles::sort(const Particles& P, const Grid& g, bool by_kind, bool asleep,
+                 const std::vector<PointRun>* awake) {
   const long n = static_cast<long>(P.size());
   key_.resize(n);
-  order.resize(n);
+  // Without runs, one run of every point.
+  const PointRun all{0, n};
+  const PointRun* runs = awake ? awake->data() : &all;
+  const long run_count = awake ? static_cast<long>(awake->size()) : 1;
+  long binned = 0;
+  for (long r = 0; r < run_count; ++r) binned += runs[r].end - runs[r].begin;
+  order.resize(binned);
   // Keys are tile * kinds + kind; one kind when kinds are not told apart.
   const int kinds = by_kind ? 2 : 1;
   // One bucket past the tiles holds the points not binned (awake or asleep, as not asked).
@@ -49,11 +63,22 @@ void Tiles::sort(const Particles& P, const Grid& g, bool by_kind, bool asleep) {
   // stable one whatever the thread count.
   auto countingSort = [&] {
     const int threads = omp_get_num_threads(), me = omp_get_thread_num();
-    const long lo = n * me / threads, hi = n * (me + 1) / threads;
+    // This thread's share of the points: a contiguous range of them in storage order, across
+    // the runs, as without runs.
+    auto forMyPoints = [&](auto&& f) {
+      const long lo = binned * me / threads, hi = binned * (me + 1) / threads;
+      long offset = 0;  // points of the runs before run r
+      for (long r = 0; r < run_count && offset < hi; ++r) {
+        const long len = runs[r].end - runs[r].begin;
+        const long first = std::max(lo - offset, 0L), last = std::min(hi - offset, len);
+        for (long p = runs[r].begin + first; p < runs[r].begin + last; ++p) f(p);
+        offset += len;
+      }
+    };
     int* count = counts_.data() + static_cast<std::size_t>(me) * buckets;
     std::fill(count, count + buckets, 0);
     const std::uint8_t want = asleep ? 1 : 0;
-    for (long p = lo; p < hi; ++p) {
+    forMyPoints([&](long p) {
       // Points are kept inside the domain, so their cell lies inside the grid; the clamps only
       // guard against a non-finite position, which the step reports separately.
       const int a = static_cast<int>((P.x[p] - ox) * inv_h) / kSize;
@@ -61,7 +86,7 @@ void Tiles::sort(const Particles& P, const Grid& g, bool by_kind, bool asleep) {
       const int t = std::clamp(a, 0, last_x) + std::clamp(b, 0, last_y) * nx;
       key_[p] = P.asleep[p] != want ? tiles : by_kind ? 2 * t + P.kind[p] : t;
       ++count[key_[p]];
-    }
+    });
 #pragma omp barrier
 #pragma omp single
     {
@@ -78,7 +103,7 @@ void Tiles::sort(const Particles& P, const Grid& g, bool by_kind, bool asleep) {
         }
       }
     }
-    for (long p = lo; p < hi; ++p) order[count[key_[p]]++] = static_cast<int>(p);
+    forMyPoints([&](long p) { order[count[key_[p]]++] = static_cast<int>(p); });
   };
   // Outside a parallel region (one thread) the barrier is nothing and the single block runs.
   if (detail::singleThread()) {

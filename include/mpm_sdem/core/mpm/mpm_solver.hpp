@@ -85,8 +85,9 @@ class MpmSolver {
 
   /// @name Stages, in the order of a step
   ///@{
-  /// The awake points binned by grid tile.
-  void bin();
+  /// The awake points binned by grid tile; then, with sleeping material, which tiles sleep in
+  /// this step of dt (Sleep::update; the blocks' boxes given to sleep().keepAwake first).
+  void bin(Real dt);
   /// Zeroes the nodes the last step used.
   void clearGrid();
   /// P2G: mass and momentum (with APIC's affine part), and with force the internal force (USL).
@@ -121,9 +122,6 @@ class MpmSolver {
   void gridToParticle(Real dt, const Tiles* material_points, long& clamped, bool& finite);
   /// USL: the stress update after G2P.
   void constitutiveUpdate(Real dt);
-  /// Between steps, after a step of dt: which tiles sleep from now on (Sleep::update; the
-  /// blocks' boxes given to sleep().keepAwake first).
-  void sleepAndWake(Real dt);
   ///@}
 
   /// Negates the points' velocities and affine matrices (World::reverseVelocities).

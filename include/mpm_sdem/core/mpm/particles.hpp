@@ -74,6 +74,14 @@ struct Particles {
   }
 };
 
+/// A run of points [begin, end) in storage order (the awake ones while some sleep).
+struct PointRun {
+  ///@{
+  /// Point indices of the run.
+  long begin, end;
+  ///@}
+};
+
 /// Moves every point by an independent uniform draw in [-amplitude, amplitude] (m) along x, then
 /// along y, from std::mt19937(seed): the members of an ensemble (chaotic scenes: a converged
 /// result is a converged distribution). The same seed gives the same positions on every machine.

@@ -33,6 +33,9 @@ struct BodyDef {
   int material = 0;         ///< index into WorldDef::materials
   int points_per_cell = 2;  ///< per direction
   Vec2 velocity{0, 0};      ///< m/s
+  /// Start from its own weight at rest (setLayerWeightAsStress) instead of unstressed: a bed
+  /// in equilibrium from the first step. Not for fluids.
+  bool geostatic = false;
 };
 
 /// Whether p lies inside the shape.

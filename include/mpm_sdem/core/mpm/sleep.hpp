@@ -19,14 +19,6 @@
 
 namespace mpm_sdem {
 
-/// A run of awake points [begin, end) in storage order: what G2P moves while some sleep.
-struct PointRun {
-  ///@{
-  /// Point indices of the run.
-  long begin, end;
-  ///@}
-};
-
 /// Which tiles sleep, and the sleepers' share of the grid (see the file's comment).
 class Sleep {
  public:
@@ -40,14 +32,15 @@ class Sleep {
   long sleepingPoints() const { return sleeping_points_; }
 
   /// Keeps the tiles that overlap the box [lo, hi] grown by the margin awake (a block's box);
-  /// for the next update() only.
+  /// until the next update().
   void keepAwake(const Vec2& lo, const Vec2& hi);
-  /// Between steps, after a step of dt (s) whose grid G holds the nodes' velocities: wakes the
-  /// sleeping tiles a fast node, an entering point or a block reaches, and puts to sleep the
-  /// awake tiles whose points have all been slower than SleepDef::speed for SleepDef::time and
-  /// that no block reaches (their points at rest: v = 0, B = 0, L = 0). Rebuilds the share and
-  /// the runs when a tile changed.
-  void update(Particles& P, const Grid& G, KernelType kernel, Real dt);
+  /// At the start of a step of dt (s), with T the awake points binned where they are and G the
+  /// last step's nodal velocities: wakes the sleeping tiles a fast node, an entering point or a
+  /// block reaches, and puts to sleep the awake tiles whose points have all been slower than
+  /// SleepDef::speed for SleepDef::time and that no block reaches (their points at rest: v = 0,
+  /// B = 0, L = 0). Rebuilds the share and the runs when a tile changed, and then returns true:
+  /// the awake points must be binned again (Tiles::rebin).
+  bool update(Particles& P, const Tiles& T, const Grid& G, KernelType kernel, Real dt);
   /// The sleepers' share rebuilt from the points (after a checkpoint is read).
   void rebuild(const Particles& P, KernelType kernel);
 
@@ -77,7 +70,9 @@ class Sleep {
   Real margin_ = 0;                   ///< m
   std::vector<std::uint8_t> asleep_;  ///< per tile, 1 while its points sleep
   std::vector<Real> quiet_;           ///< per tile, how long its points have been slow (s)
-  std::vector<std::uint8_t> fast_, entered_, near_;  ///< per tile, scratch of update()
+  enum Change : std::uint8_t { kStays, kSleeps, kWakes };
+  std::vector<std::uint8_t> change_;  ///< per tile, update()'s decision (Change)
+  std::vector<std::uint8_t> near_;    ///< per tile, 1 if keepAwake() reached it
   long sleeping_points_ = 0;
   Tiles sleepers_;  ///< the sleeping points by tile (Tiles::bin with asleep)
   Grid share_;      ///< their mass, (zero) momentum and internal force on the nodes

@@ -50,8 +50,14 @@ struct Tiles {
   std::size_t particleBytes() const { return (key_.capacity() + order.capacity()) * sizeof(int); }
   /// Bin the awake particles (Particles::asleep 0; with asleep, the sleeping ones instead) by
   /// the cell they are in (stable counting sort, O(N + tiles)), every one taking part in the grid
-  /// sums; then activate(). The others follow the last tile in order, outside every tile.
-  void bin(const Particles& P, const Grid& g, bool asleep = false);
+  /// sums; then activate(). The others follow the last tile in order, outside every tile. Given
+  /// the awake points' runs (Sleep::runs), only those are read and binned, and order holds them
+  /// alone.
+  void bin(const Particles& P, const Grid& g, bool asleep = false,
+           const std::vector<PointRun>* awake = nullptr);
+  /// Bin the awake particles again in the same step (after some fell asleep or woke): the
+  /// previous step's active tiles stay previous, so that clearing the grid still finds them.
+  void rebin(const Particles& P, const Grid& g, const std::vector<PointRun>* awake);
   /// Bin by tile and, within a tile, by Particles::kind (material points first). grid_end is
   /// mpm_end: the caller adds the SPH particles of the band, then calls activate().
   void binByKind(const Particles& P, const Grid& g);
@@ -76,7 +82,8 @@ struct Tiles {
   void stateIo(Archive& ar) {
     ar(start, order, mpm_end, grid_end, colour, active, previous, retired);
   }
-  void sort(const Particles& P, const Grid& g, bool by_kind, bool asleep);
+  void sort(const Particles& P, const Grid& g, bool by_kind, bool asleep,
+            const std::vector<PointRun>* awake);
 
   std::vector<int> key_;              ///< per particle, its tile (times 2, plus its kind)
   std::vector<int> counts_;           ///< per thread and tile: count, then write position
