@@ -166,6 +166,12 @@ TEST(RobotScenes, ExcavatorBladeSceneIsTheValidationWorld) {
   const WorldDef scene = loadScene(test::sourcePath("config/scenes/excavator_blade.yaml")).world;
   const WorldDef c = cases::excavatorBlade(cases::Blade{});  // d 6 cm, 5 mm cells, friction 0.3
   expectSameWorld(scene, c);
+  // The validation starts from the layer's weight too (cases::layerWeightAsStress, the same
+  // rule), after building its world; it runs every point awake, the reference for the scene's
+  // sleeping material.
+  ASSERT_EQ(scene.bodies.size(), 1u);
+  EXPECT_TRUE(scene.bodies[0].geostatic);
+  EXPECT_TRUE(cases::Blade{}.geostatic);
   ASSERT_EQ(c.blocks.size(), 1u);
   expectSameOutline(scene.blocks[0], c.blocks[0]);
 }

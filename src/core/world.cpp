@@ -195,7 +195,9 @@ Real World::springStep(Real kappa2) const {
 
 bool World::sharesWork() const {
   // An SPH particle's neighbour sums cost many material points' work: SPH worlds always share.
-  return sph_ || static_cast<long>(mpm_.particles().size()) >= def_.solver.parallel_min_points;
+  // Only the awake points take part (SolverDef::sleep).
+  const long points = static_cast<long>(mpm_.particles().size()) - mpm_.sleep().sleepingPoints();
+  return sph_ || points >= def_.solver.parallel_min_points;
 }
 
 StepInfo World::step(Real dt) {

@@ -115,6 +115,22 @@ TimeStepChoice MpmSolver::materialStep(Real cfl, Real longest) const {
       const Real speed = std::sqrt(c2 > 0 ? c2 : Real(0)) + std::sqrt(v2);
       return speed > s ? speed : s;
     };
+    if (sleep_.any()) {
+      // The sleepers' speed changes only when some fall asleep or wake (their v is zero, their
+      // J kept): scanned then, the awake runs every step. A maximum: the same in any order.
+      if (sleepers_generation_ != sleep_.generation()) {
+        sleepers_generation_ = sleep_.generation();
+        sleepers_speed_ = 0;
+        for (long p = 0; p < n; ++p)
+          if (P.asleep[p]) sleepers_speed_ = faster(sleepers_speed_, p);
+      }
+      fastest = sleepers_speed_;
+      for (const PointRun& r : sleep_.runs()) {
+#pragma omp simd reduction(max : fastest)
+        for (long p = r.begin; p < r.end; ++p) fastest = faster(fastest, p);
+      }
+      return;
+    }
     if (detail::singleThread()) {
 #pragma omp simd reduction(max : fastest)
       for (long p = 0; p < n; ++p) fastest = faster(fastest, p);

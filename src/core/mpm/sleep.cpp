@@ -111,6 +111,7 @@ bool Sleep::update(Particles& P, const Tiles& T, const Grid& G, KernelType kerne
 }
 
 void Sleep::rebuild(const Particles& P, KernelType kernel) {
+  ++generation_;
   const long n = static_cast<long>(P.size());
   sleeping_points_ = 0;
   for (long p = 0; p < n; ++p) sleeping_points_ += P.asleep[p];

@@ -145,6 +145,11 @@ class MpmSolver {
   Grid grid_;
   Tiles tiles_;
   Sleep sleep_;
+  ///@{
+  /// The sleepers' fastest wave speed (m/s), as of Sleep::generation (materialStep's cache).
+  mutable long sleepers_generation_ = -1;
+  mutable Real sleepers_speed_ = 0;
+  ///@}
   std::vector<Tiles::NodeRun> node_runs_;  ///< scratch of forActiveNodes
   /// Per node: the side walls' largest friction force (N/m), when the domain has side walls.
   std::vector<Real> sidewall_load_;

@@ -30,6 +30,8 @@ class Sleep {
   bool any() const { return sleeping_points_ > 0; }
   /// Points asleep now.
   long sleepingPoints() const { return sleeping_points_; }
+  /// Counts the rebuilds: it changes whenever the sleeping points do.
+  long generation() const { return generation_; }
 
   /// Keeps the tiles that overlap the box [lo, hi] grown by the margin awake (a block's box);
   /// until the next update().
@@ -74,6 +76,7 @@ class Sleep {
   std::vector<std::uint8_t> change_;  ///< per tile, update()'s decision (Change)
   std::vector<std::uint8_t> near_;    ///< per tile, 1 if keepAwake() reached it
   long sleeping_points_ = 0;
+  long generation_ = 0;
   Tiles sleepers_;  ///< the sleeping points by tile (Tiles::bin with asleep)
   Grid share_;      ///< their mass, (zero) momentum and internal force on the nodes
   std::vector<PointRun> runs_;

@@ -60,7 +60,7 @@ struct SolverDef {
   /// true. 1: off.
   Real inertia_scale = 1;
   SleepDef sleep;  ///< sleeping material (off by default)
-  /// A world of fewer material points and no SPH steps on the calling thread alone:
+  /// A world of fewer awake material points and no SPH steps on the calling thread alone:
   /// below this, starting and ending a step's ~24 parallel regions (3.5 us each on two cores
   /// here) costs more than sharing its work saves (docs/performance.md). Speed only: the results
   /// are bit-identical on any number of threads (test_threads). 0: always share.
