@@ -113,6 +113,12 @@ TEST(SceneErrors, SleepingMaterialWhereItIsWellPosed) {
   EXPECT_EQ(errorOf("valid.yaml", {"solver.sleep_speed=0.01", "solver.sleep_time=0.1",
                                    "solver.sleep_margin=0.02"}),
             "");
+  // A bed at rest from the start: not a fluid, whose pressure follows from its density.
+  expectError(errorOf("valid_fluid.yaml", {"bodies.column.initial_stress=geostatic"}),
+              "valid_fluid.yaml", "initial_stress", "a fluid's pressure follows from its density");
+  expectError(errorOf("valid.yaml", {"bodies.column.initial_stress=weight"}), "valid.yaml",
+              "initial_stress", "geostatic");
+  EXPECT_EQ(errorOf("valid.yaml", {"bodies.column.initial_stress=geostatic"}), "");
 }
 
 // A cluster of discs listed, or a shape filled with discs (the wedge's 2.2 cm outline takes

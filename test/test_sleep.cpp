@@ -156,3 +156,29 @@ TEST(Sleep, AwakePointsRestOnASleepingColumn) {
   const Real c = std::sqrt(2e6 * (1 - 0.3) / ((1 + 0.3) * (1 - 2 * 0.3)) / rho);
   EXPECT_LT(worst, 2 * rho * c * 1e-3);
 }
+
+// bodies[].initial_stress: geostatic. The blade's bed (Drucker-Prager sand, 16 cm at 5 mm cells)
+// started at its own weight is at rest, where an unstressed one rings as its weight comes on;
+// so only a bed started at rest can sleep at once.
+TEST(Sleep, ABedStartedAtItsWeightIsAtRest) {
+  auto fastestAt = [](bool geostatic, Real t) {
+    WorldDef def = loadScene(test::sourcePath("config/scenes/excavator_blade.yaml")).world;
+    def.blocks.clear();  // a level bed alone
+    def.solver.sleep = SleepDef{};
+    def.bodies.at(0) = test::rectangle(Vec2(0, 0), Vec2(0.4, 0.16), 2);
+    def.bodies.at(0).geostatic = geostatic;
+    World w(def);
+    runUntil(w, t);
+    Real fastest = 0;
+    const Particles& P = w.particles();
+    for (std::size_t p = 0; p < P.size(); ++p)
+      fastest = std::fmax(fastest, std::hypot(P.vx[p], P.vy[p]));
+    return fastest;
+  };
+  const Real unstressed = fastestAt(false, 0.05), at_rest = fastestAt(true, 0.05);
+  std::printf("fastest point at 0.05 s: %.3g m/s unstressed, %.3g m/s from its weight\n",
+              unstressed, at_rest);
+  // The robot scenes' sleep speed is 5 mm/s: the bed from its weight must be below it.
+  EXPECT_LT(at_rest, 0.005);
+  EXPECT_GT(unstressed, 0.005);
+}

@@ -30,6 +30,7 @@ struct SleepDef {
   Real speed = 0;    ///< m/s: the speed below which points may sleep; 0: never
   Real time = 0.05;  ///< s: how long a tile's points stay slower than speed before they sleep
   Real margin = 0;   ///< m: how near a block keeps a tile awake; 0: two tiles (6 cells)
+  /// Whether points may sleep.
   bool on() const { return speed > 0; }
 };
 
