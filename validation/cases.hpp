@@ -587,6 +587,8 @@ struct Plate {
   Real friction_angle = 35;
   Real gravity = 9.81;
   TransferScheme transfer = TransferScheme::kApic;
+  // Sand at rest sleeps below this speed (m/s, solver.sleep_speed; 0: every point awake).
+  Real sleep_speed = 0;
 };
 WorldDef plateIntrusion(const Plate& c);
 // The plate's motion: for gamma > 0 from its start along gamma until its centre is `reach` deep;

@@ -362,6 +362,7 @@ WorldDef plateIntrusion(const Plate& c) {
   def.cell_size = h;
   def.solver.gravity = Vec2(0, -c.gravity);
   def.solver.transfer = c.transfer;
+  def.solver.sleep.speed = c.sleep_speed;
   Blade sand;  // the blade's sand
   sand.friction_angle = c.friction_angle;
   def.materials.push_back(bladeSand(sand));
@@ -399,6 +400,7 @@ std::string plateText(const Plate& c) {
     << c.thickness << " rounding " << c.rounding << " friction " << c.friction << " cell "
     << c.cell_size << " bed " << c.bed << " width " << c.width << " friction_angle "
     << c.friction_angle << " gravity " << c.gravity << " transfer " << static_cast<int>(c.transfer);
+  if (c.sleep_speed > 0) o << " sleep " << c.sleep_speed;
   return o.str();
 }
 

@@ -35,6 +35,7 @@ struct IntrusionRun {
   Real beta, gamma, speed, depth, h;  // deg, deg, m/s, m (drags), m
   TransferScheme transfer = TransferScheme::kApic;
   Real g = 9.81, phi = 35;  // m/s^2; the sand's friction angle (deg)
+  Real sleep = 0;           // solver.sleep_speed (m/s)
 };
 
 constexpr Real kIntrusionReference = 0.06;  // m: the depth at which speeds are compared
@@ -98,6 +99,7 @@ cases::Plate plateOf(const IntrusionRun& run) {
   c.transfer = run.transfer;
   c.gravity = run.g;
   c.friction_angle = run.phi;
+  c.sleep_speed = run.sleep;
   return c;
 }
 
@@ -136,6 +138,9 @@ void intrusionRun(const IntrusionRun& run, const std::string& name, bool medium,
       medium ? std::string(asflip ? ", ASFLIP" : ", APIC") + (run.g > 0 ? "" : ", no gravity") +
                    (run.phi == 35 ? "" : ", phi " + std::to_string(std::lround(run.phi)))
              : "";
+  const std::string sleep_name =
+      run.sleep > 0 ? ", asleep below " + std::to_string(std::lround(1e3 * run.sleep)) + " mm/s"
+                    : "";
   const Real from = cases::pushWindowStart(c);
   if (run.gamma > 0 && run.g == 0) {  // inertia alone: the window's mean (the fits' lambda_0)
     const Vec2 mean = cases::pushMean(c, p);
@@ -160,8 +165,9 @@ void intrusionRun(const IntrusionRun& run, const std::string& name, bool medium,
   } else {
     const Vec2 mean = cases::dragMean(c, p);
     fx = mean.x(), fz = mean.y();
-    std::snprintf(q, sizeof q, "drag force per depth, beta %g, z %.0f cm, h %s%s", run.beta,
-                  100 * run.depth, millimetres(run.h).c_str(), medium_name.c_str());
+    std::snprintf(q, sizeof q, "drag force per depth, beta %g, z %.0f cm, h %s%s%s", run.beta,
+                  100 * run.depth, millimetres(run.h).c_str(), medium_name.c_str(),
+                  sleep_name.c_str());
     std::snprintf(settings, sizeof settings,
                   "mean over travel 1.5-3 L: F_x %.2f, F_z %.2f N/m; |F| / (z L) against "
                   "zeta |alpha_gen| in the fits",
@@ -656,6 +662,65 @@ void intrusionDragFits(const Options& o, Results& r) {
     alpha.emplace_back(run.h, -t.at(mediumRow(t, run, name), "fx_n_m") / (run.depth * L));
   addRefinement(r, name, "alpha_x, beta 90 dragged along x at 6 cm, 0.1 m/s (-F_x / (z L))", alpha,
                 0, "N/m^3", "RFT: zeta x 370 kPa/m (the generic alpha_x of this drag)");
+}
+
+// Issue 78: speed against error for the upright plate's drag (intrusion_drag's run): at each
+// cell with every point awake and with sand slower than 2 and 10 mm/s asleep (2% and 10% of the
+// plate's speed), the wall time per simulated second and alpha_x's error from the drag's
+// converged limit, 102.3 kPa/m (intrusion_drag: Richardson over 2.5 and 1.25 mm). --fast: 2 and
+// 1 cm.
+namespace {
+
+constexpr Real kDragLimit = 102.3e3;  // N/m^3, intrusion_drag's limit (docs/robots.md)
+
+std::vector<IntrusionRun> intrusionFrontierRunList(bool fast) {
+  std::vector<IntrusionRun> runs;
+  const std::vector<Real> cells =
+      fast ? std::vector<Real>{0.02, 0.01} : std::vector<Real>{0.01, 0.005, 0.0025};
+  for (Real h : cells) {
+    for (Real sleep : {0.0, 0.002, 0.01}) {  // m/s: awake, 2% and 10% of the plate's speed
+      IntrusionRun run{90, 0, 0.1, kIntrusionReference, h};
+      run.sleep = sleep;
+      runs.push_back(run);
+    }
+  }
+  return runs;
+}
+
+}  // namespace
+
+int intrusionFrontierRuns(bool fast) {
+  return static_cast<int>(intrusionFrontierRunList(fast).size());
+}
+
+void intrusionFrontier(const Options& o, Results& r) {
+  runIntrusionList(o, r, intrusionFrontierRunList(o.fast), "intrusion_frontier", false);
+}
+
+void intrusionFrontierFits(const Options& o, Results& r) {
+  const std::string name = "intrusion_frontier";
+  const Table t(o.out + "/" + name + ".csv");
+  const std::vector<IntrusionRun> runs = intrusionFrontierRunList(o.fast);
+  if (t.size() != runs.size())
+    throw std::runtime_error(name + ".csv lacks a run (were all the case's runs gathered?)");
+  const Real L = cases::Plate().length;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const IntrusionRun& run = runs[i];
+    const Real alpha = -t.at(i, "fx_n_m") / (run.depth * L);
+    // The plate descends the depth, then drags 3 L at its speed.
+    const Real simulated = (run.depth + 3 * L) / run.speed;
+    char q[160], settings[200];
+    char sleep[64] = "all awake";
+    if (run.sleep > 0) std::snprintf(sleep, sizeof sleep, "asleep below %g mm/s", 1e3 * run.sleep);
+    std::snprintf(q, sizeof q, "alpha_x's error from the limit, h %s, %s",
+                  millimetres(run.h).c_str(), sleep);
+    std::snprintf(settings, sizeof settings,
+                  "alpha_x %.4g N/m^3; %.4g s of wall time, about %.3g s per simulated s", alpha,
+                  t.at(i, "wall_s"), t.at(i, "wall_s") / simulated);
+    r.add(name, q, alpha / kDragLimit - 1, 0, "-",
+          "intrusion_drag's limit 102.3 kPa/m (docs/robots.md)", t.at(i, "wall_s"), settings,
+          static_cast<long>(t.at(i, "points")), static_cast<long>(t.at(i, "steps")));
+  }
 }
 
 // Issue 44: the angle shapes under refinement (the intrusion case fits zeta at its 5 mm cell
