@@ -175,7 +175,7 @@ void MpmSolver::bin(Real dt) {
   StageTimer timer(profile_, Stage::kSort);
   const std::vector<PointRun>* awake = sleep_.any() ? &sleep_.runs() : nullptr;
   tiles_.bin(particles_, grid_, false, awake);
-  if (sleep_.on() && sleep_.update(particles_, tiles_, grid_, def_.kernel, dt))
+  if (sleep_.on() && sleep_.update(particles_, tiles_, def_.kernel, dt))
     tiles_.rebin(particles_, grid_, sleep_.any() ? &sleep_.runs() : nullptr);
 }
 
@@ -363,17 +363,24 @@ void MpmSolver::stressAndInternalForce(Real dt) {
 }
 
 void MpmSolver::gridToParticle(Real dt, const Tiles* material_points, long& clamped, bool& finite) {
-  StageTimer timer(profile_, Stage::kG2P);
-  const detail::G2PSettings s{def_.pic_fraction,
-                              dt,
-                              domain_.min,
-                              domain_.max,
-                              periodicX(),
-                              detail::asflipKeep(dt, def_.asflip_relaxation_time),
-                              sleep_.any() ? &sleep_.runs() : nullptr};
-  const bool usl = def_.stress_update == StressUpdate::kUsl;
-  detail::gridToParticle(def_.kernel, def_.transfer, usl, particles_, grid_, s, clamped, finite,
-                         material_points);
+  {
+    StageTimer timer(profile_, Stage::kG2P);
+    const detail::G2PSettings s{def_.pic_fraction,
+                                dt,
+                                domain_.min,
+                                domain_.max,
+                                periodicX(),
+                                detail::asflipKeep(dt, def_.asflip_relaxation_time),
+                                sleep_.any() ? &sleep_.runs() : nullptr};
+    const bool usl = def_.stress_update == StressUpdate::kUsl;
+    detail::gridToParticle(def_.kernel, def_.transfer, usl, particles_, grid_, s, clamped, finite,
+                           material_points);
+  }
+  // The step's nodal velocities are final: the sleeping tiles they reach wake in the next step.
+  if (sleep_.any()) {
+    StageTimer timer(profile_, Stage::kSort);
+    sleep_.noteMovingNodes(grid_);
+  }
 }
 
 void MpmSolver::constitutiveUpdate(Real dt) {

@@ -16,7 +16,7 @@ void Sleep::init(const SleepDef& def, const Grid& g, const Tiles& t) {
   // contact reach or the contact search's Verlet margin, all within a few cells.
   margin_ = def.margin > 0 ? def.margin : 2 * Tiles::kSize * g.h;
   const std::size_t n = static_cast<std::size_t>(nx_) * ny_;
-  for (auto* a : {&asleep_, &change_, &near_}) a->assign(n, 0);
+  for (auto* a : {&asleep_, &moved_, &change_, &near_}) a->assign(n, 0);
   quiet_.assign(n, 0);
   sleeping_points_ = 0;
   runs_.clear();
@@ -25,17 +25,33 @@ void Sleep::init(const SleepDef& def, const Grid& g, const Tiles& t) {
   share_.init(g.origin + Vec2(Grid::kPad * g.h, Grid::kPad * g.h), g.cells_x, g.cells_y, g.h);
 }
 
-int Sleep::tileOf(const Grid& G, Real x, Real y) const {
-  // As Tiles::sort bins a point.
-  const int a = static_cast<int>((x - G.origin.x()) * G.inv_h) / Tiles::kSize;
-  const int b = static_cast<int>((y - G.origin.y()) * G.inv_h) / Tiles::kSize;
-  return std::clamp(a, 0, nx_ - 1) + std::clamp(b, 0, ny_ - 1) * nx_;
+void Sleep::noteMovingNodes(const Grid& G) {
+  if (!any()) return;
+  const Real speed2 = def_.speed * def_.speed;
+  // A node a sleeping tile's points read (cells c of the tile read nodes c - 1 .. c + 2) moving
+  // faster than the sleep speed: the load of a moving neighbour has reached the tile. Nodes no
+  // awake point used are zero.
+  detail::parallelFor(static_cast<long>(asleep_.size()), [&](long t) {
+    moved_[t] = 0;
+    if (!asleep_[t]) return;
+    const int a = static_cast<int>(t % nx_) * Tiles::kSize;
+    const int b = static_cast<int>(t / nx_) * Tiles::kSize;
+    for (int j = std::max(b - 1, 0); j <= std::min(b + Tiles::kSize + 1, G.ny - 1); ++j) {
+      for (int i = std::max(a - 1, 0); i <= std::min(a + Tiles::kSize + 1, G.nx - 1); ++i) {
+        const int k = G.index(i, j);
+        if (G.vel_x[k] * G.vel_x[k] + G.vel_y[k] * G.vel_y[k] > speed2) {
+          moved_[t] = 1;
+          return;
+        }
+      }
+    }
+  });
 }
 
 void Sleep::keepAwake(const Vec2& lo, const Vec2& hi) {
   if (!on() || nx_ == 0) return;
-  // Tiles are kSize cells of h from the grid's origin; the origin is Sleep-independent, so the
-  // tile's box is read back from its index.
+  // Tile (i, j) covers cells kSize i .. kSize (i + 1) - 1 from the grid's origin (share_ has
+  // the grid's geometry).
   const Real tile = Tiles::kSize * share_.h;
   const Vec2 a = (lo - share_.origin).array() - margin_, b = (hi - share_.origin).array() + margin_;
   const int i0 = std::clamp(static_cast<int>(std::floor(a.x() / tile)), 0, nx_ - 1);
@@ -46,22 +62,9 @@ void Sleep::keepAwake(const Vec2& lo, const Vec2& hi) {
     for (int i = i0; i <= i1; ++i) near_[i + j * nx_] = 1;
 }
 
-bool Sleep::update(Particles& P, const Tiles& T, const Grid& G, KernelType kernel, Real dt) {
+bool Sleep::update(Particles& P, const Tiles& T, KernelType kernel, Real dt) {
   if (!on()) return false;
   const Real speed2 = def_.speed * def_.speed;
-  // A node a tile's points read (cells c of the tile read nodes c - 1 .. c + 2) moving faster
-  // than the sleep speed: the load of a moving neighbour has reached the tile. The grid holds
-  // the last step's velocities; nodes no awake point used are zero.
-  auto fastNode = [&](int t) {
-    const int a = (t % nx_) * Tiles::kSize, b = (t / nx_) * Tiles::kSize;
-    for (int j = std::max(b - 1, 0); j <= std::min(b + Tiles::kSize + 1, G.ny - 1); ++j) {
-      for (int i = std::max(a - 1, 0); i <= std::min(a + Tiles::kSize + 1, G.nx - 1); ++i) {
-        const int k = G.index(i, j);
-        if (G.vel_x[k] * G.vel_x[k] + G.vel_y[k] * G.vel_y[k] > speed2) return true;
-      }
-    }
-    return false;
-  };
   // Each tile decides from its own awake points (binned at their current positions) and
   // nodes, so the tiles decide in parallel.
   detail::parallelFor(static_cast<long>(asleep_.size()), [&](long t) {
@@ -69,7 +72,7 @@ bool Sleep::update(Particles& P, const Tiles& T, const Grid& G, KernelType kerne
     change_[t] = kStays;
     if (asleep_[t]) {
       // An awake point in a sleeping tile has entered it.
-      if (near_[t] || begin != end || fastNode(static_cast<int>(t))) change_[t] = kWakes;
+      if (near_[t] || begin != end || moved_[t]) change_[t] = kWakes;
       return;
     }
     if (begin == end) {
@@ -89,6 +92,7 @@ bool Sleep::update(Particles& P, const Tiles& T, const Grid& G, KernelType kerne
   for (std::size_t t = 0; t < asleep_.size(); ++t) {
     if (change_[t] == kWakes) {
       asleep_[t] = 0;
+      moved_[t] = 0;
       quiet_[t] = 0;
       for (int q = sleepers_.start[t]; q < sleepers_.mpm_end[t]; ++q)
         P.asleep[sleepers_.order[q]] = 0;

@@ -117,8 +117,9 @@ class MpmSolver {
   /// The side walls' friction on the nodes' velocities after the kick.
   void sidewallFriction(Real kick);
   /// G2P: velocity, affine matrix and position (eq. 26-31); material_points: only those tiles'
-  /// points (with SPH), or nullptr for all. Counts points put back inside the domain, and clears
-  /// finite on a NaN.
+  /// points (with SPH), or nullptr for all (the awake ones with sleeping material, whose tiles
+  /// the step's moving nodes then mark, Sleep::noteMovingNodes). Counts points put back inside
+  /// the domain, and clears finite on a NaN.
   void gridToParticle(Real dt, const Tiles* material_points, long& clamped, bool& finite);
   /// USL: the stress update after G2P.
   void constitutiveUpdate(Real dt);

@@ -36,13 +36,16 @@ class Sleep {
   /// Keeps the tiles that overlap the box [lo, hi] grown by the margin awake (a block's box);
   /// until the next update().
   void keepAwake(const Vec2& lo, const Vec2& hi);
-  /// At the start of a step of dt (s), with T the awake points binned where they are and G the
-  /// last step's nodal velocities: wakes the sleeping tiles a fast node, an entering point or a
-  /// block reaches, and puts to sleep the awake tiles whose points have all been slower than
-  /// SleepDef::speed for SleepDef::time and that no block reaches (their points at rest: v = 0,
-  /// B = 0, L = 0). Rebuilds the share and the runs when a tile changed, and then returns true:
-  /// the awake points must be binned again (Tiles::rebin).
-  bool update(Particles& P, const Tiles& T, const Grid& G, KernelType kernel, Real dt);
+  /// After a step's grid update (G2P read it): which sleeping tiles a node their points read
+  /// moved faster than SleepDef::speed in (for the next update()).
+  void noteMovingNodes(const Grid& G);
+  /// At the start of a step of dt (s), with T the awake points binned where they are: wakes the
+  /// sleeping tiles a fast node (noteMovingNodes), an entering point or a block reaches, and puts
+  /// to sleep the awake tiles whose points have all been slower than SleepDef::speed for
+  /// SleepDef::time and that no block reaches (their points at rest: v = 0, B = 0, L = 0). Rebuilds
+  /// the share and the runs when a tile changed, and then returns true: the awake points must be
+  /// binned again (Tiles::rebin).
+  bool update(Particles& P, const Tiles& T, KernelType kernel, Real dt);
   /// The sleepers' share rebuilt from the points (after a checkpoint is read).
   void rebuild(const Particles& P, KernelType kernel);
 
@@ -59,19 +62,19 @@ class Sleep {
 
  private:
   friend struct detail::CheckpointAccess;
-  /// What outlives a step: the tiles' states and quiet times (the points' flags are a column
-  /// of Particles; the share and the runs are rebuilt from them).
+  /// What outlives a step: the tiles' states, quiet times and moving nodes (the points' flags
+  /// are a column of Particles; the share and the runs are rebuilt from them).
   template <class Archive>
   void stateIo(Archive& ar) {
-    ar(asleep_, quiet_);
+    ar(asleep_, quiet_, moved_);
   }
-  int tileOf(const Grid& G, Real x, Real y) const;
 
   SleepDef def_;
   int nx_ = 0, ny_ = 0;               ///< tiles per axis (Tiles::nx, ny)
   Real margin_ = 0;                   ///< m
   std::vector<std::uint8_t> asleep_;  ///< per tile, 1 while its points sleep
   std::vector<Real> quiet_;           ///< per tile, how long its points have been slow (s)
+  std::vector<std::uint8_t> moved_;   ///< per sleeping tile, 1 if a node it reads moved fast
   enum Change : std::uint8_t { kStays, kSleeps, kWakes };
   std::vector<std::uint8_t> change_;  ///< per tile, update()'s decision (Change)
   std::vector<std::uint8_t> near_;    ///< per tile, 1 if keepAwake() reached it
