@@ -385,7 +385,9 @@ Problem sleepProblem(const WorldDef& def) {
   if (!def.solver.sleep.on()) return {};
   const char* key = "solver.sleep_speed";
   if (def.solver.stress_update != StressUpdate::kUsf)
-    return {key, "sleeping material needs stress_update: usf (USL updates every point's stress)"};
+    return {key,
+            "sleeping material needs stress_update: usf (in USL, awake material resting on "
+            "sleepers drifts at a steady fraction of the sleep speed)"};
   if (def.sph.enabled() || !def.fem_bodies.empty())
     return {key, "sleeping material is for material points: no SPH and no FEM bodies"};
   if (def.domain.sidewalls.width > 0)
