@@ -7,6 +7,7 @@ DATA_DIR holds results.csv and the case series; MODE is 'fast' or 'report'.
 import csv
 import math
 import os
+import re
 import sys
 from collections import OrderedDict
 
@@ -84,6 +85,10 @@ CASES = [
     ("intrusion_drag", "Issue 44: the upright plate of `intrusion` dragged along x at 6 cm "
                        "(0.1 m/s), APIC, from 1 cm to 1.25 mm: alpha_x, its order and limit",
      True),
+    ("intrusion_frontier", "Issue 78: speed against error for the robot scenes: the drag of "
+                           "`intrusion_drag` at 1 cm, 5 mm and 2.5 mm, every point awake, sand at"
+                           " rest asleep, and USL; the error from the drag's limit against wall"
+                           " time per simulated second", True),
     ("fem_cantilever", "Seed 002 sec. 2.3: an FEM cantilever (plane-strain linear triangles, "
                        "corotational) under its own weight against Euler-Bernoulli, three meshes",
      True),
@@ -534,6 +539,43 @@ def plot_blade(data, out):
     return finish(fig, out, "blade_force.png")
 
 
+def plot_intrusion_frontier(data, out):
+    """The upright plate's drag: |error| from its limit against wall seconds per simulated second,
+    one line per configuration through the cells (labelled), real time marked."""
+    path = os.path.join(data, "results.csv")
+    if not os.path.exists(path):
+        return None
+    lines = OrderedDict()
+    for r in read_csv(path):
+        if r["case"] != "intrusion_frontier":
+            continue
+        # "alpha_x's error from the limit, h 5 mm, asleep below 10 mm/s[, USL]"
+        parts = r["quantity"].split(", ")
+        cell, config = parts[1][2:], ", ".join(parts[2:])
+        rate = re.search(r"about ([0-9.e+]+) s per simulated s", r["settings"])
+        if rate:
+            lines.setdefault(config, []).append((float(rate.group(1)),
+                                                 100 * abs(float(r["value"])), cell))
+    if not lines:
+        return None
+    fig, ax = plt.subplots(figsize=(7, 4.6))
+    for config, pts in lines.items():
+        line, = ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", ms=4, lw=0.9,
+                          label=config)
+        for x, y, cell in pts:
+            ax.annotate(cell, (x, y), fontsize=6, xytext=(3, 3), textcoords="offset points",
+                        color=line.get_color())
+    ax.axvline(1, color="k", lw=0.8, ls=":")
+    ax.text(1.05, ax.get_ylim()[0] * 1.1, "real time", fontsize=7)
+    for tol in (5, 10, 30):
+        ax.axhline(tol, color="0.7", lw=0.6)
+    ax.set_xlabel("wall seconds per simulated second (two threads)")
+    ax.set_ylabel("|alpha_x - limit| / limit (%)")
+    ax.set_title("upright plate dragged at 6 cm, 0.1 m/s")
+    ax.legend(fontsize=7)
+    return finish(fig, out, "intrusion_frontier.png")
+
+
 def family(quantity):
     """Rows of one quantity measured at different settings: the name up to its first comma."""
     return quantity.split(",")[0]
@@ -634,6 +676,7 @@ def main():
              "compression": plot_compression(data, out),
              "wheel": plot_wheel(data, out),
              "blade": plot_blade(data, out),
+             "intrusion_frontier": plot_intrusion_frontier(data, out),
              "water_gate": plot_water_gate(data, out),
              "water_gate_snapshots": plot_water_gate_snapshots(data, out)}
     lines = ["# Validation report", "",

@@ -589,6 +589,7 @@ struct Plate {
   TransferScheme transfer = TransferScheme::kApic;
   // Sand at rest sleeps below this speed (m/s, solver.sleep_speed; 0: every point awake).
   Real sleep_speed = 0;
+  StressUpdate stress_update = StressUpdate::kUsf;  // solver.stress_update
 };
 WorldDef plateIntrusion(const Plate& c);
 // The plate's motion: for gamma > 0 from its start along gamma until its centre is `reach` deep;

@@ -363,6 +363,7 @@ WorldDef plateIntrusion(const Plate& c) {
   def.solver.gravity = Vec2(0, -c.gravity);
   def.solver.transfer = c.transfer;
   def.solver.sleep.speed = c.sleep_speed;
+  def.solver.stress_update = c.stress_update;
   Blade sand;  // the blade's sand
   sand.friction_angle = c.friction_angle;
   def.materials.push_back(bladeSand(sand));
@@ -401,6 +402,7 @@ std::string plateText(const Plate& c) {
     << c.cell_size << " bed " << c.bed << " width " << c.width << " friction_angle "
     << c.friction_angle << " gravity " << c.gravity << " transfer " << static_cast<int>(c.transfer);
   if (c.sleep_speed > 0) o << " sleep " << c.sleep_speed;
+  if (c.stress_update == StressUpdate::kUsl) o << " usl";
   return o.str();
 }
 

@@ -36,6 +36,7 @@ struct IntrusionRun {
   TransferScheme transfer = TransferScheme::kApic;
   Real g = 9.81, phi = 35;  // m/s^2; the sand's friction angle (deg)
   Real sleep = 0;           // solver.sleep_speed (m/s)
+  StressUpdate update = StressUpdate::kUsf;
 };
 
 constexpr Real kIntrusionReference = 0.06;  // m: the depth at which speeds are compared
@@ -100,6 +101,7 @@ cases::Plate plateOf(const IntrusionRun& run) {
   c.gravity = run.g;
   c.friction_angle = run.phi;
   c.sleep_speed = run.sleep;
+  c.stress_update = run.update;
   return c;
 }
 
@@ -138,9 +140,10 @@ void intrusionRun(const IntrusionRun& run, const std::string& name, bool medium,
       medium ? std::string(asflip ? ", ASFLIP" : ", APIC") + (run.g > 0 ? "" : ", no gravity") +
                    (run.phi == 35 ? "" : ", phi " + std::to_string(std::lround(run.phi)))
              : "";
-  const std::string sleep_name =
-      run.sleep > 0 ? ", asleep below " + std::to_string(std::lround(1e3 * run.sleep)) + " mm/s"
-                    : "";
+  const std::string levers_name =
+      (run.sleep > 0 ? ", asleep below " + std::to_string(std::lround(1e3 * run.sleep)) + " mm/s"
+                     : "") +
+      (run.update == StressUpdate::kUsl ? ", USL" : "");
   const Real from = cases::pushWindowStart(c);
   if (run.gamma > 0 && run.g == 0) {  // inertia alone: the window's mean (the fits' lambda_0)
     const Vec2 mean = cases::pushMean(c, p);
@@ -167,7 +170,7 @@ void intrusionRun(const IntrusionRun& run, const std::string& name, bool medium,
     fx = mean.x(), fz = mean.y();
     std::snprintf(q, sizeof q, "drag force per depth, beta %g, z %.0f cm, h %s%s%s", run.beta,
                   100 * run.depth, millimetres(run.h).c_str(), medium_name.c_str(),
-                  sleep_name.c_str());
+                  levers_name.c_str());
     std::snprintf(settings, sizeof settings,
                   "mean over travel 1.5-3 L: F_x %.2f, F_z %.2f N/m; |F| / (z L) against "
                   "zeta |alpha_gen| in the fits",
@@ -666,9 +669,9 @@ void intrusionDragFits(const Options& o, Results& r) {
 
 // Issue 78: speed against error for the upright plate's drag (intrusion_drag's run): at each
 // cell with every point awake and with sand slower than 2 and 10 mm/s asleep (2% and 10% of the
-// plate's speed), the wall time per simulated second and alpha_x's error from the drag's
-// converged limit, 102.3 kPa/m (intrusion_drag: Richardson over 2.5 and 1.25 mm). --fast: 2 and
-// 1 cm.
+// plate's speed), then in USL (every point awake); the wall time per simulated second
+// and alpha_x's error from the drag's converged limit, 102.3 kPa/m (intrusion_drag: Richardson
+// over 2.5 and 1.25 mm). --fast: 2 and 1 cm.
 namespace {
 
 constexpr Real kDragLimit = 102.3e3;  // N/m^3, intrusion_drag's limit (docs/robots.md)
@@ -683,6 +686,9 @@ std::vector<IntrusionRun> intrusionFrontierRunList(bool fast) {
       run.sleep = sleep;
       runs.push_back(run);
     }
+    IntrusionRun usl{90, 0, 0.1, kIntrusionReference, h};  // awake: sleep needs USF
+    usl.update = StressUpdate::kUsl;
+    runs.push_back(usl);
   }
   return runs;
 }
@@ -712,8 +718,9 @@ void intrusionFrontierFits(const Options& o, Results& r) {
     char q[160], settings[200];
     char sleep[64] = "all awake";
     if (run.sleep > 0) std::snprintf(sleep, sizeof sleep, "asleep below %g mm/s", 1e3 * run.sleep);
-    std::snprintf(q, sizeof q, "alpha_x's error from the limit, h %s, %s",
-                  millimetres(run.h).c_str(), sleep);
+    std::snprintf(q, sizeof q, "alpha_x's error from the limit, h %s, %s%s",
+                  millimetres(run.h).c_str(), sleep,
+                  run.update == StressUpdate::kUsl ? ", USL" : "");
     std::snprintf(settings, sizeof settings,
                   "alpha_x %.4g N/m^3; %.4g s of wall time, about %.3g s per simulated s", alpha,
                   t.at(i, "wall_s"), t.at(i, "wall_s") / simulated);
