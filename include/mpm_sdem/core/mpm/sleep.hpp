@@ -32,6 +32,12 @@ class Sleep {
   long sleepingPoints() const { return sleeping_points_; }
   /// Counts the rebuilds: it changes whenever the sleeping points do.
   long generation() const { return generation_; }
+  /// Sleeping tiles that a moving node has reached: they wake at the next update().
+  long wakingTiles() const {
+    long n = 0;
+    for (std::size_t t = 0; t < asleep_.size(); ++t) n += asleep_[t] && moved_[t];
+    return n;
+  }
 
   /// Keeps the tiles that overlap the box [lo, hi] grown by the margin awake (a block's box);
   /// until the next update().
