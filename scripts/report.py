@@ -569,6 +569,8 @@ def plot_intrusion_frontier(data, out):
     ax.text(1.05, ax.get_ylim()[0] * 1.1, "real time", fontsize=7)
     for tol in (5, 10, 30):
         ax.axhline(tol, color="0.7", lw=0.6)
+    ax.set_yticks([5, 10, 20, 30, 50, 70])
+    ax.yaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
     ax.set_xlabel("wall seconds per simulated second (two threads)")
     ax.set_ylabel("|alpha_x - limit| / limit (%)")
     ax.set_title("upright plate dragged at 6 cm, 0.1 m/s")
