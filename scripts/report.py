@@ -5,6 +5,7 @@ usage: report.py DATA_DIR REPORT_DIR MODE MACHINE
 DATA_DIR holds results.csv and the case series; MODE is 'fast' or 'report'.
 """
 import csv
+import glob
 import math
 import os
 import re
@@ -58,8 +59,11 @@ CASES = [
                  "granular bed against the spheropolygon of the same outline (depth, velocity "
                  "after, cost), and the incline's disk on an incline made of discs", True),
     ("compression", "Seed 000 sec. 7: granular matrix compression", True),
-    ("chute", "Issue 41: steady uniform chute flow of the mu(I) material (periodic, 4 mm glass "
-              "beads 5 cm deep) against Bagnold's profile, three angles and three cells", True),
+    ("chute", "Issues 41 and 79: steady uniform chute flow of the mu(I) material (periodic, 4 mm "
+              "glass beads 5 cm deep, from rest perturbed by 10 um) against Bagnold's profile, "
+              "three angles and three cells, ASFLIP without and with volume-consistent points "
+              "and APIC with them: the worst layer, the grid's L2 error and the nodes' largest "
+              "over-fill", True),
     ("column_collapse", "Issue 41: granular column collapse on a rough floor (glass beads, "
                         "aspect 0.5 to 8, two cells) against the quasi-2D fits of Lube et al. "
                         "2005", True),
@@ -539,6 +543,45 @@ def plot_blade(data, out):
     return finish(fig, out, "blade_force.png")
 
 
+def plot_chute(data, out):
+    """The chute's grid L2 error against Bagnold's profile and the nodes' largest over-fill over
+    time (chute_series.<run>.csv), one row per angle, one line per variant and cell."""
+    series = sorted(glob.glob(os.path.join(data, "chute_series.*.csv")))
+    if not series:
+        return None
+    runs = OrderedDict()
+    for path in series:
+        for r in read_csv(path):
+            key = (float(r["angle_deg"]), r["variant"], float(r["cell_m"]))
+            runs.setdefault(key, []).append((float(r["t_s"]), float(r["l2"]),
+                                             float(r["overfill"])))
+    angles = sorted({k[0] for k in runs})
+    variants = list(OrderedDict.fromkeys(k[1] for k in runs))
+    cells = sorted({k[2] for k in runs}, reverse=True)
+    fig, axes = plt.subplots(len(angles), 2, figsize=(9, 2.6 * len(angles)), squeeze=False)
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    styles = ["-", "--", ":"]
+    for row, angle in enumerate(angles):
+        for (a, variant, cell), pts in runs.items():
+            if a != angle:
+                continue
+            colour = colours[variants.index(variant) % len(colours)]
+            style = styles[cells.index(cell) % len(styles)]
+            label = "%s, %g mm" % (variant, 1000 * cell)
+            t = [p[0] for p in pts]
+            axes[row][0].semilogy(t, [max(p[1], 1e-4) for p in pts], style, color=colour, lw=1,
+                                  label=label)
+            axes[row][1].semilogy(t, [max(p[2], 1e-6) for p in pts], style, color=colour, lw=1,
+                                  label=label)
+        axes[row][0].axhline(0.02, color="0.6", lw=0.6)
+        axes[row][0].set_ylabel("%g deg: L2 error" % angle)
+        axes[row][1].set_ylabel("largest over-fill")
+    for ax in axes[-1]:
+        ax.set_xlabel("t (s)")
+    axes[0][1].legend(fontsize=5, ncol=1)
+    return finish(fig, out, "chute_l2_overfill.png")
+
+
 def plot_intrusion_frontier(data, out):
     """The upright plate's drag: |error| from its limit against wall seconds per simulated second,
     one line per configuration through the cells (labelled), real time marked."""
@@ -679,6 +722,7 @@ def main():
              "wheel": plot_wheel(data, out),
              "blade": plot_blade(data, out),
              "intrusion_frontier": plot_intrusion_frontier(data, out),
+             "chute": plot_chute(data, out),
              "water_gate": plot_water_gate(data, out),
              "water_gate_snapshots": plot_water_gate_snapshots(data, out)}
     lines = ["# Validation report", "",

@@ -507,10 +507,14 @@ WorldDef chute(const Chute& c);
 Real bagnold(const Chute& c, Real h, Real z);
 // The points' mean speed per layer of one cell against Bagnold's at the layer's mean height, for
 // the layer's depth read from the points (the top point plus a quarter cell).
+// With them, the relative L2 error of the grid's velocity (issue 79; as Baumgarten's chute
+// driver, normalised): sqrt(sum_i m_i (v_i - u_B(z_i))^2 / sum_i m_i u_B(z_i)^2) over the nodes
+// with mass, u_B for the case's depth (z clamped to it), each periodic node once.
 struct ChuteProfile {
   Real worst = 0;    // max over the layers of |u - u_B| / u_B(h)
   Real surface = 0;  // the top layer's speed over Bagnold's there
   Real depth = 0;    // h read from the points (m)
+  Real l2 = 0;       // the grid's relative L2 error
 };
 ChuteProfile chuteProfile(const World& w, const Chute& c);
 // Whether the points' volumes still fit their spacing (issue 41's chute runaway,

@@ -413,6 +413,18 @@ ChuteProfile chuteProfile(const World& w, const Chute& c) {
     out.worst = std::max(out.worst, std::abs(u - ub) / scale);
     if (k == layers - 1) out.surface = u / ub;
   }
+  const Grid& g = w.grid();
+  Real err = 0, norm = 0;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = Grid::kPad; i < Grid::kPad + g.cells_x; ++i) {
+      const int k = g.index(i, j);
+      if (!(g.mass[k] > 0)) continue;
+      const Real z = std::clamp(g.origin.y() + j * g.h, Real(0), c.depth);
+      const Real ub = bagnold(c, c.depth, z);
+      err += g.mass[k] * (g.vel_x[k] - ub) * (g.vel_x[k] - ub);
+      norm += g.mass[k] * ub * ub;
+    }
+  out.l2 = norm > 0 ? std::sqrt(err / norm) : 0;
   return out;
 }
 

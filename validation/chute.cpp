@@ -1,9 +1,11 @@
 // mpm_sdem_chute: the periodic chute of the report's case `chute` (cases::Chute) from a start
 // perturbed by up to --perturb metres, printing at every --every seconds the profile against
 // Bagnold's (cases::chuteProfile) and whether the points' volumes still fit their spacing
-// (cases::chuteVolume): the measurements behind docs/method.md's account of the runaway at
-// 1.25 mm (issue 41). --film swaps the beads for the Newtonian film whose Nusselt surface speed
-// is Bagnold's (as test_chute's disabled film test).
+// (cases::chuteVolume), the grid's L2 error against Bagnold's profile and the nodes' largest
+// over-fill (issue 79): the measurements behind docs/method.md's account of the runaway at
+// 1.25 mm (issue 41) and of the volume fit (--fit, SolverDef::volume_fit). --film swaps the beads
+// for the Newtonian film whose Nusselt surface speed is Bagnold's (as test_chute's disabled film
+// test).
 #include <omp.h>
 
 #include <cmath>
@@ -24,8 +26,10 @@ int usage(const char* program, FILE* to = stderr) {
   std::fprintf(to,
                "usage: %s [--cell M] [--angle DEG] [--end S] [--every S] [--perturb M]\n"
                "          [--seed N] [--transfer apic|asflip] [--film] [--threads N]\n"
-               "          [--ppc N] [--relax S]\n"
+               "          [--ppc N] [--relax S] [--grain M] [--fit]\n"
                "  defaults: 2.5 mm cells, 27 deg, 3 s, every 0.25 s, perturbed by 1e-5 m\n"
+               "  (seed 1; 0: the symmetric start), 4 mm grains (--grain: the beads' own\n"
+               "  are 0.53 mm), volume fit off (--fit: on),\n"
                "  (seed 1; 0: the symmetric start), ASFLIP (cases::chute's), 1 thread, 2 x 2\n"
                "  points per cell (--ppc 1-4), ASFLIP kept whole (--relax: its departure's\n"
                "  relaxation time in s); below\n"
@@ -44,12 +48,12 @@ int main(int argc, char** argv) {
   Real end = 3, every = 0.25, perturb = 1e-5, relax = 0;
   unsigned seed = 1;
   int threads = 1, ppc = 2;
-  bool film = false, apic = false;
+  bool film = false, apic = false, fit = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") return usage(argv[0], stdout);
-    if (a == "--film") {
-      film = true;
+    if (a == "--film" || a == "--fit") {
+      (a == "--film" ? film : fit) = true;
       continue;
     }
     if (i + 1 >= argc) return usage(argv[0]);
@@ -73,6 +77,8 @@ int main(int argc, char** argv) {
       perturb = x;
     else if (a == "--seed" && x >= 0 && x == std::floor(x))
       seed = static_cast<unsigned>(x);
+    else if (a == "--grain" && x >= 1e-4 && x <= 0.01)
+      c.grain = x;
     else if (a == "--relax" && x >= 0)
       relax = x;
     else if (a == "--ppc" && x >= 1 && x <= 4 && x == std::floor(x))
@@ -90,6 +96,7 @@ int main(int argc, char** argv) {
   if (apic) def.solver.transfer = TransferScheme::kApic;
   def.bodies[0].points_per_cell = ppc;
   if (relax > 0) def.solver.asflip_relaxation_time = relax;
+  def.solver.volume_fit = fit;
   const Real surface = cases::bagnold(c, c.depth, c.depth);
   if (film) {  // Nusselt's surface speed rho g sin(theta) h^2 / (2 eta) set to Bagnold's
     MaterialDef& m = def.materials[0];
@@ -100,12 +107,14 @@ int main(int argc, char** argv) {
   World w(def);
   if (perturb > 0) perturbPositions(w.particles(), perturb, seed);
   std::printf(
-      "h %g m, %g deg, %s%s, perturbed by %g m: %zu points, Bagnold's surface speed %.4f m/s\n",
-      c.cell_size, c.theta * 180 / M_PI, film ? "Newtonian film, " : "", apic ? "APIC" : "ASFLIP",
-      perturb, w.particles().size(), surface);
+      "h %g m, %g deg, d %g m, %s%s%s, perturbed by %g m: %zu points, Bagnold's surface speed "
+      "%.4f m/s\n",
+      c.cell_size, c.theta * 180 / M_PI, c.grain, film ? "Newtonian film, " : "",
+      apic ? "APIC" : "ASFLIP", fit ? ", volume fit" : "", perturb, w.particles().size(), surface);
   std::printf(
       "t (s), steps, worst layer / surface speed, top layer / Bagnold's, max |v_y| (m/s), "
-      "points at J >= 1, phi min-max (mean) below the top two cells, their mean J\n");
+      "points at J >= 1, phi min-max (mean) below the top two cells, their mean J, L2 error, "
+      "largest over-fill, points the last step's fit moved\n");
   long steps = 0;
   for (Real next = every; w.time() < end - 1e-12; next = std::min(end, next + every)) {
     while (!reachedEnd(w.time(), next)) {
@@ -117,8 +126,9 @@ int main(int argc, char** argv) {
     }
     const cases::ChuteProfile e = cases::chuteProfile(w, c);
     const cases::ChuteVolume v = cases::chuteVolume(w, c);
-    std::printf("%.3f %ld %.4f %.3f %.3e %ld %.4f-%.4f (%.5f) %.5f\n", w.time(), steps, e.worst,
-                e.surface, v.vy_max, v.separated, v.phi_min, v.phi_max, v.phi_mean, v.j_mean);
+    std::printf("%.3f %ld %.4f %.3f %.3e %ld %.4f-%.4f (%.5f) %.5f %.4f %.4f %ld\n", w.time(),
+                steps, e.worst, e.surface, v.vy_max, v.separated, v.phi_min, v.phi_max, v.phi_mean,
+                v.j_mean, e.l2, w.largestOverfill(), w.lastVolumeFit().moved);
     std::fflush(stdout);
   }
   return 0;

@@ -60,7 +60,7 @@ const std::vector<Case>& allCases() {
       {"debris_timestep", report::debris::debrisTimeStep},
       {"debris_flow", report::debris::debrisFlow},
       {"rolling", report::contact::rolling, report::contact::rollingRuns},
-      {"chute", report::granular::chuteFlow},
+      {"chute", report::granular::chuteFlow, report::granular::chuteFlowRuns},
       {"column_collapse", report::granular::columnCollapse, report::granular::columnCollapseRuns},
       {"debris_granular", report::debris::debrisGranular, report::debris::debrisGranularRuns,
        report::debris::debrisGranularEnsembles},

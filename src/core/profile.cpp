@@ -20,6 +20,8 @@ const char* stageName(Stage stage) {
       return "g2p";
     case Stage::kConstitutive:
       return "constitutive";
+    case Stage::kVolumeFit:
+      return "volume_fit";
     case Stage::kStress:
       return "stress_force";
     case Stage::kBodies:

@@ -256,6 +256,7 @@ StepInfo World::step(Real dt) {
     mpm.constitutiveUpdate(dt);
     stress_lag_ = 0;
   }
+  mpm.fitVolumes(dt);
   stage(&Coupling::afterMaterialStep);
   if (coupled && !coupling_->subcycles()) stepBodies(dt);  // else in correctGridVelocity
   if (blocks_) checkBlocks(info);

@@ -144,6 +144,7 @@ void siloGranular(const Options& o, Results& r);
 void siloGranularAsflip(const Options& o, Results& r);
 void compression(const Options& o, Results& r);
 void chuteFlow(const Options& o, Results& r);
+int chuteFlowRuns(bool fast);
 void columnCollapse(const Options& o, Results& r);
 int columnCollapseRuns(bool fast);
 }  // namespace granular

@@ -16,6 +16,7 @@ enum class Stage : int {
   kGridUpdate,    ///< nodal velocities, kick and walls
   kG2P,           ///< grid to particle: velocity, affine matrix, position
   kConstitutive,  ///< stress update of USL
+  kVolumeFit,     ///< the flowing points moved down the nodes' over-fill (VolumeFit)
   kStress,        ///< USF: velocity gradient, stress update and internal force in one sweep
   kBodies,        ///< solid bodies: blocks' springs and Box2D, FEM bodies' elements and step
   kSph,   ///< SPH particles (seed 001): kinds and band, velocity gradient, stress, forces, move

@@ -150,6 +150,10 @@ class World {
   const Grid& grid() const { return mpm_.grid(); }
   /// Which points sleep (SolverDef::sleep).
   const Sleep& sleep() const { return mpm_.sleep(); }
+  /// The nodes' largest over-fill now, max(0, v_i - V_i) / h^2 (VolumeFit).
+  Real largestOverfill() { return mpm_.largestOverfill(); }
+  /// What the last step's volume fit found (SolverDef::volume_fit).
+  const VolumeFit::Result& lastVolumeFit() const { return mpm_.lastFit(); }
   /// Memory held, in bytes: the particle columns with their tile bins, and the grid arrays.
   using Memory = MpmSolver::Memory;
   /// What the world holds now.

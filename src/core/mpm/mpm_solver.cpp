@@ -54,6 +54,7 @@ MpmSolver::MpmSolver(const DomainDef& domain, Real cell_size, const SolverDef& s
   tiles_.periodic_x = periodicX();
   for (const MaterialDef& m : materials) {
     params_.push_back(makeMaterialParams(m));
+    flows_.push_back(materialTraits(m.model).flows);
     if (m.viscosity > 0)  // a fluid's (no other model reads it)
       viscous_dt_ = std::fmin(viscous_dt_, cell_size * cell_size * m.density *
                                                solver.inertia_scale / (2 * m.viscosity));
@@ -98,6 +99,11 @@ MpmSolver::MpmSolver(const DomainDef& domain, Real cell_size, const SolverDef& s
   tiles_.bin(particles_, grid_);
   particles_.permute(tiles_.order);
   sleep_.init(def_.sleep, grid_, tiles_);
+  // The capacities as the flowing bodies' lattice fills the nodes (the densest of them).
+  int lattice = 1;
+  for (const BodyDef& b : bodies)
+    if (flows_[b.material]) lattice = std::max(lattice, b.points_per_cell);
+  volume_fit_.init(grid_, def_.kernel, domain_.min, domain_.max, periodicX(), lattice);
 }
 
 TimeStepChoice MpmSolver::materialStep(Real cfl, Real longest) const {
@@ -387,6 +393,17 @@ void MpmSolver::constitutiveUpdate(Real dt) {
   StageTimer timer(profile_, Stage::kConstitutive);
   if (dt == 0) return;
   detail::updateStresses(particles_, params_, dt);
+}
+
+void MpmSolver::fitVolumes(Real dt) {
+  if (!def_.volume_fit || dt == 0 || std::find(flows_.begin(), flows_.end(), 1) == flows_.end())
+    return;  // off, the first step, or nothing that flows
+  StageTimer timer(profile_, Stage::kVolumeFit);
+  last_fit_ = volume_fit_.fit(particles_, grid_, flows_, dt);
+}
+
+Real MpmSolver::largestOverfill() {
+  return volume_fit_.measure(particles_, grid_).largest_overfill;
 }
 
 void MpmSolver::reverseVelocities() {

@@ -139,6 +139,9 @@ struct MaterialTraits {
   /// Whether the diagnostics report its Mach number (a weakly compressible fluid's density error
   /// grows as its square).
   bool reports_mach = false;
+  /// Whether it flows without limit (granular, fluid): its points keep their volumes tiling
+  /// the space under SolverDef::volume_fit.
+  bool flows = false;
 };
 
 /// Every model, in the enum's order.

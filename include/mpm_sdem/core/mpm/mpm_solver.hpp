@@ -18,6 +18,7 @@
 #include "mpm_sdem/core/mpm/sleep.hpp"
 #include "mpm_sdem/core/mpm/solver.hpp"
 #include "mpm_sdem/core/mpm/tiles.hpp"
+#include "mpm_sdem/core/mpm/volume_fit.hpp"
 #include "mpm_sdem/core/profile.hpp"
 #include "mpm_sdem/core/time_step.hpp"
 
@@ -123,7 +124,15 @@ class MpmSolver {
   void gridToParticle(Real dt, const Tiles* material_points, long& clamped, bool& finite);
   /// USL: the stress update after G2P.
   void constitutiveUpdate(Real dt);
+  /// With SolverDef::volume_fit: the flowing materials' shearing points moved down the nodes'
+  /// over-fill (VolumeFit::fit), once the step's positions and volumes are final.
+  void fitVolumes(Real dt);
   ///@}
+
+  /// The nodes' over-fill now: the largest max(0, v_i - V_i) / h^2 (VolumeFit::measure).
+  Real largestOverfill();
+  /// What the last step's fit found (zero without SolverDef::volume_fit).
+  const VolumeFit::Result& lastFit() const { return last_fit_; }
 
   /// Negates the points' velocities and affine matrices (World::reverseVelocities).
   void reverseVelocities();
@@ -146,6 +155,9 @@ class MpmSolver {
   Grid grid_;
   Tiles tiles_;
   Sleep sleep_;
+  VolumeFit volume_fit_;
+  std::vector<char> flows_;  ///< per material: MaterialTraits::flows
+  VolumeFit::Result last_fit_;
   ///@{
   /// The sleepers' fastest wave speed (m/s), as of Sleep::generation (materialStep's cache).
   mutable long sleepers_generation_ = -1;

@@ -61,6 +61,10 @@ struct SolverDef {
   /// true. 1: off.
   Real inertia_scale = 1;
   SleepDef sleep;  ///< sleeping material (off by default)
+  /// Volume-consistent points (VolumeFit, docs/method.md): after each step the shearing points of
+  /// the flowing materials (granular, fluid) move down the nodes' over-fill, so that their
+  /// volumes keep tiling the space they share. Off: the points go where the grid carries them.
+  bool volume_fit = false;
   /// A world of fewer awake material points and no SPH steps on the calling thread alone:
   /// below this, starting and ending a step's ~24 parallel regions (3.5 us each on two cores
   /// here) costs more than sharing its work saves (docs/performance.md). Speed only: the results

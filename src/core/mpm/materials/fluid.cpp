@@ -24,7 +24,8 @@ const MaterialTraits& fluidModel() {
       fluidConstants,
       /*batches_stress=*/false,
       /*own_wave_speed=*/true,
-      /*reports_mach=*/true};
+      /*reports_mach=*/true,
+      /*flows=*/true};
   return traits;
 }
 

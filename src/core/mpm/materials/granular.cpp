@@ -53,7 +53,11 @@ const MaterialTraits& granularModel() {
         1,
         "the grains' share of the volume at the critical packing, below 1"}},
       granularProblem,
-      granularConstants};
+      granularConstants,
+      /*batches_stress=*/false,
+      /*own_wave_speed=*/false,
+      /*reports_mach=*/false,
+      /*flows=*/true};
   return traits;
 }
 
