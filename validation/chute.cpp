@@ -26,10 +26,10 @@ int usage(const char* program, FILE* to = stderr) {
   std::fprintf(to,
                "usage: %s [--cell M] [--angle DEG] [--end S] [--every S] [--perturb M]\n"
                "          [--seed N] [--transfer apic|asflip] [--film] [--threads N]\n"
-               "          [--ppc N] [--relax S] [--grain M] [--fit]\n"
+               "          [--ppc N] [--relax S] [--grain M] [--fit] [--usl]\n"
                "  defaults: 2.5 mm cells, 27 deg, 3 s, every 0.25 s, perturbed by 1e-5 m\n"
                "  (seed 1; 0: the symmetric start), 4 mm grains (--grain: the beads' own\n"
-               "  are 0.53 mm), volume fit off (--fit: on),\n"
+               "  are 0.53 mm), volume fit off (--fit: on), USF (--usl: USL),\n"
                "  (seed 1; 0: the symmetric start), ASFLIP (cases::chute's), 1 thread, 2 x 2\n"
                "  points per cell (--ppc 1-4), ASFLIP kept whole (--relax: its departure's\n"
                "  relaxation time in s); below\n"
@@ -48,12 +48,12 @@ int main(int argc, char** argv) {
   Real end = 3, every = 0.25, perturb = 1e-5, relax = 0;
   unsigned seed = 1;
   int threads = 1, ppc = 2;
-  bool film = false, apic = false, fit = false;
+  bool film = false, apic = false, fit = false, usl = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") return usage(argv[0], stdout);
-    if (a == "--film" || a == "--fit") {
-      (a == "--film" ? film : fit) = true;
+    if (a == "--film" || a == "--fit" || a == "--usl") {
+      (a == "--film" ? film : a == "--fit" ? fit : usl) = true;
       continue;
     }
     if (i + 1 >= argc) return usage(argv[0]);
@@ -97,6 +97,7 @@ int main(int argc, char** argv) {
   def.bodies[0].points_per_cell = ppc;
   if (relax > 0) def.solver.asflip_relaxation_time = relax;
   def.solver.volume_fit = fit;
+  if (usl) def.solver.stress_update = StressUpdate::kUsl;
   const Real surface = cases::bagnold(c, c.depth, c.depth);
   if (film) {  // Nusselt's surface speed rho g sin(theta) h^2 / (2 eta) set to Bagnold's
     MaterialDef& m = def.materials[0];
