@@ -172,9 +172,9 @@ VolumeFit::Result VolumeFit::run(Particles& P, const Grid& g, const std::vector<
     // At most as far as the neighbours shear past the point in this step.
     const Real reach = std::sqrt(P.volume0[p] * P.J[p]) * shearRate(P, p) * dt;
     const Real length = std::hypot(dx, dy);
-    if (!(length <= reach)) {  // longer, or not finite (then the point stays: reach is NaN)
-      const Real scale = length > 0 && std::isfinite(length) ? reach / length : Real(0);
-      if (!std::isfinite(scale)) continue;
+    if (!(length <= reach)) {
+      const Real scale = reach / length;  // not finite, or NaN, when either is: the point stays
+      if (!(scale >= 0 && std::isfinite(scale))) continue;
       dx *= scale, dy *= scale;
     }
     Real x = P.x[p] + dx, y = P.y[p] + dy;

@@ -59,7 +59,7 @@ class VolumeFit {
   bool periodic_x_ = false;
   std::vector<Real> capacity_x_, capacity_y_;  ///< per node column and row (m)
   std::vector<Real> fill_;                     ///< v_i, then H_i (m^2)
-  std::vector<Real> push_;                     ///< sum_p V_p grad S_ip . g_p (m^3 ... per node)
+  std::vector<Real> push_;                     ///< (J g)_i = sum_p V_p grad S_ip . g_p (m^4)
   std::vector<Real> gx_, gy_;                  ///< per point: dPhi / dx_p
 };
 
