@@ -5,13 +5,12 @@
 /// their body equals the part of the node's support inside the domain, its capacity
 /// V_i = integral of S_i (taken as a lattice of the bodies' points fills it, so that a lattice at
 /// rest reads exactly full, walls included). Under sustained shear the points drift from that
-/// tiling (they crowd in bands while their J says they expanded) and the quadrature error feeds the
-/// flow (issue 41's chute runaway). The fit measures each node's over-fill H_i = max(0, v_i - V_i)
-/// and moves the flowing points down the gradient of Phi = (1/2) sum_i H_i^2, by the Gauss-Newton
-/// step that minimises Phi linearised along that gradient (no rate to choose), each point at most
-/// as far as its neighbours shear past it in the step, l_p gamma_dot_p dt (l_p = sqrt(V_p)):
-/// material that does not shear is left alone. Only positions change: mass, momentum, J and stress
-/// are the points' own, untouched.
+/// tiling: in issue 41's chute they crowd in bands while their J says they expanded. The fit
+/// measures each node's over-fill H_i = max(0, v_i - V_i) and moves the flowing points down the
+/// gradient of Phi = (1/2) sum_i H_i^2, by the Gauss-Newton step that minimises Phi linearised
+/// along that gradient (no rate to choose), each point at most as far as its neighbours shear past
+/// it in the step, l_p gamma_dot_p dt (l_p = sqrt(V_p)): material that does not shear is left
+/// alone. Only positions change: mass, momentum, J and stress are the points' own, untouched.
 #pragma once
 
 #include <vector>
@@ -36,9 +35,6 @@ class VolumeFit {
   /// whole) under kernel, as a lattice of points_per_cell^2 points per cell fills them.
   void init(const Grid& g, KernelType kernel, const Vec2& lo, const Vec2& hi, bool periodic_x,
             int points_per_cell);
-  /// Whether init was called.
-  bool ready() const { return !capacity_x_.empty(); }
-
   /// The nodes' over-fill from every material point's volume (SPH particles not counted).
   Result measure(const Particles& P, const Grid& g);
   /// The fit over dt: the over-fill, then the points whose material flows (flows[material],
