@@ -32,6 +32,8 @@ CASES = [
                       "rates, Beverloo exponent, C and k with the exponent 1.5", True),
     ("silo_granular_asflip", "Issue 41: the granular silo with ASFLIP (relaxation 0.03 s) at 7, "
                              "5 and 3.5 mm cells", True),
+    ("silo_granular_fit", "Issue 79: the granular silo of silo_granular_asflip with "
+                          "volume-consistent points", True),
     ("contact_schemes", "Seed 000 sec. 5.4: contact-scheme comparison (1D rod)", True),
     ("debris", "Seed 000 sec. 6 / seed 003: granular flow hitting three wooden blocks", True),
     ("debris_sweep", "Seed 000 sec. 6 / seed 003: resolution sweep of the wooden-block scene (IMP)",

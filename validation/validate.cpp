@@ -76,6 +76,7 @@ const std::vector<Case>& allCases() {
        report::granular::siloConvergenceFits},
       {"silo_granular", report::granular::siloGranular},
       {"silo_granular_asflip", report::granular::siloGranularAsflip},
+      {"silo_granular_fit", report::granular::siloGranularFit},
       {"compression", report::granular::compression},
       {"wheel", report::robots::wheel, report::robots::wheelRuns},
       {"wheel_granular", report::robots::wheelGranular, report::robots::wheelRuns},

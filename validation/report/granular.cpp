@@ -207,10 +207,14 @@ void siloConvergenceFits(const Options& o, Results& r) {
 // 0.5-0.65, k about 1.5-3 grain diameters; the same from the rates' Richardson limits (three
 // finest sizes, as in silo_convergence). One material for every neck and cell size.
 // silo_granular_asflip: the same with ASFLIP (relaxation time 0.03 s, as in the granular
-// wooden-block scene) at 7, 5 and 3.5 mm, to show the transfer's weight.
-void siloGranularWith(const Options& o, Results& r, TransferScheme transfer) {
+// wooden-block scene) at 7, 5 and 3.5 mm, to show the transfer's weight; silo_granular_fit: that
+// with volume-consistent points (issue 79).
+void siloGranularWith(const Options& o, Results& r, TransferScheme transfer,
+                      bool volume_fit = false) {
   const bool asflip = transfer == TransferScheme::kAsflip;
-  const std::string name = asflip ? "silo_granular_asflip" : "silo_granular";
+  const std::string name = volume_fit ? "silo_granular_fit"
+                           : asflip   ? "silo_granular_asflip"
+                                      : "silo_granular";
   const std::vector<Real> necks =
       o.fast ? std::vector<Real>{0.05, 0.06} : std::vector<Real>{0.02, 0.03, 0.04, 0.05, 0.06};
   const std::vector<Real> sizes = o.fast   ? std::vector<Real>{0.007}
@@ -257,6 +261,7 @@ void siloGranularWith(const Options& o, Results& r, TransferScheme transfer) {
       WorldDef def = cases::silo(neck, h, 2, cases::SiloSand::kGranular);
       def.solver.transfer = transfer;
       if (asflip) def.solver.asflip_relaxation_time = 0.03;
+      def.solver.volume_fit = volume_fit;
       World w(def);
       const auto t0 = std::chrono::steady_clock::now();
       const cases::SiloFlow f = cases::siloFlow(w, t_max);
@@ -268,8 +273,8 @@ void siloGranularWith(const Options& o, Results& r, TransferScheme transfer) {
       char q[96], settings[160];
       std::snprintf(q, sizeof q, "mass flow rate, D0 %.0f cm, h %.1f mm (%.1f cells)", 100 * neck,
                     1000 * h, neck / h);
-      std::snprintf(settings, sizeof settings, "granular mu(I), %s; %s t = %.2f-%.2f s",
-                    asflip ? "ASFLIP 0.03 s" : "APIC",
+      std::snprintf(settings, sizeof settings, "granular mu(I), %s%s; %s t = %.2f-%.2f s",
+                    asflip ? "ASFLIP 0.03 s" : "APIC", volume_fit ? ", volume fit" : "",
                     f.window_reached ? "fitted over" : "under 10% discharged: mean over",
                     f.window_start, f.window_end);
       r.add(name, q, f.rate, cases::beverloo(neck), "kg/(s m)",
@@ -321,6 +326,10 @@ void siloGranular(const Options& o, Results& r) {
 
 void siloGranularAsflip(const Options& o, Results& r) {
   siloGranularWith(o, r, TransferScheme::kAsflip);
+}
+
+void siloGranularFit(const Options& o, Results& r) {
+  siloGranularWith(o, r, TransferScheme::kAsflip, true);
 }
 
 // Seed 000 sec. 7: uniaxial compression of the granular matrix at three fines contents; the

@@ -142,6 +142,7 @@ void siloConvergenceFits(const Options& o, Results& r);
 int siloConvergenceRuns(bool fast);
 void siloGranular(const Options& o, Results& r);
 void siloGranularAsflip(const Options& o, Results& r);
+void siloGranularFit(const Options& o, Results& r);
 void compression(const Options& o, Results& r);
 void chuteFlow(const Options& o, Results& r);
 int chuteFlowRuns(bool fast);
