@@ -64,16 +64,21 @@ void shear(Particles& P, Real rate) {
 }  // namespace
 
 // The capacities are the lattice's own sums (VolumeFit::init), so the filled lattice reads full
-// to round-off at the base, the side walls and the periodic seam, for every kernel.
+// to round-off at the base, the side walls and the periodic seam, for every kernel and 1 to 3
+// points per cell.
 TEST(VolumeFit, ALatticeAtRestFillsEveryNodeExactly) {
   for (const bool periodic : {true, false})
     for (const KernelType k :
-         {KernelType::kQuadraticBSpline, KernelType::kCubicBSpline, KernelType::kGimp}) {
-      World w(beadsBox(periodic, k));
-      VolumeFit f = fitFor(w);
-      EXPECT_LT(f.measure(w.particles(), w.grid()).largest_overfill, 1e-12)
-          << "periodic " << periodic << ", kernel " << static_cast<int>(k);
-    }
+         {KernelType::kQuadraticBSpline, KernelType::kCubicBSpline, KernelType::kGimp})
+      for (const int ppc : {1, 2, 3}) {
+        WorldDef def = beadsBox(periodic, k);
+        def.bodies[0].points_per_cell = ppc;
+        World w(def);
+        VolumeFit f = fitFor(w, ppc);
+        EXPECT_LT(f.measure(w.particles(), w.grid()).largest_overfill, 1e-12)
+            << "periodic " << periodic << ", kernel " << static_cast<int>(k) << ", " << ppc
+            << " points per cell";
+      }
 }
 
 TEST(VolumeFit, MovesOnlyPositions) {

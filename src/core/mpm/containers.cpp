@@ -46,4 +46,12 @@ void Grid::init(const Vec2& domain_min, int domain_cells_x, int domain_cells_y, 
   forEachField([this](std::vector<Real>& a) { a.assign(nodeCount(), Real(0)); });
 }
 
+void Grid::foldPeriodicX(std::vector<Real>& a) const {
+  const int pairs = nx - cells_x;
+  for (int j = 0; j < ny; ++j) {
+    Real* row = a.data() + static_cast<std::size_t>(j) * nx;
+    for (int i = 0; i < pairs; ++i) row[i] = row[i + cells_x] = row[i] + row[i + cells_x];
+  }
+}
+
 }  // namespace mpm_sdem

@@ -104,6 +104,7 @@ MpmSolver::MpmSolver(const DomainDef& domain, Real cell_size, const SolverDef& s
   for (const BodyDef& b : bodies)
     if (flows_[b.material]) lattice = std::max(lattice, b.points_per_cell);
   volume_fit_.init(grid_, def_.kernel, domain_.min, domain_.max, periodicX(), lattice);
+  fits_ = def_.volume_fit && std::find(flows_.begin(), flows_.end(), 1) != flows_.end();
 }
 
 TimeStepChoice MpmSolver::materialStep(Real cfl, Real longest) const {
@@ -306,14 +307,8 @@ void MpmSolver::applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const {
 void MpmSolver::foldPeriodic(std::initializer_list<std::vector<Real>*> fields) {
   if (!periodicX()) return;
   StageTimer timer(profile_, Stage::kGridUpdate);
-  const int nx = grid_.nx, cells = grid_.cells_x, pairs = nx - cells;
-  for (std::vector<Real>* a : fields) {
-    if (a->empty()) continue;  // a field this scene does not use
-    for (int j = 0; j < grid_.ny; ++j) {
-      Real* row = a->data() + static_cast<std::size_t>(j) * nx;
-      for (int i = 0; i < pairs; ++i) row[i] = row[i + cells] = row[i] + row[i + cells];
-    }
-  }
+  for (std::vector<Real>* a : fields)
+    if (!a->empty()) grid_.foldPeriodicX(*a);  // empty: a field this scene does not use
 }
 
 Real* MpmSolver::clearedSidewallLoad() {
@@ -396,8 +391,7 @@ void MpmSolver::constitutiveUpdate(Real dt) {
 }
 
 void MpmSolver::fitVolumes(Real dt) {
-  if (!def_.volume_fit || dt == 0 || std::find(flows_.begin(), flows_.end(), 1) == flows_.end())
-    return;  // off, the first step, or nothing that flows
+  if (!fits_ || dt == 0) return;  // off, nothing flows, or the first step
   StageTimer timer(profile_, Stage::kVolumeFit);
   last_fit_ = volume_fit_.fit(particles_, grid_, flows_, dt);
 }

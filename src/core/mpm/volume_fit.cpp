@@ -51,17 +51,8 @@ void VolumeFit::init(const Grid& g, KernelType kernel, const Vec2& lo, const Vec
     capacity_y_ = capacities<K>(g.ny, a.y(), b.y(), g.h, points_per_cell);
   });
   // Periodic in x: every column's support lies whole in the domain (its far part is the other
-  // side's, which fold() adds).
+  // side's, which Grid::foldPeriodicX adds).
   if (periodic_x) std::fill(capacity_x_.begin(), capacity_x_.end(), g.h);
-}
-
-void VolumeFit::fold(std::vector<Real>& a, const Grid& g) const {
-  if (!periodic_x_) return;
-  const int pairs = g.nx - g.cells_x;
-  for (int j = 0; j < g.ny; ++j) {
-    Real* row = a.data() + static_cast<std::size_t>(j) * g.nx;
-    for (int i = 0; i < pairs; ++i) row[i] = row[i + g.cells_x] = row[i] + row[i + g.cells_x];
-  }
 }
 
 VolumeFit::Result VolumeFit::measure(const Particles& P, const Grid& g) {
@@ -101,7 +92,7 @@ VolumeFit::Result VolumeFit::run(Particles& P, const Grid& g, const std::vector<
     for (int b = 0; b < S; ++b)
       for (int a = 0; a < S; ++a) fill_[g.index(sx.base + a, sy.base + b)] += v * sx.w[a] * sy.w[b];
   }
-  fold(fill_, g);
+  if (periodic_x_) g.foldPeriodicX(fill_);
   // H_i in place of v_i, and the largest over a full node's capacity h^2 (a node at a wall has a
   // sliver of it, 1/64 h^2 beyond the base, which the wall's elastic strain alone would fill
   // 0.1% over). Nodes outside the domain have no capacity (and no volume).
@@ -153,7 +144,7 @@ VolumeFit::Result VolumeFit::run(Particles& P, const Grid& g, const std::vector<
         push_[g.index(sx.base + a, sy.base + b)] +=
             v * (sx.dw[a] * sy.w[b] * gx_[p] + sx.w[a] * sy.dw[b] * gy_[p]);
   }
-  fold(push_, g);
+  if (periodic_x_) g.foldPeriodicX(push_);
   // Gauss-Newton along -g on the over-filled nodes (each counted once when periodic):
   // min_s |H - s J g|^2 gives s = (J^T H . g) / |J g|^2 = |g|^2 / |J g|^2.
   Real across = 0;

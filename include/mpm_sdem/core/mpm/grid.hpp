@@ -64,6 +64,9 @@ struct Grid {
   std::size_t nodeCount() const { return static_cast<std::size_t>(nx) * ny; }
   int index(int i, int j) const { return i + j * nx; }
   ///@}
+  /// Periodic in x, nodes i and i + cells_x are one node: each gets the sum of both in a, an
+  /// array over the nodes.
+  void foldPeriodicX(std::vector<Real>& a) const;
 };
 
 }  // namespace mpm_sdem

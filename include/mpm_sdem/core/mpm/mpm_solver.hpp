@@ -157,6 +157,7 @@ class MpmSolver {
   Sleep sleep_;
   VolumeFit volume_fit_;
   std::vector<char> flows_;  ///< per material: MaterialTraits::flows
+  bool fits_ = false;        ///< SolverDef::volume_fit, and some material flows
   VolumeFit::Result last_fit_;
   ///@{
   /// The sleepers' fastest wave speed (m/s), as of Sleep::generation (materialStep's cache).

@@ -48,7 +48,6 @@ class VolumeFit {
  private:
   template <class K>
   Result run(Particles& P, const Grid& g, const std::vector<char>* flows, Real dt);
-  void fold(std::vector<Real>& a, const Grid& g) const;
 
   KernelType kernel_ = KernelType::kQuadraticBSpline;
   Vec2 lo_{0, 0}, hi_{0, 0};
