@@ -49,6 +49,8 @@ CASES = [
                         "cm to 1.67 mm: resting positions, landings, turns and rotation histories "
                         "against seed 003",
      True),
+    ("debris_granular_fit", "Issue 79: debris_granular with volume-consistent points "
+                            "(solver.volume_fit), the same ensembles", True),
     ("debris_timestep", "Seed 000 sec. 6 / seed 003: the wooden-block scene against the time step"
                         " (kappa_2 of eq. 51) at 5 mm cells", True),
     ("debris_flow", "Seed 000 sec. 6 / seed 003: the flow alone before it meets the blocks (0.2 s)"
@@ -230,20 +232,26 @@ def plot_debris(data, out):
 
 
 def plot_debris_granular(data, out):
-    """Issue 40: the blocks' rotation histories in the granular scene, the first member at each
-    cell size, against seed 003's description (sec. 4.3): block 2 turned 90 deg by 0.40 s and
-    lands at 0.36-0.37 s; block 1 turned over, 180 deg, by 0.45 s, and lands at 0.38-0.39 s."""
-    files = sorted((f for f in os.listdir(data) if f.startswith("debris_granular_angles_")),
-                   key=lambda f: -float(f[len("debris_granular_angles_"):-len("mm.csv")]))
-    if not files:
+    """Issues 40 and 79: the blocks' rotation histories in the granular scene, the first member at
+    each cell size (solid; dashed with volume-consistent points), against seed 003's description
+    (sec. 4.3): block 2 turned 90 deg by 0.40 s and lands at 0.36-0.37 s; block 1 turned over,
+    180 deg, by 0.45 s, and lands at 0.38-0.39 s."""
+    def runs(prefix):
+        found = (f for f in os.listdir(data) if f.startswith(prefix) and f.endswith("mm.csv"))
+        return {float(f[len(prefix):-len("mm.csv")]): f for f in found}
+    plain, fitted = runs("debris_granular_angles_"), runs("debris_granular_fit_angles_")
+    if not plain and not fitted:
         return None
     fig, axes = plt.subplots(1, 2, figsize=(10, 3.5), sharey=True)
-    for f in files:
-        rows = read_csv(os.path.join(data, f))
-        label = f[len("debris_granular_angles_"):-len(".csv")].replace("mm", " mm")
-        t = [float(r["time"]) for r in rows]
-        for ax, key in zip(axes, ("block2_angle_deg", "block1_angle_deg")):
-            ax.plot(t, [abs(float(r[key])) for r in rows], label=label, lw=1)
+    for i, mm in enumerate(sorted(set(plain) | set(fitted), reverse=True)):
+        for files, style, suffix in ((plain, "-", ""), (fitted, "--", ", fit")):
+            if mm not in files:
+                continue
+            rows = read_csv(os.path.join(data, files[mm]))
+            t = [float(r["time"]) for r in rows]
+            for ax, key in zip(axes, ("block2_angle_deg", "block1_angle_deg")):
+                ax.plot(t, [abs(float(r[key])) for r in rows], style, color="C%d" % i,
+                        label="%g mm%s" % (mm, suffix), lw=1)
     marks = (((0.365, 0.40), 90, "block 2"), ((0.385, 0.45), 180, "block 1"))
     for ax, ((lands, by), angle, name) in zip(axes, marks):
         ax.plot([by], [angle], "k*", ms=10, label="seed 003: %d deg by %.2f s" % (angle, by))
@@ -252,8 +260,7 @@ def plot_debris_granular(data, out):
         ax.set_title(name, fontsize=9)
         ax.set_xlim(0.2, 0.7)
     axes[0].set_ylabel("|rotation| (deg)")
-    for ax in axes:
-        ax.legend(fontsize=7, loc="lower right")
+    axes[1].legend(fontsize=6, loc="lower right", ncol=2)
     return finish(fig, out, "debris_granular_angles.png")
 
 

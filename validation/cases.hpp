@@ -563,6 +563,10 @@ ColumnDeposit collapseColumn(World& w, const GranularColumn& c, Real t_max);
 // for a < 1.15, a^(2/5) above.
 Real lubeRunout(Real aspect);
 Real lubeHeight(Real aspect);
+// The glass beads' fit in a quasi-2D channel (Lajeunesse, Monnier & Homsy 2005, Phys. Fluids 17,
+// 103302), as Lagree, Staron & Popinet 2011 (J. Fluid Mech. 686, eq. 3.1) quote it: (L_inf -
+// L0) / L0 = 1.8 a for a < 3, 2.3 a^(2/3) from a = 3.
+Real lajeunesseRunout(Real aspect);
 
 // Issue 44: a plate intruding into the blade's sand (Drucker-Prager, 1500 kg/m^3, E = 1 MPa,
 // phi = 35 deg; bladeSand), against resistive force theory (RFT: Li, Zhang & Goldman 2013,

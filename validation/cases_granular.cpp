@@ -501,6 +501,10 @@ Real lubeRunout(Real aspect) {
   return std::numeric_limits<Real>::quiet_NaN();  // between the two fits' ranges
 }
 
+Real lajeunesseRunout(Real aspect) {
+  return aspect < 3 ? Real(1.8) * aspect : Real(2.3) * std::pow(aspect, Real(2) / 3);
+}
+
 Real lubeHeight(Real aspect) {
   return aspect < 1.15 ? aspect : std::pow(aspect, Real(0.4));
 }

@@ -64,6 +64,8 @@ const std::vector<Case>& allCases() {
       {"column_collapse", report::granular::columnCollapse, report::granular::columnCollapseRuns},
       {"debris_granular", report::debris::debrisGranular, report::debris::debrisGranularRuns,
        report::debris::debrisGranularEnsembles},
+      {"debris_granular_fit", report::debris::debrisGranularFit, report::debris::debrisGranularRuns,
+       report::debris::debrisGranularFitEnsembles},
       {"clusters", report::contact::clusters},
       {"fem_cantilever", report::fem::femCantilever},
       {"fem_incline", report::fem::femIncline},

@@ -325,7 +325,8 @@ void debrisEnsemble(const Options& o, Results& r) {
 // block 1 turned over, 180 deg, by 0.45 s; first ground contacts at 0.36-0.39 s).
 // One run per cell size and member (each its own run of a split report, Options::part), its
 // measures in debris_granular.csv; the ensembles' means and spreads from that table
-// (debrisGranularEnsembles).
+// (debrisGranularEnsembles). debris_granular_fit: the same with volume-consistent points
+// (solver.volume_fit, issue 79), its tables named for it.
 struct GranularMember {
   Real h;
   int member;
@@ -343,11 +344,17 @@ int debrisGranularRuns(bool fast) {
   return static_cast<int>(debrisGranularRunList(fast).size());
 }
 
-void debrisGranular(const Options& o, Results&) {
+namespace {
+const char* granularCaseName(bool volume_fit) {
+  return volume_fit ? "debris_granular_fit" : "debris_granular";
+}
+
+void debrisGranularWith(const Options& o, bool volume_fit) {
   const Scene scene =
       loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/debris_impact_granular.yaml");
   const std::vector<GranularMember> runs = debrisGranularRunList(o.fast);
-  FILE* table = std::fopen((o.out + "/debris_granular.csv").c_str(), "w");
+  const std::string name = granularCaseName(volume_fit);
+  FILE* table = std::fopen((o.out + "/" + name + ".csv").c_str(), "w");
   std::fprintf(table,
                "cell_size_m,member,points,steps,wall_s,block2_left_cm,block1_left_cm,block2_lands_"
                "s,block1_lands_s,block2_turn_040_deg,block1_turn_045_deg,block2_turn_end_deg,"
@@ -359,13 +366,14 @@ void debrisGranular(const Options& o, Results&) {
     WorldDef def = scene.world;
     def.cell_size = h;
     def.coupling.contact_radius = 0;  // the default at this cell size
+    def.solver.volume_fit = volume_fit;
     // The first member's rotation history (both blocks every 0.01 s), for the report's figure
     // against seed 003's description.
     FILE* angles = nullptr;
     if (m == 0) {
-      char name[64];
-      std::snprintf(name, sizeof name, "/debris_granular_angles_%.3gmm.csv", 1000 * h);
-      angles = std::fopen((o.out + name).c_str(), "w");
+      char file[80];
+      std::snprintf(file, sizeof file, "/%s_angles_%.3gmm.csv", name.c_str(), 1000 * h);
+      angles = std::fopen((o.out + file).c_str(), "w");
       std::fprintf(angles, "time,block2_angle_deg,block1_angle_deg\n");
     }
     const DebrisRun run =
@@ -382,8 +390,9 @@ void debrisGranular(const Options& o, Results&) {
   std::fclose(table);
 }
 
-void debrisGranularEnsembles(const Options& o, Results& r) {
-  const Table table(o.out + "/debris_granular.csv");
+void debrisGranularEnsemblesWith(const Options& o, Results& r, bool volume_fit) {
+  const std::string name = granularCaseName(volume_fit);
+  const Table table(o.out + "/" + name + ".csv");
   std::vector<Real> sizes;  // in the runs' order
   for (const GranularMember& run : debrisGranularRunList(o.fast))
     if (std::find(sizes.begin(), sizes.end(), run.h) == sizes.end()) sizes.push_back(run.h);
@@ -408,10 +417,9 @@ void debrisGranularEnsembles(const Options& o, Results& r) {
       std::vector<Real> values;
       for (std::size_t i : rows) values.push_back(table.at(i, column));
       const auto [mean, spread] = meanAndSpread(values);
-      r.add("debris_granular", q + ", mean" + tag, mean, reference, unit, source, wall, settings,
-            points, steps);
-      r.add("debris_granular", q + ", standard deviation" + tag, spread, 0, unit, source, wall,
-            settings, points, steps);
+      r.add(name, q + ", mean" + tag, mean, reference, unit, source, wall, settings, points, steps);
+      r.add(name, q + ", standard deviation" + tag, spread, 0, unit, source, wall, settings, points,
+            steps);
     };
     add("block 2 left face", "block2_left_cm", 34.6, "cm", "seed 003 (experiment)");
     add("block 1 left face", "block1_left_cm", 40.1, "cm", "seed 003 (experiment)");
@@ -422,6 +430,20 @@ void debrisGranularEnsembles(const Options& o, Results& r) {
     add("block 2 turned at the end", "block2_turn_end_deg", 90, "deg", "seed 003 sec. 4.3");
     add("block 1 turned at the end", "block1_turn_end_deg", 180, "deg", "seed 003 sec. 4.3");
   }
+}
+}  // namespace
+
+void debrisGranular(const Options& o, Results&) {
+  debrisGranularWith(o, false);
+}
+void debrisGranularEnsembles(const Options& o, Results& r) {
+  debrisGranularEnsemblesWith(o, r, false);
+}
+void debrisGranularFit(const Options& o, Results&) {
+  debrisGranularWith(o, true);
+}
+void debrisGranularFitEnsembles(const Options& o, Results& r) {
+  debrisGranularEnsemblesWith(o, r, true);
 }
 
 // The wooden-block scene as seed 003 models the experiment (sec. 4.3), under refinement: the

@@ -459,8 +459,9 @@ void chuteFlow(const Options& o, Results& r) {
 
 // Issue 41: granular column collapse on a rough floor (cases::granularColumn), aspect ratios 0.5
 // to 8 at two cells, 3 s from release: the run-out (L_inf - L0) / L0 and the height H_inf / L0
-// against the quasi-2D experiments' fits (Lube et al. 2005), with the farthest point (the thin
-// front) and the fastest point at the end; then a = 1 and 3 at 5 mm with rougher grains, and the
+// against the quasi-2D experiments' fits (Lube et al. 2005; the run-out also against Lajeunesse
+// et al. 2005's glass beads), with the farthest point (the thin front) and the fastest point at
+// the end; then a = 1 and 3 at 5 mm with rougher grains, and the
 // beads with volume-consistent points (issue 79). Fast: a = 1 at 1 cm.
 // One run per column (each its own run of a split report, Options::part): aspect ratio, cell
 // and grains' friction, and the run's label.
@@ -539,6 +540,10 @@ void columnCollapse(const Options& o, Results& r) {
       r.add("column_collapse", "farthest point (L - L0) / L0" + tag,
             (d.farthest - c.length) / c.length, cases::lubeRunout(a), "-", source, wall, settings,
             points, steps);
+    r.add("column_collapse", "(L_inf - L0) / L0 against glass beads" + tag,
+          (d.runout - c.length) / c.length, cases::lajeunesseRunout(a), "-",
+          "Lajeunesse et al. 2005 (glass beads, quasi-2D; as Lagree et al. 2011 eq. 3.1 quote it)",
+          wall, settings, points, steps);
     r.add("column_collapse", "H_inf / L0" + tag, d.height / c.length, cases::lubeHeight(a), "-",
           source, wall, settings, points, steps);
     if (runs[i].details)

@@ -159,6 +159,8 @@ void debrisSweep(const Options& o, Results& r);
 void debrisEnsemble(const Options& o, Results& r);
 void debrisGranular(const Options& o, Results& r);
 void debrisGranularEnsembles(const Options& o, Results& r);
+void debrisGranularFit(const Options& o, Results& r);
+void debrisGranularFitEnsembles(const Options& o, Results& r);
 int debrisGranularRuns(bool fast);
 void debrisSeed003(const Options& o, Results& r);
 void debrisTimeStep(const Options& o, Results& r);
