@@ -260,6 +260,9 @@ def plot_debris_granular(data, out):
         ax.set_title(name, fontsize=9)
         ax.set_xlim(0.2, 0.7)
     axes[0].set_ylabel("|rotation| (deg)")
+    handles, labels = axes[0].get_legend_handles_labels()
+    marks = [(h, l) for h, l in zip(handles, labels) if l.startswith("seed 003")]
+    axes[0].legend(*zip(*marks), fontsize=7, loc="lower right")
     axes[1].legend(fontsize=6, loc="lower right", ncol=2)
     return finish(fig, out, "debris_granular_angles.png")
 

@@ -203,9 +203,10 @@ void siloConvergenceFits(const Options& o, Results& r) {
 // least six cells wide, at 7, 5, 3.5 and 2.5 mm cells (fast: 5 and 6 cm at 7 mm, 1.2 s at most).
 // Per cell size, Beverloo's exponent fitted against log W with W = D0 (k = 0) and W = D0 -
 // k_c r_p (the seed's k_c = 2.2), and C and k fitted with the exponent held at 1.5 (rate^(2/3)
-// is then linear in D0: slope (C rho g^0.5)^(2/3), root k d); published 2D ranges: C about
-// 0.5-0.65, k about 1.5-3 grain diameters; the same from the rates' Richardson limits (three
-// finest sizes, as in silo_convergence). One material for every neck and cell size.
+// is then linear in D0: slope (C rho g^0.5)^(2/3), root k d) against seed 000's C 0.58 and
+// k_c r_p = 1.1 d (its Fig. 16, citing Mankoc et al. 2007, Granular Matter 9, for the 2D law;
+// no quasi-2D measurement of C and k was at hand); the same from the rates' Richardson limits
+// (three finest sizes, as in silo_convergence). One material for every neck and cell size.
 // silo_granular_asflip: the same with ASFLIP (relaxation time 0.03 s, as in the granular
 // wooden-block scene) at 7, 5 and 3.5 mm, to show the transfer's weight; silo_granular_fit: that
 // with volume-consistent points (issue 79).
@@ -245,10 +246,10 @@ void siloGranularWith(const Options& o, Results& r, TransferScheme transfer,
     const Real s = linear.slope();
     std::snprintf(q, sizeof q, "C with the exponent 1.5, %s", what);
     r.add(name, q, std::pow(s, Real(1.5)) / cases::siloDensityRootGravity(), 0.58, "-",
-          "seed 000's C; published 2D about 0.5-0.65", 0, settings);
+          "seed 000 Fig. 16 (2D law of Mankoc et al. 2007)", 0, settings);
     std::snprintf(q, sizeof q, "k (grain diameters) with the exponent 1.5, %s", what);
-    r.add(name, q, -linear.intercept() / s / d, 1.1, "d",
-          "seed 000's k_c r_p = 1.1 d; published about 1.5-3 d", 0, settings);
+    r.add(name, q, -linear.intercept() / s / d, 1.1, "d", "seed 000 Fig. 16 (k_c r_p = 1.1 d)", 0,
+          settings);
   };
   const Real nan = std::numeric_limits<Real>::quiet_NaN();
   std::vector<std::vector<Real>> rate(necks.size(), std::vector<Real>(sizes.size(), nan));
