@@ -462,8 +462,8 @@ void chuteFlow(const Options& o, Results& r) {
 // to 8 at two cells, 3 s from release: the run-out (L_inf - L0) / L0 and the height H_inf / L0
 // against the quasi-2D experiments' fits (Lube et al. 2005; the run-out also against Lajeunesse
 // et al. 2005's glass beads), with the farthest point (the thin front) and the fastest point at
-// the end; then a = 1 and 3 at 5 mm with rougher grains, and the
-// beads with volume-consistent points (issue 79). Fast: a = 1 at 1 cm.
+// the end; then a = 1 and 3 at 5 mm with rougher grains, and the beads with volume-consistent
+// points (issue 79). Fast: a = 1 at 1 cm.
 // One run per column (each its own run of a split report, Options::part): aspect ratio, cell
 // and grains' friction, and the run's label.
 struct ColumnRun {
