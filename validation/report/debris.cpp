@@ -326,22 +326,30 @@ void debrisEnsemble(const Options& o, Results& r) {
 // One run per cell size and member (each its own run of a split report, Options::part), its
 // measures in debris_granular.csv; the ensembles' means and spreads from that table
 // (debrisGranularEnsembles). debris_granular_fit: the same with volume-consistent points
-// (solver.volume_fit, issue 79), its tables named for it.
+// (solver.volume_fit, issue 79), its tables named for it, and at 5 mm with the step halved and
+// quartered (both its bounds: kappa_1 and kappa_2 of eq. 51).
 struct GranularMember {
   Real h;
   int member;
+  Real step = 1;  // the factor on the scene's step
 };
-std::vector<GranularMember> debrisGranularRunList(bool fast) {
+std::vector<GranularMember> debrisGranularRunList(bool fast, bool volume_fit) {
   std::vector<Real> sizes = ensembleCellSizes(fast);
   if (!fast) sizes.push_back(0.01 / 6);  // issue 40 asks the ensembles down to 1.67 mm (h / 6)
   const int members = fast ? 2 : 3;
   std::vector<GranularMember> runs;
   for (Real h : sizes)
     for (int m = 0; m < members; ++m) runs.push_back({h, m});
+  if (volume_fit && !fast)
+    for (const Real step : {0.5, 0.25})
+      for (int m = 0; m < members; ++m) runs.push_back({0.005, m, step});
   return runs;
 }
 int debrisGranularRuns(bool fast) {
-  return static_cast<int>(debrisGranularRunList(fast).size());
+  return static_cast<int>(debrisGranularRunList(fast, false).size());
+}
+int debrisGranularFitRuns(bool fast) {
+  return static_cast<int>(debrisGranularRunList(fast, true).size());
 }
 
 namespace {
@@ -352,25 +360,29 @@ const char* granularCaseName(bool volume_fit) {
 void debrisGranularWith(const Options& o, bool volume_fit) {
   const Scene scene =
       loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/debris_impact_granular.yaml");
-  const std::vector<GranularMember> runs = debrisGranularRunList(o.fast);
+  const std::vector<GranularMember> runs = debrisGranularRunList(o.fast, volume_fit);
   const std::string name = granularCaseName(volume_fit);
   FILE* table = std::fopen((o.out + "/" + name + ".csv").c_str(), "w");
-  std::fprintf(table,
-               "cell_size_m,member,points,steps,wall_s,block2_left_cm,block1_left_cm,block2_lands_"
-               "s,block1_lands_s,block2_turn_040_deg,block1_turn_045_deg,block2_turn_end_deg,"
-               "block1_turn_end_deg\n");
+  std::fprintf(
+      table,
+      "cell_size_m,step,member,points,steps,wall_s,block2_left_cm,block1_left_cm,block2_lands_"
+      "s,block1_lands_s,block2_turn_040_deg,block1_turn_045_deg,block2_turn_end_deg,"
+      "block1_turn_end_deg\n");
   for (std::size_t i = 0; i < runs.size(); ++i) {
     if (!o.runs(static_cast<int>(i))) continue;
     const Real h = runs[i].h;
     const int m = runs[i].member;
+    const Real step = runs[i].step;
     WorldDef def = scene.world;
     def.cell_size = h;
     def.coupling.contact_radius = 0;  // the default at this cell size
     def.solver.volume_fit = volume_fit;
+    def.time_step.cfl *= step;
+    def.time_step.contact_factor *= step;
     // The first member's rotation history (both blocks every 0.01 s), for the report's figure
     // against seed 003's description.
     FILE* angles = nullptr;
-    if (m == 0) {
+    if (m == 0 && step == 1) {
       char file[80];
       std::snprintf(file, sizeof file, "/%s_angles_%.3gmm.csv", name.c_str(), 1000 * h);
       angles = std::fopen((o.out + file).c_str(), "w");
@@ -381,10 +393,10 @@ void debrisGranularWith(const Options& o, bool volume_fit) {
     if (angles) std::fclose(angles);
     // Every digit: the ensembles are computed from this table (debrisGranularEnsembles) as
     // from the runs themselves.
-    std::fprintf(table, "%.17g,%d,%ld,%ld,%.4g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                 h, m, run.points, run.steps, run.wall, 100 * run.left2, 100 * run.left1,
-                 run.landing2, run.landing1, run.turn2_040, run.turn1_045, run.turn2_end,
-                 run.turn1_end);
+    std::fprintf(
+        table, "%.17g,%g,%d,%ld,%ld,%.4g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", h,
+        step, m, run.points, run.steps, run.wall, 100 * run.left2, 100 * run.left1, run.landing2,
+        run.landing1, run.turn2_040, run.turn1_045, run.turn2_end, run.turn1_end);
     std::fflush(table);
   }
   std::fclose(table);
@@ -393,25 +405,32 @@ void debrisGranularWith(const Options& o, bool volume_fit) {
 void debrisGranularEnsemblesWith(const Options& o, Results& r, bool volume_fit) {
   const std::string name = granularCaseName(volume_fit);
   const Table table(o.out + "/" + name + ".csv");
-  std::vector<Real> sizes;  // in the runs' order
-  for (const GranularMember& run : debrisGranularRunList(o.fast))
-    if (std::find(sizes.begin(), sizes.end(), run.h) == sizes.end()) sizes.push_back(run.h);
-  for (Real h : sizes) {
+  std::vector<std::pair<Real, Real>> ensembles;  // (cell, step), in the runs' order
+  for (const GranularMember& run : debrisGranularRunList(o.fast, volume_fit))
+    if (std::find(ensembles.begin(), ensembles.end(), std::make_pair(run.h, run.step)) ==
+        ensembles.end())
+      ensembles.emplace_back(run.h, run.step);
+  for (const auto& [h, step] : ensembles) {
     std::vector<std::size_t> rows;
     for (std::size_t i = 0; i < table.size(); ++i)
-      if (std::abs(table.at(i, "cell_size_m") - h) < 1e-5 * h) rows.push_back(i);  // as printed
+      if (std::abs(table.at(i, "cell_size_m") - h) < 1e-5 * h && table.at(i, "step") == step)
+        rows.push_back(i);  // the cell as printed, the step's factor exact (0.5, 0.25)
     if (rows.empty()) continue;
     double wall = 0;
     for (std::size_t i : rows) wall += table.at(i, "wall_s");
     const long points = std::lround(table.at(rows[0], "points"));
     const long steps = std::lround(table.at(rows[0], "steps"));
     const int members = static_cast<int>(rows.size());
-    char settings[160];
-    std::snprintf(settings, sizeof settings,
-                  "debris_impact_granular.yaml, h %.3g cm, %d members, %ld points, %ld steps each",
-                  100 * h, members, points, steps);
-    char tag[32];  // three digits: 1.67 mm is not 1.6
-    std::snprintf(tag, sizeof tag, ", h %.3g cm", 100 * h);
+    char settings[200];
+    std::snprintf(
+        settings, sizeof settings,
+        "debris_impact_granular.yaml%s, h %.3g cm, %d members, %ld points, %ld steps each",
+        volume_fit ? " with solver.volume_fit" : "", 100 * h, members, points, steps);
+    char tag[48];  // three digits: 1.67 mm is not 1.6
+    if (step == 1)
+      std::snprintf(tag, sizeof tag, ", h %.3g cm", 100 * h);
+    else
+      std::snprintf(tag, sizeof tag, ", h %.3g cm, step x %g", 100 * h, step);
     auto add = [&](const std::string& q, const char* column, Real reference, const char* unit,
                    const char* source) {
       std::vector<Real> values;

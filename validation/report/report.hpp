@@ -160,6 +160,7 @@ void debrisEnsemble(const Options& o, Results& r);
 void debrisGranular(const Options& o, Results& r);
 void debrisGranularEnsembles(const Options& o, Results& r);
 void debrisGranularFit(const Options& o, Results& r);
+int debrisGranularFitRuns(bool fast);
 void debrisGranularFitEnsembles(const Options& o, Results& r);
 int debrisGranularRuns(bool fast);
 void debrisSeed003(const Options& o, Results& r);
