@@ -524,65 +524,77 @@ int pointsAbove(const sensor_msgs::PointCloud2& cloud, double y) {
 
 // The excavator demo (launch/excavator_dig.launch): urdf/excavator.urdf through
 // robot_state_publisher, its bucket a mesh's convex hull found by package://, its joints driven
-// by scripts/excavator_dig.py. Above the sand (every wrench stamped before 0.9 s of simulation:
-// the teeth, 6 cm clear until 0.6 s, then descend 13 cm a second and are still 2 cm clear) the
-// bucket carries nothing and no sand stands above the 15 cm bed; while its teeth are dragged about
-// 6-7 cm deep (2-3.2 s) its load is at least half of a blade's passive force at that depth (McKyes'
-// level-surface value for excavator_blade.yaml's sand, 14,715 N/m^3 x 0.06^2 m^2 x 3.015 = 160 N/m
-// at 6 cm; 216 N/m at 7 cm), and by 3.2 s the drag has heaped sand more than 2 cm above the bed's
-// surface.
+// by scripts/excavator_dig.py, whose path starts when the node lists the links (at t0, the first
+// ~blocks with the bucket). Above the sand (every load stamped before t0 + 0.9 s: the teeth, 6 cm
+// clear until t0 + 0.6 s, then descend 13 cm a second and are still 2 cm clear) the bucket carries
+// nothing and no sand stands above the 15 cm bed; while its teeth are dragged about 6-7 cm deep
+// (t0 + 2 to t0 + 3.2 s) its load is at least half of a blade's passive force at that depth
+// (McKyes' level-surface value for excavator_blade.yaml's sand, 14,715 N/m^3 x 0.06^2 m^2 x
+// 3.015 = 160 N/m at 6 cm; 216 N/m at 7 cm), and by t0 + 3.2 s the drag has heaped sand more
+// than 2 cm above the bed's surface.
 TEST(Robot, ExcavatorDigsTheSand) {
   test::NodeClient& n = *g_node;
   test::Latest<geometry_msgs::WrenchStamped> wrench(n.nh, test::kNs + "obstacles/bucket/wrench");
   test::Latest<sensor_msgs::PointCloud2> cloud(n.nh, test::kNs + "particles");
   auto load = [&] { return std::hypot(wrench.get().wrench.force.x, wrench.get().wrench.force.y); };
-  // Every load stamped while the bucket is above the sand, as it comes: the bed asleep runs its
-  // first simulated second faster than the dig needs, so the latest wrench when the test looks
-  // may already be the dig's. Taken from ~blocks, whose connection is made when this test
-  // starts: the bucket's own wrench topic appears only when its link spawns (0.78 s into one CI
-  // run), and the first messages on it can go out before this test has connected.
+  // Every load while the bucket is above the sand, as it comes: the bed asleep runs faster than
+  // the dig needs, so the latest wrench when the test looks may already be the dig's. From
+  // ~blocks, connected since this test started: the bucket's own wrench topic appears only when
+  // its link spawns, and its first messages can go out before the test has connected to it.
   std::mutex above_mutex;
+  double t0 = -1;  // s, when the bucket first appears (the dig's time zero)
   double above = 0;
   int above_count = 0;
   ros::Subscriber above_sub =
       n.nh.subscribe<BlockStates>(test::kNs + "blocks", 1000, [&](const BlockStates::ConstPtr& m) {
         const RigidBlockState* b = test::findBlock(*m, "bucket");
-        if (!b || m->header.stamp.toSec() >= 0.9) return;
+        if (!b) return;
         const std::lock_guard<std::mutex> l(above_mutex);
+        if (t0 < 0) t0 = m->header.stamp.toSec();
+        if (m->header.stamp.toSec() >= t0 + 0.9) return;
         above = std::max(above, std::hypot(b->coupling_force.x + b->block_force.x,
                                            b->coupling_force.y + b->block_force.y));
         ++above_count;
       });
+  auto start = [&] {
+    const std::lock_guard<std::mutex> l(above_mutex);
+    return t0;
+  };
   RigidBlockState bucket, stick;
   ASSERT_TRUE(waitFor(
-      [&] { return n.block("bucket", bucket) && n.block("stick", stick) && wrench.count() > 0; },
-      60))
+      [&] { return n.block("bucket", bucket) && n.block("stick", stick) && start() >= 0; }, 60))
       << "the bucket and the stick are not blocks";
-  ASSERT_TRUE(waitFor([&] { return n.stats.get().sim_time > 0.4 && cloud.count() > 0; }, 60));
+  const double t_start = start();
+  // The scene ends at 6 s: the drag needs the links by 2.8 s (they came by 0.04-0.26 s here; by
+  // 0.78 s in one CI run).
+  ASSERT_LT(t_start, 2.8) << "the links spawned at " << t_start
+                          << " s: robot_state_publisher's tf reached the node too late";
+  ASSERT_TRUE(
+      waitFor([&] { return n.stats.get().sim_time > t_start + 0.4 && cloud.count() > 0; }, 60));
   const int heaped_before = pointsAbove(cloud.get(), 0.17);
   EXPECT_EQ(heaped_before, 0);
-  ASSERT_TRUE(waitFor([&] { return n.stats.get().sim_time > 0.9; }, 60));
+  ASSERT_TRUE(waitFor([&] { return n.stats.get().sim_time > t_start + 0.9; }, 60));
   double before = 0;
   {
     const std::lock_guard<std::mutex> l(above_mutex);
     before = above;
-    ASSERT_GT(above_count, 0) << "no state of the bucket stamped before 0.9 s reached the test";
+    ASSERT_GT(above_count, 0) << "no state of the bucket above the sand reached the test";
   }
   EXPECT_LT(before, 1.0) << "the bucket is loaded above the sand";
   double peak = 0;
   ASSERT_TRUE(waitFor(
       [&] {
         const double t = n.stats.get().sim_time;
-        if (t > 2.0) peak = std::max(peak, load());
-        return t > 3.2;
+        if (t > t_start + 2.0 && wrench.count() > 0) peak = std::max(peak, load());
+        return t > t_start + 3.2;
       },
       120))
-      << "the simulation did not reach 3.2 s";
+      << "the simulation did not reach t0 + 3.2 s";
   const int heaped = pointsAbove(cloud.get(), 0.17);
   std::printf(
-      "bucket: %.2f N/m above the sand, %.0f N/m at most while dragged; points more than "
-      "2 cm above the bed: %d, then %d\n",
-      before, peak, heaped_before, heaped);
+      "bucket: in the simulation at %.3f s; %.2f N/m above the sand, %.0f N/m at most while "
+      "dragged; points more than 2 cm above the bed: %d, then %d\n",
+      t_start, before, peak, heaped_before, heaped);
   EXPECT_GT(peak, 108) << "the sand barely resists the bucket";
   EXPECT_GT(heaped, 40) << "the dig moved no sand";
 }
