@@ -3,9 +3,10 @@
 for robot_state_publisher, whose tf the node's ~robot_links follow.
 
 The dig is a path of the bucket's hinge (the wrist) and the bucket's angle in the plane, in
-simulated time: wait above the sand, push the teeth about 7 cm into the bed, drag the bucket towards the cab, curl it and lift it. Between waypoints the wrist
-moves along a straight line with a smooth start and stop; the boom and stick angles follow from
-the two-link inverse kinematics (elbow up), the bucket's from its angle less theirs.
+simulated time: wait above the sand, push the teeth about 7 cm into the bed, drag the bucket
+towards the cab, curl it and lift it. Between waypoints the wrist moves along a straight line
+with a smooth start and stop; the boom and stick angles follow from the two-link inverse
+kinematics (elbow up), the bucket's from its angle less theirs.
 
 Parameters (SI; defaults are the URDF's):
   ~pivot [0.1, 0.3] m: the boom's joint in the plane; ~boom 0.5 m, ~stick 0.35 m: lengths;
@@ -96,8 +97,8 @@ def main():
     origin = [None if wait_for else 0.0]
 
     def on_blocks(m):
-        # Not a message from before a ~reset: stamped well after the clock as this node last
-        # heard it (which may lag the node's a little).
+        # A message stamped well after the clock as this node last heard it (a little behind the
+        # node's) is from before a ~reset.
         if origin[0] is None and m.header.stamp.to_sec() <= rospy.get_time() + 0.1 and \
                 set(wait_for) <= {b.name for b in m.blocks}:
             origin[0] = m.header.stamp.to_sec()

@@ -565,7 +565,7 @@ TEST(Robot, ExcavatorDigsTheSand) {
       [&] { return n.block("bucket", bucket) && n.block("stick", stick) && start() >= 0; }, 60))
       << "the bucket and the stick are not blocks";
   const double t_start = start();
-  // The scene ends at 6 s: the drag needs the links by 2.8 s (they came by 0.04-0.26 s here; by
+  // The scene ends at 6 s: the drag needs the links by 2.8 s (they came at 0.04-0.47 s here, at
   // 0.78 s in one CI run).
   ASSERT_LT(t_start, 2.8) << "the links spawned at " << t_start
                           << " s: robot_state_publisher's tf reached the node too late";
