@@ -59,9 +59,9 @@ grep -q "reached the scene's end time" "$PREFIX/launch.log" ||
 
 # The excavator demo (launch/excavator_dig.launch) as installed: the URDF and the bucket's mesh
 # from share/, robot_state_publisher, the joint path of the installed excavator_dig.py. Both
-# links become blocks once tf has them (at t = 0.08 s here), and the run reaches its end. A
-# quarter of real time, so that the Python node has started (about 1 s here) well before the
-# links are due.
+# links become blocks once tf has them (at t = 0.08 s here), the script starts the dig when
+# ~blocks lists them, and the run reaches its end. A quarter of real time, so that the Python
+# node has started (about 1 s here) well before the links are due.
 timeout 240 mpm_sdem_launch mpm_sdem excavator_dig.launch headless:=true end_action:=shutdown \
   threads:=1 real_time_factor:=0.25 set:="['time.end=1.0']" >"$PREFIX/dig.log" 2>&1 ||
   { cat "$PREFIX/dig.log"; fail "the excavator demo from the install space failed"; }
@@ -69,6 +69,9 @@ for link in stick bucket; do
   grep -q "link '$link' is block" "$PREFIX/dig.log" ||
     { cat "$PREFIX/dig.log"; fail "the excavator's link '$link' made no block"; }
 done
+# The installed script imports the package's messages (~blocks) to start the dig.
+grep -q "the dig starts" "$PREFIX/dig.log" ||
+  { cat "$PREFIX/dig.log"; fail "excavator_dig.py did not see the links in ~blocks"; }
 grep -q "reached the scene's end time" "$PREFIX/dig.log" ||
   { cat "$PREFIX/dig.log"; fail "the excavator demo did not reach its end"; }
 
