@@ -76,12 +76,9 @@ Result run(const Scene& scene, int count, double sim_time) {
   const Profile& p = world.profile();
   r.step_ms = 1e3 * wall / r.steps;
   r.rtf = world.time() / wall;
-  auto stage = [&](Stage s) {
-    const int k = static_cast<int>(s);
-    return 1e3 * (p.seconds[k] - before.seconds[k]) / r.steps;
-  };
-  r.blocks_ms = stage(Stage::kBodies);
-  r.contact_ms = stage(Stage::kContact);
+  const Profile run = p.since(before);
+  r.blocks_ms = 1e3 * run.ownerSeconds(StageOwner::kBodies) / r.steps;
+  r.contact_ms = 1e3 * run.ownerSeconds(StageOwner::kCoupling) / r.steps;
   return r;
 }
 

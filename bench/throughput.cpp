@@ -159,7 +159,7 @@ int main(int argc, char** argv) {
       }
       for (int k = 0; k < static_cast<int>(Stage::kCount); ++k) {
         const double us = 1e6 * profile.seconds[k] / std::max(1L, profile.steps);
-        std::printf(" %s %.1f", stageName(static_cast<Stage>(k)), us);
+        if (profile.used[k]) std::printf(" %s %.1f", stageName(static_cast<Stage>(k)), us);
         if (out) std::fprintf(out, ",%.2f", us);
       }
       std::printf("\n  real-time factor %.3f, mean dt %.3g s\n", median(realtime), mean_dt);

@@ -296,10 +296,10 @@ TEST(SubcycledContact, WoodenBlocksRestAtTheSamePlaceForEveryContactSubstep) {
   }
 }
 
-// The table is the one statement of what each scheme can meet: one row per scheme in the
-// enum's order (schemeTraits indexes it), distinct names, and the refusals name exactly the
-// schemes that can meet what was refused.
-TEST(SchemeTraits, OneRowPerSchemeAndTheRefusalsNameTheSchemesThatCan) {
+// The table is the one statement of what each scheme is: one row per scheme in the enum's order
+// (schemeTraits indexes it) and distinct names. What each can meet is the exclusions' table's
+// (test_exclusions).
+TEST(SchemeTraits, OneRowPerScheme) {
   const std::vector<SchemeTraits>& all = couplingSchemes();
   ASSERT_EQ(all.size(), 5u);
   std::set<std::string> names;
@@ -309,27 +309,6 @@ TEST(SchemeTraits, OneRowPerSchemeAndTheRefusalsNameTheSchemesThatCan) {
     names.insert(all[i].name);
   }
   EXPECT_EQ(names.size(), all.size());
-  EXPECT_TRUE(schemeProblem(CouplingScheme::kImp, true, true).empty());
-  const Problem fem = schemeProblem(CouplingScheme::kMultiVelocity, true, false);
-  EXPECT_EQ(fem.key, "coupling.scheme");
-  EXPECT_NE(fem.message.find("multi_velocity cannot meet FEM bodies"), std::string::npos);
-  EXPECT_NE(fem.message.find("use imp, imp_grid, particle_surface"), std::string::npos)
-      << fem.message;
-  const Problem sph = schemeProblem(CouplingScheme::kPartitioned, false, true);
-  EXPECT_NE(sph.message.find("partitioned cannot meet SPH particles"), std::string::npos);
-  EXPECT_TRUE(schemeProblem(CouplingScheme::kPartitioned, false, false).empty());
-  // The checks World makes ask the same row: an FEM body beside multi_velocity is refused.
-  WorldDef def = test::box(Vec2(0, 0), Vec2(1, 1), 0.05);
-  def.coupling.scheme = CouplingScheme::kMultiVelocity;
-  FemBodyDef beam;  // refused before its mesh is looked at
-  beam.name = "beam";
-  def.fem_bodies.push_back(beam);
-  try {
-    World w(def);
-    ADD_FAILURE() << "multi_velocity accepted an FEM body";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()), fem.text());
-  }
 }
 
 INSTANTIATE_TEST_SUITE_P(AllSchemes, Schemes, ::testing::ValuesIn(allSchemes()),

@@ -48,12 +48,14 @@ TEST(SceneErrors, ValidBaseSceneParses) {
 }
 
 // Multi-rate FEM and subcycled IMP springs do not nest (the contact substeps step the FEM
-// bodies): asked together, the coupling's key is refused, naming the other.
+// bodies): asked together, the coupling's key is refused, naming the other (the exclusions'
+// table, test_exclusions).
 TEST(SceneErrors, TwoMultiRateSplitsAreRefused) {
   const std::vector<std::string> both = {"time.fem_integration=subcycled",
                                          "coupling.normal_integration=subcycled"};
   expectError(errorOf("valid.yaml", both), "--set coupling.normal_integration=subcycled",
-              "coupling.normal_integration", "does not combine with time.fem_integration");
+              "coupling.normal_integration",
+              "does not combine with subcycled FEM bodies (time.fem_integration: subcycled)");
 }
 
 // The table of models (material.hpp) lists each row at its enum's place, and the scene refuses
@@ -86,12 +88,12 @@ TEST(SceneErrors, EachModelsKeysAreItsOwn) {
 }
 
 // Scaled inertia scales the material points' only: FEM bodies and SPH particles, which would keep
-// theirs, are refused with it at their section's key; out of range at its own.
+// theirs, are refused with it at its key; out of range at its own.
 TEST(SceneErrors, InertiaScaleOnlyForMaterialPoints) {
-  expectError(errorOf("valid_fem.yaml", {"solver.inertia_scale=4"}), "valid_fem.yaml", "fem_bodies",
-              "do not combine with solver.inertia_scale");
-  expectError(errorOf("valid_sph.yaml", {"solver.inertia_scale=4"}), "valid_sph.yaml", "sph",
-              "does not combine with solver.inertia_scale");
+  expectError(errorOf("valid_fem.yaml", {"solver.inertia_scale=4"}), "--set solver.inertia_scale=4",
+              "solver.inertia_scale", "does not combine with FEM bodies (fem_bodies: a body)");
+  expectError(errorOf("valid_sph.yaml", {"solver.inertia_scale=4"}), "--set solver.inertia_scale=4",
+              "solver.inertia_scale", "does not combine with SPH particles");
   expectError(errorOf("valid.yaml", {"solver.inertia_scale=0.5"}), "--set solver.inertia_scale=0.5",
               "solver.inertia_scale", "must be in [1, 10000]");
   EXPECT_EQ(errorOf("valid.yaml", {"solver.inertia_scale=4"}), "");
@@ -101,11 +103,12 @@ TEST(SceneErrors, InertiaScaleOnlyForMaterialPoints) {
 // reason), its other keys only with a sleep speed, each in its range.
 TEST(SceneErrors, SleepingMaterialWhereItIsWellPosed) {
   expectError(errorOf("valid.yaml", {"solver.sleep_speed=0.01", "solver.stress_update=usl"}),
-              "valid.yaml", "solver.sleep_speed", "needs stress_update: usf");
-  expectError(errorOf("valid_sph.yaml", {"solver.sleep_speed=0.01"}), "valid_sph.yaml",
-              "solver.sleep_speed", "no SPH and no FEM bodies");
-  expectError(errorOf("valid_fem.yaml", {"solver.sleep_speed=0.01"}), "valid_fem.yaml",
-              "solver.sleep_speed", "no SPH and no FEM bodies");
+              "--set solver.sleep_speed=0.01", "solver.sleep_speed",
+              "does not combine with USL (solver.stress_update: usl): in USL, awake material");
+  expectError(errorOf("valid_sph.yaml", {"solver.sleep_speed=0.01"}), "--set solver.sleep_speed",
+              "solver.sleep_speed", "does not combine with SPH particles");
+  expectError(errorOf("valid_fem.yaml", {"solver.sleep_speed=0.01"}), "--set solver.sleep_speed",
+              "solver.sleep_speed", "does not combine with FEM bodies");
   expectError(errorOf("valid.yaml", {"solver.sleep_time=0.1"}), "--set solver.sleep_time=0.1",
               "solver.sleep_time", "applies only with sleep_speed > 0");
   expectError(errorOf("valid.yaml", {"solver.sleep_speed=2"}), "--set solver.sleep_speed=2",
@@ -222,14 +225,14 @@ INSTANTIATE_TEST_SUITE_P(
                                {"coupling.scheme=partitioned", "coupling.stiffness_per=length"},
                                "--set coupling.stiffness_per=length",
                                "coupling.stiffness_per",
-                               "applies to the IMP schemes only (imp, imp_grid)"},
+                               "coupling.scheme: imp, imp_grid would combine"},
                       BadScene{
                           "ExactIntegrationWithoutImp",
                           "valid.yaml",
                           {"coupling.scheme=particle_surface", "coupling.normal_integration=exact"},
                           "--set coupling.normal_integration=exact",
                           "coupling.normal_integration",
-                          "applies to the IMP schemes only (imp, imp_grid)"},
+                          "coupling.scheme: imp, imp_grid would combine"},
                       BadScene{"UnknownFemIntegration",
                                "valid.yaml",
                                {"time.fem_integration=implicit"},
@@ -374,7 +377,7 @@ INSTANTIATE_TEST_SUITE_P(
                                {"coupling.scheme=multi_velocity"},
                                "--set coupling.scheme=multi_velocity",
                                "coupling.scheme",
-                               "cannot meet FEM bodies"},
+                               "does not combine with FEM bodies"},
                       BadScene{"BlockPointsPerCellOutOfRange",
                                "valid_blocks.yaml",
                                {"coupling.block_points_per_cell=0"},

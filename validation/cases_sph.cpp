@@ -364,7 +364,7 @@ Throughput throughput(Real h, bool sph, int steps) {
   Throughput out;
   out.particles = static_cast<long>(P.size());
   out.particle_steps_per_second = static_cast<double>(P.size()) * steps / wall;
-  out.sph_share = w.profile().seconds[static_cast<int>(Stage::kSph)] / w.profile().total();
+  out.sph_share = w.profile().ownerSeconds(StageOwner::kSph) / w.profile().total();
   out.dt = w.chooseTimeStep().dt;
   return out;
 }

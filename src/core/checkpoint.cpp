@@ -232,6 +232,7 @@ struct CheckpointAccess {
     if (sleep.asleep_.size() != tiles || sleep.quiet_.size() != tiles)
       throw CheckpointError("the saved sleeping tiles are not this world's");
     sleep.rebuild(P, w.def_.solver.kernel);
+    w.compose();  // the blocks and point loads may not be the world's at its start
   }
 };
 

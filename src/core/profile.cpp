@@ -2,42 +2,31 @@
 
 namespace mpm_sdem {
 
-const char* stageName(Stage stage) {
-  switch (stage) {
-    case Stage::kTimeStep:
-      return "time_step";
-    case Stage::kContact:
-      return "contact";
-    case Stage::kSort:
-      return "sort";
-    case Stage::kClearGrid:
-      return "clear_grid";
-    case Stage::kP2G:
-      return "p2g";
-    case Stage::kGridUpdate:
-      return "grid_update";
-    case Stage::kG2P:
-      return "g2p";
-    case Stage::kConstitutive:
-      return "constitutive";
-    case Stage::kVolumeFit:
-      return "volume_fit";
-    case Stage::kStress:
-      return "stress_force";
-    case Stage::kBodies:
-      return "bodies";
-    case Stage::kSph:
-      return "sph";
-    case Stage::kCount:
-      break;
-  }
-  return "?";
-}
-
 double Profile::total() const {
   double t = 0;
   for (double s : seconds) t += s;
   return t;
+}
+
+std::vector<Stage> Profile::usedStages() const {
+  std::vector<Stage> stages;
+  for (int k = 0; k < static_cast<int>(Stage::kCount); ++k)
+    if (used[k]) stages.push_back(static_cast<Stage>(k));
+  return stages;
+}
+
+double Profile::ownerSeconds(StageOwner owner) const {
+  double t = 0;
+  for (int k = 0; k < static_cast<int>(Stage::kCount); ++k)
+    if (stageInfo(static_cast<Stage>(k)).owner == owner) t += seconds[k];
+  return t;
+}
+
+Profile Profile::since(const Profile& earlier) const {
+  Profile d = *this;
+  for (int k = 0; k < static_cast<int>(Stage::kCount); ++k) d.seconds[k] -= earlier.seconds[k];
+  d.steps -= earlier.steps;
+  return d;
 }
 
 }  // namespace mpm_sdem

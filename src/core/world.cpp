@@ -8,6 +8,7 @@
 
 #include "coupling/imp_coupling.hpp"
 #include "mpm/transfer.hpp"
+#include "mpm_sdem/core/exclusions.hpp"
 #include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/mpm/constitutive.hpp"
 #include "parallel.hpp"
@@ -22,7 +23,7 @@ World& World::operator=(World&&) noexcept = default;
 World::World(const WorldDef& def)
     : def_(def), mpm_(def.domain, def.cell_size, def.solver, def.materials, def.bodies) {
   if (const Problem p = periodicProblem(def); !p.empty()) throw std::invalid_argument(p.text());
-  if (const Problem p = sleepProblem(def); !p.empty()) throw std::invalid_argument(p.text());
+  if (const Problem p = combinationProblem(def); !p.empty()) throw std::invalid_argument(p.text());
   const Particles& points = mpm_.particles();
   lightest_point_ = std::numeric_limits<Real>::infinity();
   largest_spring_scale_ = 0;
@@ -34,26 +35,12 @@ World::World(const WorldDef& def)
   }
   if (!(largest_spring_scale_ > 0)) largest_spring_scale_ = 1;
 
-  if (def.solver.inertia_scale != 1 && (def.sph.enabled() || !def.fem_bodies.empty()))
-    throw std::invalid_argument(
-        "solver.inertia_scale: scales the material points' inertia only; FEM bodies and SPH "
-        "particles would keep theirs (use 1 with them)");
   if (def.sph.enabled()) initSph();
   if (!def.blocks.empty())
     blocks_ = std::make_unique<Blocks>(def.blocks, def.block_contact, def.solver.gravity);
   if (!def.fem_bodies.empty()) {
-    if (const Problem p = schemeProblem(def.coupling.scheme, true, false); !p.empty())
-      throw std::invalid_argument(p.text());
     fem_ = std::make_unique<FemBodies>(def.fem_bodies, def.solver.gravity);
-    if (def.time_step.fem_subcycled) {
-      // The subcycled springs step the bodies in their contact substeps (FemBodies::substep),
-      // within one free motion of the step: the two splits do not nest.
-      if (def.coupling.normal_integration == ContactIntegration::kSubcycled)
-        throw std::invalid_argument(
-            "time.fem_integration: subcycled does not combine with "
-            "coupling.normal_integration: subcycled");
-      fem_->setMaxSubstep(def.time_step.cfl * fem_->elementStep());
-    }
+    if (def.time_step.fem_subcycled) fem_->setMaxSubstep(def.time_step.cfl * fem_->elementStep());
   }
   if (blocks_ || fem_) {
     linkContactBodies();
@@ -89,14 +76,12 @@ World::World(const WorldDef& def)
                   1 / limits::kMinTimeStep);
     throw std::invalid_argument(msg);
   }
+  compose();
 }
 
 void World::initSph() {
-  const Problem problem =
-      sphProblem(def_.sph, def_.cell_size, def_.solver.stress_update == StressUpdate::kUsf);
+  const Problem problem = sphProblem(def_.sph, def_.cell_size);
   if (!problem.empty()) throw std::invalid_argument("sph." + problem.text());
-  if (const Problem p = schemeProblem(def_.coupling.scheme, false, true); !p.empty())
-    throw std::invalid_argument(p.text());
   sph_ = detail::startSph(sphWorld());
 }
 
@@ -109,8 +94,7 @@ detail::SphWorld World::sphWorld() {
           def_.sph,
           static_cast<int>(def_.bodies.size()),
           def_.domain.min,
-          def_.domain.max,
-          mpm_.profile()};
+          def_.domain.max};
 }
 
 CouplingDef World::resolvedCoupling() const {
@@ -145,7 +129,7 @@ void World::linkContactBodies() {
 
 TimeStepChoice World::chooseTimeStep() {
   const detail::SerialScope serial(!sharesWork());
-  StageTimer timer(mpm_.profile(), Stage::kTimeStep);
+  StageTimer timer(profile_, Stage::kTimeStep);
   if (!def_.time_step.automatic) return {def_.time_step.fixed, StepLimit::kFixed};
   return stepBound(def_.time_step.cfl, def_.time_step.contact_factor);
 }
@@ -200,71 +184,170 @@ bool World::sharesWork() const {
   return sph_ || points >= def_.solver.parallel_min_points;
 }
 
+StepMakeup World::makeup() const {
+  StepMakeup m;
+  m.usl = def_.solver.stress_update == StressUpdate::kUsl;
+  m.sph = sph_ != nullptr;
+  m.sleep = mpm_.sleep().on();
+  m.periodic = mpm_.periodicX();
+  m.sidewalls = mpm_.hasSidewalls();
+  m.inertia_scaled = def_.solver.inertia_scale != 1;
+  m.volume_fit = mpm_.fits();
+  m.point_loads = !point_loads_.empty();
+  m.contact_bodies = hasContactBodies();
+  if (m.contact_bodies) {
+    m.hooks = coupling_->hooks();
+    m.corrects = coupling_->correctsVelocities();
+    m.subcycles = coupling_->subcycles();
+  }
+  m.blocks = blocks_ != nullptr;
+  return m;
+}
+
+void World::compose() {
+  const StepMakeup m = makeup();
+  stages_ = composeStep(m);
+  damped_kick_ = !(m.contact_bodies && m.corrects);
+  profile_.used[static_cast<int>(Stage::kTimeStep)] = true;
+  for (const Stage s : stages_) profile_.used[static_cast<int>(s)] = true;
+}
+
+void World::resetProfile() {
+  profile_ = Profile();
+  compose();
+}
+
 StepInfo World::step(Real dt) {
   const detail::SerialScope serial(!sharesWork());
   StepInfo info;
   info.dt = dt;
   // Seed 000 eq. 17: p^{n+1/2} = p^{n-1/2} + f^n dt. The kick spans from the velocity's time to
   // half a step past the positions' time.
-  const Real kick = Real(0.5) * dt + velocity_lag_;
-  // Seed 000 sec. 4.2: contact forces from the state at the start of the step, the MPM step with
-  // them on the grid (eq. 48), then the blocks with the reactions. Each coupling scheme does its
-  // part in the stages of coupling.hpp.
-  const bool coupled = hasContactBodies();
-  const bool corrected = coupled && coupling_->correctsVelocities();
-  MpmSolver& mpm = mpm_;
-  if (coupled) {
-    StageTimer timer(mpm.profile(), Stage::kBodies);  // FEM bodies' internal forces (eq. 20)
-    contactBodies()->beginCoupling(dt);
+  StepScratch scratch{dt, Real(0.5) * dt + velocity_lag_, info};
+  for (const Stage stage : stages_) {
+    StageTimer timer(profile_, stage);
+    runStage(stage, scratch);
   }
-  auto stage = [&](void (Coupling::*f)(CouplingStep&)) {
-    if (coupled) couplingStage(dt, kick, f);
-  };
-  stage(&Coupling::beforeStep);
-  binParticles(dt);
-  mpm.clearGrid();
-  if (def_.solver.stress_update == StressUpdate::kUsf) {
-    // The SPH particles' velocity gradient and stress first: it needs no grid, and the band's
-    // particles lend the grid their affine velocity (transfer.hpp) and their stress.
-    if (sph_) detail::sphStress(*sph_, sphWorld(), stress_lag_);
-    mpm.particleToGrid(true, false);
-    mpm.foldMomentum();
-    mpm.scaleInertia();
-    mpm.gridVelocity(0, false);
-    mpm.stressAndInternalForce(stress_lag_);  // and the side walls' load
-    if (sph_)
-      detail::sphForces(*sph_, sphWorld());  // before any point moves: the pairs are read at x^n
-  } else {
-    mpm.particleToGrid(true, true);
-    mpm.sidewallLoad();
-    mpm.foldMomentum();
-    mpm.scaleInertia();
-    mpm.gridVelocity(0, false);
-  }
-  spreadPointLoads();
-  stage(&Coupling::addGridForces);
-  mpm.foldForces();
-  mpm.gridVelocity(kick, true, !corrected);
-  mpm.sidewallFriction(kick);
-  stage(&Coupling::correctGridVelocity);
-  if (corrected) correctedWalls(kick);
-  mpm.gridToParticle(dt, sph_ ? &mpm.tiles() : nullptr, info.clamped, info.finite);
-  if (def_.solver.stress_update == StressUpdate::kUsf) {
-    if (sph_) detail::sphMove(*sph_, sphWorld(), dt, kick, info.clamped, info.finite);
-    stress_lag_ = dt;
-  } else {
-    mpm.constitutiveUpdate(dt);
-    stress_lag_ = 0;
-  }
-  mpm.fitVolumes(dt);
-  stage(&Coupling::afterMaterialStep);
-  if (coupled && !coupling_->subcycles()) stepBodies(dt);  // else in correctGridVelocity
-  if (blocks_) checkBlocks(info);
   velocity_lag_ = Real(0.5) * dt;
   time_ += dt;
   ++steps_;
-  ++mpm.profile().steps;
+  ++profile_.steps;
   return info;
+}
+
+void World::runStage(Stage stage, StepScratch& s) {
+  MpmSolver& mpm = mpm_;
+  // Each case is one row of step_stages.cpp's table, which says when it runs.
+  switch (stage) {
+    case Stage::kTimeStep:
+    case Stage::kCount:
+      break;
+    case Stage::kBodiesBegin:
+      contactBodies()->beginCoupling(s.dt);  // FEM bodies' internal forces (seed 002 sec. 2.3)
+      break;
+    case Stage::kContactSearch:
+      couplingStage(s.dt, s.kick, &Coupling::beforeStep);
+      break;
+    case Stage::kSort:
+      mpm.bin();
+      break;
+    case Stage::kSphSort:
+      detail::binWithSph(*sph_, sphWorld());
+      break;
+    case Stage::kSleep:
+      keepBlocksAwake();
+      mpm.updateSleep(s.dt);
+      break;
+    case Stage::kClearGrid:
+      mpm.clearGrid();
+      break;
+    case Stage::kSphGradient:
+      // The SPH particles' velocity gradient and stress first: it needs no grid, and the band's
+      // particles lend the grid their affine velocity (transfer.hpp) and their stress.
+      detail::sphStress(*sph_, sphWorld(), stress_lag_);
+      break;
+    case Stage::kP2G:
+      mpm.particleToGrid(true, false);
+      break;
+    case Stage::kP2GForce:
+      mpm.particleToGrid(true, true);
+      break;
+    case Stage::kSleepMass:
+      mpm.addSleepersMass();
+      break;
+    case Stage::kSidewallLoad:
+      mpm.sidewallLoad();
+      break;
+    case Stage::kFoldMomentum:
+      mpm.foldMomentum();
+      break;
+    case Stage::kScaleInertia:
+      mpm.scaleInertia();
+      break;
+    case Stage::kGridVelocity:
+      mpm.gridVelocity(0, false);
+      break;
+    case Stage::kStressForce:
+      // USF: the stress of the velocities at the start of the step, lagging the positions by the
+      // last step (seed 000 eq. 17); the next step's lag is this one.
+      mpm.stressAndInternalForce(stress_lag_);
+      stress_lag_ = s.dt;
+      break;
+    case Stage::kSleepForce:
+      mpm.addSleepersForce();
+      break;
+    case Stage::kSphForces:
+      detail::sphForces(*sph_, sphWorld());  // before any point moves: the pairs are read at x^n
+      break;
+    case Stage::kPointLoads:
+      point_loads_.spread(def_.solver.kernel, mpm.particles(), mpm.grid(),
+                          sph_ ? sph_->columns.ax.data() : nullptr,
+                          sph_ ? sph_->columns.ay.data() : nullptr);
+      break;
+    case Stage::kContactForces:
+      couplingStage(s.dt, s.kick, &Coupling::addGridForces);
+      break;
+    case Stage::kFoldForces:
+      mpm.foldForces();
+      break;
+    case Stage::kKick:
+      mpm.gridVelocity(s.kick, true, damped_kick_);
+      break;
+    case Stage::kSidewallFriction:
+      mpm.sidewallFriction(s.kick);
+      break;
+    case Stage::kContactCorrect:
+      couplingStage(s.dt, s.kick, &Coupling::correctGridVelocity);
+      break;
+    case Stage::kCorrectedWalls:
+      correctedWalls(s.kick);
+      break;
+    case Stage::kG2P:
+      mpm.gridToParticle(s.dt, sph_ ? &mpm.tiles() : nullptr, s.info.clamped, s.info.finite);
+      break;
+    case Stage::kSleepNote:
+      mpm.noteMovingNodes();
+      break;
+    case Stage::kSphMove:
+      detail::sphMove(*sph_, sphWorld(), s.dt, s.kick, s.info.clamped, s.info.finite);
+      break;
+    case Stage::kConstitutive:
+      mpm.constitutiveUpdate(s.dt);
+      stress_lag_ = 0;  // USL: the stress is at the positions' time
+      break;
+    case Stage::kVolumeFit:
+      mpm.fitVolumes(s.dt);
+      break;
+    case Stage::kContactReactions:
+      couplingStage(s.dt, s.kick, &Coupling::afterMaterialStep);
+      break;
+    case Stage::kBodies:
+      stepBodies(s.dt);
+      break;
+    case Stage::kCheckBlocks:
+      checkBlocks(s.info);
+      break;
+  }
 }
 
 void World::keepBlocksAwake() {
@@ -294,12 +377,6 @@ void World::correctedWalls(Real kick) {
   mpm_.applyWalls();
 }
 
-void World::binParticles(Real dt) {
-  if (sph_) return detail::binWithSph(*sph_, sphWorld());
-  keepBlocksAwake();
-  mpm_.bin(dt);
-}
-
 void World::reverseVelocities() {
   mpm_.reverseVelocities();
   velocity_lag_ = -velocity_lag_;
@@ -307,7 +384,6 @@ void World::reverseVelocities() {
 }
 
 void World::couplingStage(Real dt, Real kick, void (Coupling::*stage)(CouplingStep&)) {
-  StageTimer timer(mpm_.profile(), Stage::kContact);
   CouplingStep s{mpm_.particles(),   mpm_.grid(),         mpm_.tiles(), *contactBodies(),
                  def_.solver.kernel, def_.solver.gravity, dt,           kick};
   if (stage == &Coupling::correctGridVelocity && coupling_->subcycles()) {
@@ -322,7 +398,6 @@ void World::couplingStage(Real dt, Real kick, void (Coupling::*stage)(CouplingSt
 }
 
 void World::stepBodies(Real dt) {
-  StageTimer timer(mpm_.profile(), Stage::kBodies);
   ContactBodies& bodies = *contactBodies();
   bodies.step(dt, bodies.stableStep(def_.time_step.contact_factor));
 }
@@ -354,15 +429,10 @@ void World::checkBlocks(StepInfo& info) const {
 }
 
 void World::setPointLoad(int particle, const Vec2& force, const Vec2& offset) {
+  const bool had_loads = !point_loads_.empty();
   point_loads_.set(particle, mpm_.particles().size(), force, offset);
-}
-
-void World::spreadPointLoads() {
-  if (point_loads_.empty()) return;
-  StageTimer timer(mpm_.profile(), Stage::kStress);
-  point_loads_.spread(def_.solver.kernel, mpm_.particles(), mpm_.grid(),
-                      sph_ ? sph_->columns.ax.data() : nullptr,
-                      sph_ ? sph_->columns.ay.data() : nullptr);
+  const bool has_loads = !point_loads_.empty();
+  if (has_loads != had_loads) compose();  // the first load came, or the last went
 }
 
 Problem periodicProblem(const WorldDef& def) {
@@ -377,26 +447,6 @@ Problem periodicProblem(const WorldDef& def) {
     return {"domain.walls", "a periodic domain needs at least " +
                                 std::to_string(2 * Grid::kPad + 1) +
                                 " cells across, so that no node has two images"};
-  if (!def.blocks.empty() || !def.fem_bodies.empty() || def.sph.enabled())
-    return {"domain.walls", "periodic sides are for material alone: no blocks, FEM bodies or SPH"};
-  return {};
-}
-
-Problem sleepProblem(const WorldDef& def) {
-  if (!def.solver.sleep.on()) return {};
-  const char* key = "solver.sleep_speed";
-  if (def.solver.stress_update != StressUpdate::kUsf)
-    return {key,
-            "sleeping material needs stress_update: usf (in USL, awake material resting on "
-            "sleepers drifts at a steady fraction of the sleep speed)"};
-  if (def.sph.enabled() || !def.fem_bodies.empty())
-    return {key, "sleeping material is for material points: no SPH and no FEM bodies"};
-  if (def.domain.sidewalls.width > 0)
-    return {key,
-            "sleeping material does not combine with side walls (their friction acts on "
-            "every node)"};
-  if (def.domain.left.type == WallType::kPeriodic)
-    return {key, "sleeping material does not combine with periodic sides"};
   return {};
 }
 

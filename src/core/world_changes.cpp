@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "mpm_sdem/core/exclusions.hpp"
 #include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/rigid/block_checks.hpp"
 #include "mpm_sdem/core/world.hpp"
@@ -12,6 +13,10 @@ namespace mpm_sdem {
 
 Problem World::placementProblem(const BlockDef& d, bool allow_overlap, BlockId moving) const {
   if (Problem own = blockProblem(d, def_.block_contact.model); !own.empty()) return own;
+  // The world with blocks must be one a scene could give (a periodic one could not).
+  std::vector<bool> with_blocks = featuresOf(def_);
+  with_blocks[static_cast<std::size_t>(Feature::kBlocks)] = true;
+  if (Problem p = combinationProblem(with_blocks); !p.empty()) return p;
   if (!coupling_ && !schemeTraits(def_.coupling.scheme).takes_later_blocks && steps_ > 0)
     return {"", std::string("the ") + couplingSchemeName(def_.coupling.scheme) +
                     " coupling builds its wall from the material's initial outline: give the "
@@ -46,6 +51,7 @@ BlockId World::addBlock(const BlockDef& d) {
   linkContactBodies();
   if (!coupling_) initCoupling();
   coupling_->bodiesChanged();
+  compose();
   if (command_log_) {
     WorldCommand c = command(WorldCommand::Kind::kAddBlock, id);
     c.def = blocks_->def(blocks_->indexOf(id));
@@ -62,6 +68,7 @@ void World::removeBlock(BlockId id) {
   blocks_->remove(id);
   linkContactBodies();
   coupling_->bodiesChanged();
+  compose();
   if (command_log_) command_log_(c);
 }
 

@@ -13,18 +13,6 @@
 
 namespace mpm_sdem::node {
 
-namespace {
-
-Profile since(const Profile& now, const Profile& then) {
-  Profile d;
-  for (int k = 0; k < static_cast<int>(Stage::kCount); ++k)
-    d.seconds[k] = now.seconds[k] - then.seconds[k];
-  d.steps = now.steps - then.steps;
-  return d;
-}
-
-}  // namespace
-
 bool Publishers::Channel::due(Real t, bool force, bool always) {
   if (force && latched) return clock.due(t, true);
   // The schedule before the listeners: roscpp finds a topic's listeners by its name among all
@@ -167,7 +155,7 @@ void Publishers::publishClock(const std_msgs::Header& header) {
 void Publishers::publishStats(const World& world, const conversions::StatsInput& status,
                               const std_msgs::Header& header) {
   conversions::StatsInput in = status;
-  in.profile = since(world.profile(), stats_profile_);
+  in.profile = world.profile().since(stats_profile_);
   const Diagnostics d = measure(world);
   if (const std::string w = machWarning(d, world.time()); !w.empty())
     ROS_WARN_ONCE("%s", w.c_str());

@@ -358,9 +358,10 @@ mpm_sdem::SimStats toStats(const World& world, const Diagnostics& d, const Stats
   s.gravity_energy = d.gravity;
   s.total_energy = d.total();
   s.block_kinetic_energy = d.block_kinetic;
-  for (int k = 0; k < static_cast<int>(Stage::kCount); ++k) {
-    s.stage_names.push_back(stageName(static_cast<Stage>(k)));
-    s.stage_ms.push_back(in.profile.steps ? 1e3 * in.profile.seconds[k] / in.profile.steps : 0.0);
+  for (const Stage stage : in.profile.usedStages()) {
+    const double seconds = in.profile.seconds[static_cast<int>(stage)];
+    s.stage_names.push_back(stageName(stage));
+    s.stage_ms.push_back(in.profile.steps ? 1e3 * seconds / in.profile.steps : 0.0);
   }
   return s;
 }

@@ -136,10 +136,10 @@ void writeProfile(const World& world, const std::string& path) {
   const Profile& prof = world.profile();
   out << "stage,seconds,seconds_per_step,fraction\n";
   const double total = prof.total();
-  for (int s = 0; s < static_cast<int>(Stage::kCount); ++s) {
-    out << stageName(static_cast<Stage>(s)) << ',' << prof.seconds[s] << ','
-        << (prof.steps ? prof.seconds[s] / prof.steps : 0) << ','
-        << (total > 0 ? prof.seconds[s] / total : 0) << '\n';
+  for (const Stage stage : prof.usedStages()) {
+    const double s = prof.seconds[static_cast<int>(stage)];
+    out << stageName(stage) << ',' << s << ',' << (prof.steps ? s / prof.steps : 0) << ','
+        << (total > 0 ? s / total : 0) << '\n';
   }
 }
 

@@ -165,9 +165,9 @@ int finish(Run& run, int status, double wall_seconds) {
   writeSummary(world, status, wall_seconds, (run.out / "summary.csv").string());
   const Profile& prof = world.profile();
   std::fprintf(stderr, "per-stage time (ms/step):");
-  for (int s = 0; s < static_cast<int>(Stage::kCount); ++s)
-    std::fprintf(stderr, " %s %.3f", stageName(static_cast<Stage>(s)),
-                 prof.steps ? 1e3 * prof.seconds[s] / prof.steps : 0.0);
+  for (const Stage s : prof.usedStages())
+    std::fprintf(stderr, " %s %.3f", stageName(s),
+                 prof.steps ? 1e3 * prof.seconds[static_cast<int>(s)] / prof.steps : 0.0);
   std::fprintf(stderr, "\noutputs in %s\n", run.out.string().c_str());
   if (run.files.bag) {
     run.files.bag->close();

@@ -11,14 +11,6 @@ namespace mpm_sdem::scene {
 
 namespace {
 
-// The schemes whose springs are the IMPs', as a scene names them.
-std::string impSchemes() {
-  std::string out;
-  for (const SchemeTraits& t : couplingSchemes())
-    if (t.imp_springs) out += std::string(out.empty() ? "" : ", ") + t.name;
-  return out;
-}
-
 BlockDef parseBlock(const Context& ctx, const YAML::Node& n, const std::string& path) {
   MapReader r(ctx, n, path,
               {"name", "type", "shape", "size", "vertices", "radius", "rounding", "discs",
@@ -200,29 +192,16 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
     std::vector<std::pair<const char*, CouplingScheme>> schemes;
     for (const SchemeTraits& t : couplingSchemes()) schemes.emplace_back(t.name, t.scheme);
     c.scheme = r.choice<CouplingScheme>("scheme", schemes, c.scheme);
-    const bool imp_springs = schemeTraits(c.scheme).imp_springs;
     readSprings(r, c.normal_stiffness, c.tangential_stiffness);
     c.stiffness_per = r.choice<SpringBasis>(
         "stiffness_per", {{"point", SpringBasis::kPerPoint}, {"length", SpringBasis::kPerLength}},
         c.stiffness_per);
-    r.require(c.stiffness_per == SpringBasis::kPerPoint || imp_springs, "stiffness_per",
-              "'length' applies to the IMP schemes only (" + impSchemes() + ")");
     c.normal_integration =
         r.choice<ContactIntegration>("normal_integration",
                                      {{"explicit", ContactIntegration::kExplicit},
                                       {"exact", ContactIntegration::kExact},
                                       {"subcycled", ContactIntegration::kSubcycled}},
                                      c.normal_integration);
-    r.require(c.normal_integration == ContactIntegration::kExplicit || imp_springs,
-              "normal_integration",
-              std::string(c.normal_integration == ContactIntegration::kExact ? "'exact'"
-                                                                             : "'subcycled'") +
-                  " applies to the IMP schemes only (" + impSchemes() + ")");
-    r.require(
-        c.normal_integration != ContactIntegration::kSubcycled || !s.world.time_step.fem_subcycled,
-        "normal_integration",
-        "'subcycled' does not combine with time.fem_integration: subcycled (the contact "
-        "substeps step the FEM bodies themselves); choose one of the two");
     c.block_points_per_cell = r.integer("block_points_per_cell", c.block_points_per_cell);
     r.require(c.block_points_per_cell >= 1 && c.block_points_per_cell <= 8, "block_points_per_cell",
               "must be 1 to 8 points per cell side, got " + num(c.block_points_per_cell));

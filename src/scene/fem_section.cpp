@@ -10,10 +10,6 @@ void parseFemBodies(const Context& ctx, const MapReader& top, Scene& s) {
   if (!top.has("fem_bodies")) return;
   const YAML::Node list = top.node("fem_bodies");
   if (!list.IsSequence()) ctx.fail(list, "fem_bodies", "expected a list of FEM bodies");
-  if (s.world.solver.inertia_scale != 1)
-    ctx.fail(list, "fem_bodies",
-             "do not combine with solver.inertia_scale (it scales the material points' inertia "
-             "only, and the bodies would keep theirs): set it to 1 or remove the bodies");
   const DomainDef& dom = s.world.domain;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string path = "fem_bodies[" + std::to_string(i) + "]";
@@ -102,9 +98,6 @@ void parseFemBodies(const Context& ctx, const MapReader& top, Scene& s) {
         ctx.fail(list[i], path, "an FEM body named '" + b.name + "' exists already");
     s.world.fem_bodies.push_back(std::move(b));
   }
-  if (const Problem p = schemeProblem(s.world.coupling.scheme, !s.world.fem_bodies.empty(), false);
-      !p.empty())
-    ctx.fail(top.node("coupling")["scheme"], p.key, p.message);
 }
 
 // The SPH region or bodies (seed 001): regions as body shapes, bodies by name.

@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include "mpm_sdem/core/exclusions.hpp"
 #include "mpm_sdem/core/limits.hpp"
 #include "scene_sections.hpp"
 #include "yaml_reader.hpp"
@@ -77,6 +78,24 @@ void applyOverride(YAML::Node root, const std::string& spec, Context& ctx) {
   }
 }
 
+// The node a dotted key names, or the deepest of its sections the file has: a key left at its
+// default names no line, so its section's line (or the file's first) is given.
+YAML::Node deepestNode(const YAML::Node& root, const std::string& key) {
+  YAML::Node at;
+  at.reset(root);
+  std::size_t from = 0;
+  while (from < key.size()) {
+    const std::size_t dot = key.find('.', from);
+    const std::string part = key.substr(from, dot == std::string::npos ? dot : dot - from);
+    const YAML::Node& here = at;
+    if (!here.IsMap() || !here[part]) break;
+    at.reset(here[part]);
+    if (dot == std::string::npos) break;
+    from = dot + 1;
+  }
+  return at;
+}
+
 Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& source) {
   Scene s;
   s.source = source;
@@ -100,8 +119,9 @@ Scene parseTree(const YAML::Node& root, const Context& ctx, const std::string& s
   parseSph(ctx, top, s);
   if (const Problem p = periodicProblem(s.world); !p.empty())
     ctx.fail(top.node("domain")["walls"], p.key, p.message);
-  if (const Problem p = sleepProblem(s.world); !p.empty())
-    ctx.fail(top.node("solver")["sleep_speed"], p.key, p.message);
+  // What may not be combined: the core's one table, asked once every section is read.
+  if (const Problem p = combinationProblem(s.world); !p.empty())
+    ctx.fail(deepestNode(root, p.key), p.key, p.message);
 
   parseOutput(ctx, top, s);
   parseView(ctx, top, s);

@@ -7,10 +7,6 @@ namespace mpm_sdem::scene {
 
 void parseSph(const Context& ctx, const MapReader& top, Scene& s) {
   if (!top.has("sph")) return;
-  if (s.world.solver.inertia_scale != 1)
-    ctx.fail(top.node("sph"), "sph",
-             "does not combine with solver.inertia_scale (it scales the material points' inertia "
-             "only, and SPH particles would keep theirs): set it to 1 or remove the region");
   MapReader r(ctx, top.node("sph"), "sph",
               {"regions", "bodies", "kernel", "smoothing_length", "viscosity_alpha",
                "viscosity_beta", "corrected_gradient"});
@@ -47,11 +43,8 @@ void parseSph(const Context& ctx, const MapReader& top, Scene& s) {
   d.viscosity_alpha = r.number("viscosity_alpha", "(dimensionless)", d.viscosity_alpha);
   d.viscosity_beta = r.number("viscosity_beta", "(dimensionless)", d.viscosity_beta);
   d.corrected_gradient = r.boolean("corrected_gradient", d.corrected_gradient);
-  const Problem p =
-      sphProblem(d, s.world.cell_size, s.world.solver.stress_update == StressUpdate::kUsf);
+  const Problem p = sphProblem(d, s.world.cell_size);
   r.require(p.empty(), p.key.c_str(), p.message);
-  if (const Problem q = schemeProblem(s.world.coupling.scheme, false, true); !q.empty())
-    ctx.fail(top.node("coupling")["scheme"], q.key, q.message);
 }
 
 // The pictures' quantity and the top of their colour scale; max_value alone colours speeds.

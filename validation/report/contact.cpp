@@ -277,8 +277,7 @@ void clusters(const Options& o, Results& r) {
     }
     out.wall = seconds(t0);
     const Profile& p = w.profile();
-    out.contact =
-        p.seconds[static_cast<int>(Stage::kContact)] + p.seconds[static_cast<int>(Stage::kBodies)];
+    out.contact = p.ownerSeconds(StageOwner::kCoupling) + p.ownerSeconds(StageOwner::kBodies);
     out.velocity = B.state(0).velocity;
     out.steps = w.stepCount();
     out.points = w.particles().size();

@@ -105,9 +105,11 @@ void flexibleBarrier(const Options& o, Results& r) {
     }
     const double wall = seconds(t0);
     const Profile& prof = w.profile();
-    for (int s = 0; s < static_cast<int>(Stage::kCount); ++s)
-      std::fprintf(stages, "%g,%g,%s,%.5f,%.4f\n", h, element, stageName(static_cast<Stage>(s)),
-                   1e3 * prof.seconds[s] / w.stepCount(), prof.seconds[s] / prof.total());
+    for (const Stage s : prof.usedStages()) {
+      const double t = prof.seconds[static_cast<int>(s)];
+      std::fprintf(stages, "%g,%g,%s,%.5f,%.4f\n", h, element, stageName(s),
+                   1e3 * t / w.stepCount(), t / prof.total());
+    }
     char settings[160], q[96];
     std::snprintf(settings, sizeof settings,
                   "cells %g mm, elements %g mm, %zu points, %d triangles", 1e3 * h, 1e3 * element,
@@ -186,10 +188,12 @@ void waterGate(const Options& o, Results& r) {
     for (std::size_t k = 0; k < g.time.size(); ++k)
       std::fprintf(series, "%g,%g,%g,%.5f,%.6g\n", run.cell, run.element, c0, g.time[k], g.tip[k]);
     const Profile& prof = w.profile();
-    for (int s = 0; s < static_cast<int>(Stage::kCount) && run.sound_speed_factor == 1; ++s)
-      std::fprintf(stages, "%g,%g,%s,%.5f,%.4f\n", run.cell, run.element,
-                   stageName(static_cast<Stage>(s)), 1e3 * prof.seconds[s] / g.steps,
-                   prof.seconds[s] / prof.total());
+    for (const Stage s : prof.usedStages()) {
+      if (run.sound_speed_factor != 1) break;
+      const double t = prof.seconds[static_cast<int>(s)];
+      std::fprintf(stages, "%g,%g,%s,%.5f,%.4f\n", run.cell, run.element, stageName(s),
+                   1e3 * t / g.steps, t / prof.total());
+    }
     char settings[256], q[96];
     std::snprintf(settings, sizeof settings,
                   "cells %g mm, elements %g mm (R = %g), c0 %g m/s, %zu points, %d triangles, max "

@@ -1,37 +1,29 @@
 /// \file
-/// Wall-clock time spent in each named stage of the step (Box2D's b2Profile, accumulated).
+/// Wall-clock time spent in each stage of the step (Box2D's b2Profile, accumulated).
 #pragma once
 
 #include <chrono>
+#include <vector>
+
+#include "mpm_sdem/core/step_stages.hpp"
 
 namespace mpm_sdem {
-
-/// The named stages of a step, as profiles and outputs name them.
-enum class Stage : int {
-  kTimeStep,      ///< stable time step (CFL and contact terms)
-  kContact,       ///< IMP search and forces, and their spreading onto the grid
-  kSort,          ///< particles binned by grid tile (Tiles)
-  kClearGrid,     ///< zeroing the nodes the last step used
-  kP2G,           ///< particle to grid: mass and momentum (USF), or with the internal force (USL)
-  kGridUpdate,    ///< nodal velocities, kick and walls
-  kG2P,           ///< grid to particle: velocity, affine matrix, position
-  kConstitutive,  ///< stress update of USL
-  kVolumeFit,     ///< the flowing points moved down the nodes' over-fill (VolumeFit)
-  kStress,        ///< USF: velocity gradient, stress update and internal force in one sweep
-  kBodies,        ///< solid bodies: blocks' springs and Box2D, FEM bodies' elements and step
-  kSph,   ///< SPH particles (seed 001): kinds and band, velocity gradient, stress, forces, move
-  kCount  ///< how many stages
-};
-
-/// The stage's name in outputs ("p2g", "contact", ...).
-const char* stageName(Stage stage);
 
 /// Wall time spent in each stage of the step (s) and the steps counted.
 struct Profile {
   double seconds[static_cast<int>(Stage::kCount)] = {};  ///< per stage
-  long steps = 0;                                        ///< steps timed
+  /// Whether the stage ran since the start: time_step, and every stage of each step the world
+  /// composed (World::composeStep). Outputs list these alone, in step order.
+  bool used[static_cast<int>(Stage::kCount)] = {};
+  long steps = 0;  ///< steps timed
   /// All stages together (s).
   double total() const;
+  /// The stages that ran, in step order.
+  std::vector<Stage> usedStages() const;
+  /// The stages of one owner together (s): the coupling's, the bodies', the SPH region's, ...
+  double ownerSeconds(StageOwner owner) const;
+  /// This profile less an earlier one of the same run (the stages used are this one's).
+  Profile since(const Profile& earlier) const;
 };
 
 /// Adds the wall time from its construction to its destruction to one stage of a Profile.

@@ -16,6 +16,7 @@
 #include "mpm_sdem/core/limits.hpp"
 #include "mpm_sdem/core/mpm/mpm_solver.hpp"
 #include "mpm_sdem/core/mpm/point_loads.hpp"
+#include "mpm_sdem/core/profile.hpp"
 #include "mpm_sdem/core/rigid/blocks.hpp"
 #include "mpm_sdem/core/sph/sph.hpp"
 #include "mpm_sdem/core/time_step.hpp"
@@ -45,13 +46,9 @@ struct WorldDef {
 };
 
 /// Whether the domain's periodic sides are well posed (left and right together, at least five
-/// cells across, material alone): "" or why not. Checked by the scene parser and by World.
+/// cells across): "" or why not. Checked by the scene parser and by World; what they may not
+/// meet is in the exclusions' table (exclusions.hpp).
 Problem periodicProblem(const WorldDef& def);
-
-/// Whether sleeping material (SolverDef::sleep) fits the world: USF and material points only
-/// (no SPH, FEM bodies, side walls or periodic sides): "" or why not. Checked by the scene
-/// parser and by World.
-Problem sleepProblem(const WorldDef& def);
 
 /// What a step did.
 struct StepInfo {
@@ -66,8 +63,9 @@ struct StepInfo {
 /// The simulation: material points on a background grid (MpmSolver), with rigid blocks, FEM
 /// bodies and SPH particles as a scene asks, advanced one step at a time through named, timed
 /// stages, each subsystem at its own rate (docs/architecture.md, The step). Built from a
-/// WorldDef; changed between steps only through its own calls (world_changes.cpp), so that the
-/// coupling stays in step and every change is logged.
+/// WorldDef, which composes the step: the stages this world needs, in order (step_stages.hpp),
+/// composed again only when its makeup changes. Changed between steps only through its own calls
+/// (world_changes.cpp), so that the coupling stays in step and every change is logged.
 class World {
  public:
   /// Throws std::invalid_argument on a definition the scene layer should have refused.
@@ -81,8 +79,10 @@ class World {
 
   /// The stable time step for the current state (CFL term of seed 000 eq. 51), or the fixed one.
   TimeStepChoice chooseTimeStep();
-  /// Advance by dt through the stage pipeline; returns what happened.
+  /// Advance by dt through the composed stages; returns what happened.
   StepInfo step(Real dt);
+  /// The stages a step runs, in order (composeStep of this world's makeup).
+  const std::vector<Stage>& stages() const { return stages_; }
   /// Mirror the trajectory in time: negate velocities and affine matrices and the leapfrog
   /// staggering, so that stepping again retraces the motion (seed 001 sec. 5.1 test).
   void reverseVelocities();
@@ -166,9 +166,9 @@ class World {
   /// Steps taken since the start (a resumed run continues the count).
   long stepCount() const { return steps_; }
   /// Wall time per stage since the start or the last resetProfile().
-  const Profile& profile() const { return mpm_.profile(); }
+  const Profile& profile() const { return profile_; }
   /// Starts the stages' timing afresh.
-  void resetProfile() { mpm_.profile() = Profile(); }
+  void resetProfile();
   /// Whether the step shares its work among the OpenMP threads: SPH worlds, and worlds of at
   /// least SolverDef::parallel_min_points points; the others step on the calling thread alone.
   bool sharesWork() const;
@@ -180,9 +180,20 @@ class World {
   /// The coupling springs' stable step (seed 000 eq. 51, second term): the step's bound, or the
   /// substep of subcycled springs.
   Real springStep(Real kappa2) const;
-  /// The points binned by tile for a step of dt (with SPH: and the SPH particles' kinds and
-  /// band; with sleeping material: which tiles sleep).
-  void binParticles(Real dt);
+  /// What this world is made of now, as the step's stages go.
+  StepMakeup makeup() const;
+  /// The step's stages from the makeup (stages_), and the profile's list of stages with them.
+  /// Called on construction and whenever the makeup may change (bodies or point loads come or
+  /// go, a checkpoint restored).
+  void compose();
+  /// What a stage reads beyond the world: the step, the kick's span, what the step found.
+  struct StepScratch {
+    Real dt;
+    Real kick;
+    StepInfo& info;
+  };
+  /// One stage of the step (a switch over Stage: no virtual call, no allocation).
+  void runStage(Stage stage, StepScratch& s);
   /// The blocks and point loads keep the tiles near them awake (SolverDef::sleep).
   void keepBlocksAwake();
   /// The step's velocity change after a coupling's correction: damped (SolverDef::damping) as
@@ -196,7 +207,6 @@ class World {
   /// Whenever the blocks come or go: the set of every kind of contact body, and what the FEM
   /// bodies meet.
   void linkContactBodies();
-  void spreadPointLoads();
   /// Seed 001's SPH particles: their checks and state; the parts of the world their stages
   /// (sph/sph_stages.hpp) read and change.
   void initSph();
@@ -234,6 +244,9 @@ class World {
   /// is half a step and the first USF stress update is empty.
   Real velocity_lag_ = 0;
   Real stress_lag_ = 0;
+  std::vector<Stage> stages_;  ///< compose()'s
+  bool damped_kick_ = true;    ///< the kick damps (no coupling's correction follows to do it)
+  Profile profile_;
 };
 
 }  // namespace mpm_sdem

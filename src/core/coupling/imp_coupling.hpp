@@ -47,6 +47,8 @@ class ImpCoupling final : public Coupling {
   void addGridForces(CouplingStep& s) override;
   // Multi-rate: the substeps of the springs and the bodies (see above).
   void correctGridVelocity(CouplingStep& s) override;
+  // Subcycled, the forces come in the substeps (correctGridVelocity), not before the step.
+  CouplingHooks hooks() const override { return {true, !subcycles(), subcycles(), false}; }
   bool correctsVelocities() const override { return subcycles(); }
   bool subcycles() const override {
     return def_.normal_integration == ContactIntegration::kSubcycled;

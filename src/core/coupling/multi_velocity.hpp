@@ -21,6 +21,7 @@ class MultiVelocityCoupling final : public Coupling {
   void correctGridVelocity(CouplingStep& s) override;
   std::string settings() const override;
   // No state beyond the base's: its samples and patches are scratch.
+  CouplingHooks hooks() const override { return {false, false, true, false}; }
   bool correctsVelocities() const override { return true; }
 
  private:

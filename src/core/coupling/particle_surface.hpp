@@ -19,6 +19,7 @@ class ParticleSurfaceCoupling final : public Coupling {
                           Real cell_size);
 
   void correctGridVelocity(CouplingStep& s) override;
+  CouplingHooks hooks() const override { return {false, false, true, false}; }
   bool correctsVelocities() const override { return true; }
   void bodiesChanged() override { search_.invalidate(); }
   std::string settings() const override;

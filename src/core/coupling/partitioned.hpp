@@ -28,6 +28,7 @@ class PartitionedCoupling final : public Coupling {
   void beforeStep(CouplingStep& s) override;
   void addGridForces(CouplingStep& s) override;
   void afterMaterialStep(CouplingStep& s) override;
+  CouplingHooks hooks() const override { return {true, true, false, true}; }
   std::string settings() const override;
   void saveState(cereal::BinaryOutputArchive& ar) override;
   void loadState(cereal::BinaryInputArchive& ar) override;

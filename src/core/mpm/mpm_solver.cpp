@@ -178,11 +178,12 @@ MpmSolver::Memory MpmSolver::memory() const {
   return m;
 }
 
-void MpmSolver::bin(Real dt) {
-  StageTimer timer(profile_, Stage::kSort);
-  const std::vector<PointRun>* awake = sleep_.any() ? &sleep_.runs() : nullptr;
-  tiles_.bin(particles_, grid_, false, awake);
-  if (sleep_.on() && sleep_.update(particles_, tiles_, def_.kernel, dt))
+void MpmSolver::bin() {
+  tiles_.bin(particles_, grid_, false, sleep_.any() ? &sleep_.runs() : nullptr);
+}
+
+void MpmSolver::updateSleep(Real dt) {
+  if (sleep_.update(particles_, tiles_, def_.kernel, dt))
     tiles_.rebin(particles_, grid_, sleep_.any() ? &sleep_.runs() : nullptr);
 }
 
@@ -195,7 +196,6 @@ void MpmSolver::forActiveNodes(const std::vector<int>& tiles, F&& f) {
 
 void MpmSolver::clearGrid() {
   // Only the tiles the last step used hold values; every other node is zero already.
-  StageTimer timer(profile_, Stage::kClearGrid);
   Grid& G = grid_;
   // Velocities are overwritten on every active node; a tile leaving the set is zeroed whole.
   forActiveNodes(tiles_.previous, [&G](int first, int end) {
@@ -209,17 +209,18 @@ void MpmSolver::clearGrid() {
 }
 
 void MpmSolver::particleToGrid(bool momentum, bool force) {
-  StageTimer timer(profile_, Stage::kP2G);
   detail::particleToGrid(def_.kernel, {momentum, force, momentum && carriesAffine(def_.transfer)},
                          particles_, grid_, tiles_);
+}
+
+void MpmSolver::addSleepersMass() {
   // The sleepers' mass on the nodes the awake points use (the others are not updated).
-  if (sleep_.any() && momentum)
+  if (sleep_.any())
     forActiveNodes(tiles_.active,
                    [this](int first, int end) { sleep_.addMass(grid_, first, end); });
 }
 
 void MpmSolver::gridVelocity(Real kick, bool after_force, bool damp) {
-  StageTimer timer(profile_, Stage::kGridUpdate);
   Grid& G = grid_;
   if (!after_force) {
     // Eq. 20: v_I = p_I / m_I; nodes without mass carry no velocity.
@@ -256,8 +257,6 @@ void MpmSolver::gridVelocity(Real kick, bool after_force, bool damp) {
 
 void MpmSolver::scaleInertia() {
   const Real s = def_.inertia_scale;
-  if (s == 1) return;
-  StageTimer timer(profile_, Stage::kGridUpdate);
   Grid& G = grid_;
   forActiveNodes(tiles_.active, [&G, s](int first, int end) {
     for (auto* a : {&G.mass, &G.mom_x, &G.mom_y})
@@ -267,7 +266,6 @@ void MpmSolver::scaleInertia() {
 
 void MpmSolver::dampVelocityChange(Real kick) {
   if (kick == 0) return;
-  StageTimer timer(profile_, Stage::kGridUpdate);
   Grid& G = grid_;
   const Real damping = def_.damping;
   forActiveNodes(tiles_.active, [&](int first, int end) {
@@ -305,8 +303,6 @@ void MpmSolver::applyWalls(std::vector<Real>& vx, std::vector<Real>& vy) const {
 }
 
 void MpmSolver::foldPeriodic(std::initializer_list<std::vector<Real>*> fields) {
-  if (!periodicX()) return;
-  StageTimer timer(profile_, Stage::kGridUpdate);
   for (std::vector<Real>* a : fields)
     if (!a->empty()) grid_.foldPeriodicX(*a);  // empty: a field this scene does not use
 }
@@ -325,7 +321,6 @@ Real MpmSolver::sidewallCoefficient() const {
 }
 
 void MpmSolver::sidewallLoad() {
-  StageTimer timer(profile_, Stage::kStress);
   Real* load = clearedSidewallLoad();
   if (!load) return;
   detail::withKernel(def_.kernel, [&](auto k) {
@@ -334,8 +329,7 @@ void MpmSolver::sidewallLoad() {
 }
 
 void MpmSolver::sidewallFriction(Real kick) {
-  if (!(domain_.sidewalls.width > 0) || kick == 0) return;
-  StageTimer timer(profile_, Stage::kGridUpdate);
+  if (kick == 0) return;
   Grid& G = grid_;
   forActiveNodes(tiles_.active, [&](int first, int end) {
     const Real *m = G.mass.data(), *load = sidewall_load_.data();
@@ -354,45 +348,42 @@ void MpmSolver::sidewallFriction(Real kick) {
 }
 
 void MpmSolver::stressAndInternalForce(Real dt) {
-  StageTimer timer(profile_, Stage::kStress);
   detail::SidewallLoad walls;
   if (Real* load = clearedSidewallLoad()) walls = {sidewallCoefficient(), load};
   detail::stressAndInternalForce(def_.kernel, particles_, grid_, tiles_, params_, dt, walls);
+}
+
+void MpmSolver::addSleepersForce() {
   if (sleep_.any())
     forActiveNodes(tiles_.active,
                    [this](int first, int end) { sleep_.addForce(grid_, first, end); });
 }
 
 void MpmSolver::gridToParticle(Real dt, const Tiles* material_points, long& clamped, bool& finite) {
-  {
-    StageTimer timer(profile_, Stage::kG2P);
-    const detail::G2PSettings s{def_.pic_fraction,
-                                dt,
-                                domain_.min,
-                                domain_.max,
-                                periodicX(),
-                                detail::asflipKeep(dt, def_.asflip_relaxation_time),
-                                sleep_.any() ? &sleep_.runs() : nullptr};
-    const bool usl = def_.stress_update == StressUpdate::kUsl;
-    detail::gridToParticle(def_.kernel, def_.transfer, usl, particles_, grid_, s, clamped, finite,
-                           material_points);
-  }
+  const detail::G2PSettings s{def_.pic_fraction,
+                              dt,
+                              domain_.min,
+                              domain_.max,
+                              periodicX(),
+                              detail::asflipKeep(dt, def_.asflip_relaxation_time),
+                              sleep_.any() ? &sleep_.runs() : nullptr};
+  const bool usl = def_.stress_update == StressUpdate::kUsl;
+  detail::gridToParticle(def_.kernel, def_.transfer, usl, particles_, grid_, s, clamped, finite,
+                         material_points);
+}
+
+void MpmSolver::noteMovingNodes() {
   // The step's nodal velocities are final: the sleeping tiles they reach wake in the next step.
-  if (sleep_.any()) {
-    StageTimer timer(profile_, Stage::kSort);
-    sleep_.noteMovingNodes(grid_);
-  }
+  if (sleep_.any()) sleep_.noteMovingNodes(grid_);
 }
 
 void MpmSolver::constitutiveUpdate(Real dt) {
-  StageTimer timer(profile_, Stage::kConstitutive);
   if (dt == 0) return;
   detail::updateStresses(particles_, params_, dt);
 }
 
 void MpmSolver::fitVolumes(Real dt) {
-  if (!fits_ || dt == 0) return;  // off, nothing flows, or the first step
-  StageTimer timer(profile_, Stage::kVolumeFit);
+  if (dt == 0) return;  // the first step
   last_fit_ = volume_fit_.fit(particles_, grid_, flows_, dt);
 }
 

@@ -23,33 +23,23 @@ std::unique_ptr<SphState> startSph(const SphWorld& w) {
 }
 
 void binWithSph(SphState& s, const SphWorld& w) {
-  {
-    StageTimer timer(w.profile, Stage::kSph);
-    assignKinds(w.sph.regions, s.sph_body, w.particles);
-  }
-  {
-    StageTimer timer(w.profile, Stage::kSort);
-    w.tiles.binByKind(w.particles, w.grid);
-  }
-  StageTimer timer(w.profile, Stage::kSph);
+  assignKinds(w.sph.regions, s.sph_body, w.particles);
+  w.tiles.binByKind(w.particles, w.grid);
   markBand(w.particles, w.grid, w.solver.kernel, w.tiles, s.stamp, ++s.now);
   w.tiles.activate();
 }
 
 void sphStress(SphState& s, const SphWorld& w, Real stress_dt) {
-  StageTimer timer(w.profile, Stage::kSph);
   sphVelocityGradient(w.particles, w.tiles, w.grid, s.settings, w.materials, stress_dt, s.columns,
                       s.pairs);
 }
 
 void sphForces(SphState& s, const SphWorld& w) {
-  StageTimer timer(w.profile, Stage::kSph);
   s.mu_max = sphAcceleration(w.particles, w.tiles, s.settings, w.materials, w.solver.gravity,
                              s.columns, s.pairs);
 }
 
 void sphMove(SphState& s, const SphWorld& w, Real dt, Real kick, long& clamped, bool& finite) {
-  StageTimer timer(w.profile, Stage::kSph);
   const G2PSettings g2p{w.solver.pic_fraction, dt, w.domain_min, w.domain_max};
   sphKickDrift(w.particles, w.tiles, s.columns, kick, w.solver.damping, g2p, clamped, finite);
 }

@@ -1,7 +1,7 @@
 // Seed 001's SPH particles as World runs them: their state built from the scene's definition,
-// and the stages World calls in its step, each timed under Stage::kSph (the binning by kind under
-// Stage::kSort). World passes what it holds (SphWorld) at each call: it is movable, so nothing
-// here keeps a reference to it. Internal header of the core library.
+// and the stages World calls in its step (sph_sort, sph_gradient, sph_forces, sph_move in
+// step_stages.hpp; World times them). World passes what it holds (SphWorld) at each call: it is
+// movable, so nothing here keeps a reference to it. Internal header of the core library.
 #pragma once
 
 #include <memory>
@@ -14,7 +14,6 @@
 #include "mpm_sdem/core/mpm/shapes.hpp"
 #include "mpm_sdem/core/mpm/solver.hpp"
 #include "mpm_sdem/core/mpm/tiles.hpp"
-#include "mpm_sdem/core/profile.hpp"
 #include "mpm_sdem/core/sph/sph.hpp"
 #include "sph/sph_step.hpp"
 
@@ -30,7 +29,6 @@ struct SphWorld {
   const SphDef& sph;
   int bodies;  // the world's bodies of material (sph.bodies index them)
   Vec2 domain_min, domain_max;
-  Profile& profile;
 };
 
 // The state of the SPH particles named by w.sph (its checks made by World: sphProblem and the

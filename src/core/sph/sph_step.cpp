@@ -15,7 +15,7 @@ const char* sphKernelName(SphKernel k) {
   return k == SphKernel::kWendlandC2 ? "wendland_c2" : "cubic_spline";
 }
 
-Problem sphProblem(const SphDef& d, Real cell_size, bool stress_first) {
+Problem sphProblem(const SphDef& d, Real cell_size) {
   // h_s in [0.5, 1.5] cells: the kernel reaches 2 h_s, and the tiles (3 cells) are its cell list.
   const Real hs = d.smoothing_length > 0 ? d.smoothing_length : cell_size;
   const limits::Range cells{0.5 * cell_size, 0.5 * Tiles::kSize * cell_size * (1 + 1e-12), "m"};
@@ -28,10 +28,6 @@ Problem sphProblem(const SphDef& d, Real cell_size, bool stress_first) {
     return p.under("viscosity_alpha");
   if (Problem p = limits::rangeProblem(d.viscosity_beta, limits::kArtificialViscosity); !p.empty())
     return p.under("viscosity_beta");
-  if (!stress_first)
-    return {"regions",
-            "SPH particles need solver.stress_update: usf (their stress is updated with the "
-            "material points' before the forces)"};
   return {};
 }
 

@@ -22,6 +22,7 @@
 #include "mpm_sdem/core/mpm/shapes.hpp"
 #include "mpm_sdem/core/mpm/tiles.hpp"
 #include "mpm_sdem/core/sph/sph.hpp"
+#include "mpm_sdem/core/step_stages.hpp"
 #include "mpm_sdem/core/types.hpp"
 
 namespace cereal {
@@ -44,23 +45,15 @@ enum class CouplingScheme {
                      ///< particles; the wall forces go to the MPM side as point loads
 };
 
-/// What a scheme is and what it can meet: stated once per scheme (coupling.cpp) and asked by the
-/// scene parser, World, the runner and the checkpoint.
+/// What a scheme is: stated once per scheme (coupling.cpp) and asked by the scene parser, World,
+/// the runner and the checkpoint. What it cannot meet is the exclusions' table's
+/// (exclusions.hpp).
 struct SchemeTraits {
   CouplingScheme scheme;  ///< the scheme this row describes
   const char* name;       ///< as a scene names it (coupling.scheme)
   /// Its contacts are springs (normal_stiffness, tangential_stiffness), which bound the step
   /// (seed 000 eq. 51, second term) unless they are subcycled.
   bool springs;
-  /// Its springs are the IMPs' (seed 000 sec. 4): stiffness_per 'length' and a normal_integration
-  /// other than 'explicit' apply.
-  bool imp_springs;
-  /// FEM bodies are among the bodies it can meet: not when it needs a block's interior lattice
-  /// (multi_velocity) or builds a wall of its own from the material's outline (partitioned).
-  bool meets_fem_bodies;
-  /// SPH particles are among the material it can meet: not when it meets bodies on the grid,
-  /// which does not move SPH particles (multi_velocity, partitioned).
-  bool meets_sph_particles;
   /// A block may be added after the first step: not when its wall is built from the material's
   /// initial outline (partitioned).
   bool takes_later_blocks;
@@ -73,9 +66,6 @@ const SchemeTraits& schemeTraits(CouplingScheme s);
 inline const char* couplingSchemeName(CouplingScheme s) {
   return schemeTraits(s).name;
 }
-/// Whether scheme s can meet what a world holds: empty, or the problem under coupling.scheme
-/// naming what it cannot meet and the schemes that can.
-Problem schemeProblem(CouplingScheme s, bool fem_bodies, bool sph_particles);
 
 /// What the IMP spring constants are given for.
 enum class SpringBasis {
@@ -153,6 +143,8 @@ class Coupling {
   virtual void correctGridVelocity(CouplingStep&) {}
   /// After the points moved.
   virtual void afterMaterialStep(CouplingStep&) {}
+  /// The stages it fills: World's step holds only these (step_stages.hpp).
+  virtual CouplingHooks hooks() const = 0;
   /// True when contacts are springs, which bound the time step (seed 000 eq. 51, second term).
   bool hasSprings() const { return schemeTraits(def_.scheme).springs; }
   /// True when correctGridVelocity changes nodal velocities (the walls are then applied again).

@@ -1,8 +1,8 @@
 /// \file
 /// The MPM solver (seed 000 sec. 2): material points on a background grid, the domain's walls and
-/// periodic sides, and the transfers between them, as named, timed stages that World calls in
-/// the seed's order. It knows nothing of blocks, FEM bodies or SPH: those act on its grid
-/// between its stages.
+/// periodic sides, and the transfers between them, as the stages World composes its step of
+/// (step_stages.hpp) and times. It knows nothing of blocks, FEM bodies or SPH: those act on its
+/// grid between its stages.
 #pragma once
 
 #include <cstddef>
@@ -19,7 +19,6 @@
 #include "mpm_sdem/core/mpm/solver.hpp"
 #include "mpm_sdem/core/mpm/tiles.hpp"
 #include "mpm_sdem/core/mpm/volume_fit.hpp"
-#include "mpm_sdem/core/profile.hpp"
 #include "mpm_sdem/core/time_step.hpp"
 
 namespace mpm_sdem {
@@ -29,7 +28,8 @@ namespace mpm_sdem {
 /// is allocated, by the scene parser and by MpmSolver.
 Problem sizeProblem(const DomainDef& domain, Real cell_size, const std::vector<BodyDef>& bodies);
 
-/// Particles and grid with the stages of an MPM step. Each stage times itself in profile().
+/// Particles and grid with the stages of an MPM step. A stage does its work unasked: whether it
+/// runs at all is World's choice, made once (composeStep).
 class MpmSolver {
  public:
   /// Fills the bodies with points, in tile order. Throws std::invalid_argument on a definition
@@ -58,17 +58,14 @@ class MpmSolver {
   const SolverDef& def() const { return def_; }
   /// The box and its walls.
   const DomainDef& domain() const { return domain_; }
-  ///@{
-  /// Wall time per stage: the solver's and every stage World times with it.
-  const Profile& profile() const { return profile_; }
-  Profile& profile() { return profile_; }
-  ///@}
   /// Gravity on the material from the next step on (m/s^2).
   void setGravity(const Vec2& gravity) { def_.gravity = gravity; }
   /// Whether the left and right sides are one (WallType::kPeriodic).
   bool periodicX() const { return domain_.left.type == WallType::kPeriodic; }
   /// Whether the domain has the flume's side walls (SidewallsDef).
   bool hasSidewalls() const { return domain_.sidewalls.width > 0; }
+  /// Whether the volume fit runs: SolverDef::volume_fit, and some material flows.
+  bool fits() const { return fits_; }
 
   /// Memory held, in bytes, and the nodes the last step cleared and updated.
   struct Memory {
@@ -86,20 +83,24 @@ class MpmSolver {
 
   /// @name Stages, in the order of a step
   ///@{
-  /// The awake points binned by grid tile; then, with sleeping material, which tiles sleep in
-  /// this step of dt (Sleep::update; the blocks' boxes given to sleep().keepAwake first).
-  void bin(Real dt);
+  /// The awake points binned by grid tile.
+  void bin();
+  /// With sleeping material: which tiles sleep in this step of dt (Sleep::update; the blocks'
+  /// boxes given to sleep().keepAwake first), the awake points binned again on a change.
+  void updateSleep(Real dt);
   /// Zeroes the nodes the last step used.
   void clearGrid();
   /// P2G: mass and momentum (with APIC's affine part), and with force the internal force (USL).
   void particleToGrid(bool momentum, bool force);
+  /// With sleeping material: the sleepers' mass on the nodes the awake points use.
+  void addSleepersMass();
   ///@{
-  /// Periodic in x: nodes i and i + cells_x are one node, so each gets the sum of both; the
-  /// mass and momentum, and the forces with the side walls' load.
+  /// Periodic in x (periodicX()): nodes i and i + cells_x are one node, so each gets the sum of
+  /// both; the mass and momentum, and the forces with the side walls' load.
   void foldMomentum() { foldPeriodic({&grid_.mass, &grid_.mom_x, &grid_.mom_y}); }
   void foldForces() { foldPeriodic({&grid_.force_x, &grid_.force_y, &sidewall_load_}); }
   ///@}
-  /// The nodes' mass and momentum times SolverDef::inertia_scale (their velocity unchanged):
+  /// The nodes' mass and momentum times SolverDef::inertia_scale != 1 (their velocity unchanged):
   /// from here on the grid's mass is the inertial one; gravity keeps the true weight.
   void scaleInertia();
   /// The nodal velocities: without after_force, v0 = p / m (eq. 20); with it, the kick by the
@@ -113,19 +114,24 @@ class MpmSolver {
   /// USF: velocity gradient, stress update and internal force in one sweep, with the side walls'
   /// load from the new pressure.
   void stressAndInternalForce(Real dt);
+  /// With sleeping material: the sleepers' internal force on the awake nodes (USF).
+  void addSleepersForce();
   /// USL: the side walls' load from the points' pressure (after P2G).
   void sidewallLoad();
-  /// The side walls' friction on the nodes' velocities after the kick.
+  /// The side walls' friction on the nodes' velocities after the kick (with side walls).
   void sidewallFriction(Real kick);
   /// G2P: velocity, affine matrix and position (eq. 26-31); material_points: only those tiles'
   /// points (with SPH), or nullptr for all (the awake ones with sleeping material, whose tiles
-  /// the step's moving nodes then mark, Sleep::noteMovingNodes). Counts points put back inside
-  /// the domain, and clears finite on a NaN.
+  /// the step's moving nodes then mark, noteMovingNodes). Counts points put back inside the
+  /// domain, and clears finite on a NaN.
   void gridToParticle(Real dt, const Tiles* material_points, long& clamped, bool& finite);
+  /// With sleeping material: the sleeping tiles the step's moving nodes reach
+  /// (Sleep::noteMovingNodes).
+  void noteMovingNodes();
   /// USL: the stress update after G2P.
   void constitutiveUpdate(Real dt);
-  /// With SolverDef::volume_fit: the flowing materials' shearing points moved down the nodes'
-  /// over-fill (VolumeFit::fit), once the step's positions and volumes are final.
+  /// When fits(): the flowing materials' shearing points moved down the nodes' over-fill
+  /// (VolumeFit::fit), once the step's positions and volumes are final.
   void fitVolumes(Real dt);
   ///@}
 
@@ -169,7 +175,6 @@ class MpmSolver {
   std::vector<Real> sidewall_load_;
   /// h^2 / (2 nu) of the most viscous fluid (s); infinite without one.
   Real viscous_dt_;
-  Profile profile_;
 };
 
 }  // namespace mpm_sdem

@@ -55,9 +55,8 @@ struct SphDef {
 };
 
 /// Why a world of this cell size cannot take d (empty when it can), naming the key: the smoothing
-/// length's range, the viscosity factors', and a stress update other than first (stress_first).
-/// The one check, for the scene parser and World; whether the coupling scheme meets SPH
-/// particles is schemeProblem's (coupling.hpp).
-Problem sphProblem(const SphDef& d, Real cell_size, bool stress_first);
+/// length's range and the viscosity factors'. The one check, for the scene parser and World;
+/// what SPH particles may not meet (USL, some coupling schemes) is the exclusions' table's.
+Problem sphProblem(const SphDef& d, Real cell_size);
 
 }  // namespace mpm_sdem
