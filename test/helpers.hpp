@@ -66,6 +66,15 @@ inline WorldDef box(const Vec2& lo, const Vec2& hi, Real h) {
   return d;
 }
 
+// A sand bed 0.4 m x 0.1 m (Drucker-Prager, 30 deg) at 2 cm cells in a 1 m x 0.6 m box: material
+// alone, the solver's defaults (USF, IMP).
+inline WorldDef smallBed() {
+  WorldDef d = box(Vec2(0, 0), Vec2(1, 0.6), 0.02);
+  d.materials.push_back(druckerPrager(1800, 1e6, 0.3, 30, 0));
+  d.bodies.push_back(rectangle(Vec2(0.3, 0), Vec2(0.7, 0.1), 2));
+  return d;
+}
+
 inline std::string sourcePath(const std::string& rel) {
   return std::string(MPM_SDEM_SOURCE_DIR) + "/" + rel;
 }

@@ -16,12 +16,8 @@ using namespace mpm_sdem;
 
 namespace {
 
-// A sand bed 0.4 m x 0.1 m at 2 cm cells in a 1 m x 0.6 m box: material alone, USF, IMP.
 WorldDef base() {
-  WorldDef d = test::box(Vec2(0, 0), Vec2(1, 0.6), 0.02);
-  d.materials.push_back(test::druckerPrager(1800, 1e6, 0.3, 30, 0));
-  d.bodies.push_back(test::rectangle(Vec2(0.3, 0), Vec2(0.7, 0.1), 2));
-  return d;
+  return test::smallBed();
 }
 
 // Turns feature f on, adding only what it needs; the other features stay as they were.

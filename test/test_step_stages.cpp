@@ -16,10 +16,7 @@ using namespace mpm_sdem;
 namespace {
 
 WorldDef bed() {
-  WorldDef d = test::box(Vec2(0, 0), Vec2(1, 0.6), 0.02);
-  d.materials.push_back(test::druckerPrager(1800, 1e6, 0.3, 30, 0));
-  d.bodies.push_back(test::rectangle(Vec2(0.3, 0), Vec2(0.7, 0.1), 2));
-  return d;
+  return test::smallBed();
 }
 
 std::vector<std::string> names(const std::vector<Stage>& stages) {
