@@ -179,9 +179,10 @@ struct Rebound {
 };
 Rebound dropRebound(World& w);
 
-// A 3 cm rounded box (a = 5 mm, 2500 kg/m^3, restitution 0.2) thrown at (3, -20) m/s into a
-// 30 x 8 cm granular bed (Drucker-Prager, rho = 1500 kg/m^3, E = 1 MPa, nu = 0.3, phi = 30 deg,
-// sticky floor), 5 mm cells; contact springs 1e7 and 5e6 N/m.
+// The shipped scene config/scenes/rock_into_bed.yaml under a scheme: a 3 cm rounded box (a =
+// 5 mm, 2500 kg/m^3, restitution 0.2) thrown at (3, -20) m/s into a 30 x 8 cm granular bed
+// (Drucker-Prager, rho = 1500 kg/m^3, E = 1 MPa, nu = 0.3, phi = 30 deg, sticky floor), 5 mm
+// cells; contact springs 1e7 and 5e6 N/m.
 // disc_radius > 0: the rock is a cluster of discs of that radius filling the same outline at a
 // pitch of one radius (seed 003's rock as DEM discs).
 WorldDef rockIntoBed(CouplingScheme scheme = CouplingScheme::kImp, Real disc_radius = 0);
@@ -392,7 +393,7 @@ struct Blade {
   bool geostatic = true;  // start from the layer's weight as its stress
   Real ramp = 0.05;       // s over which the blade's speed is eased in
 };
-// The blade's sand (rho = 1500 kg/m^3, E and nu from the Blade). Drucker-Prager: phi =
+// The blade scene's sand (rho = 1500 kg/m^3) with E and nu from the Blade. Drucker-Prager: phi =
 // friction_angle, no dilation or cohesion. Granular: matchedGranular of that sand (mu_s = sin
 // of its flowing in-plane angle, bladeFrictionAngle: 33.0 deg for phi = 35 deg, mu_s = 0.545),
 // grains 1 mm.
@@ -409,6 +410,9 @@ MaterialDef bladeSand(const Blade& c);
 // asin(mu): asin(mu_s) for slow flow (I -> 0; the rate term adds (mu_2 - mu_s) / (I_0 / I + 1),
 // 0.01 at the blade's I ~ 0.01). The same argument gives the Drucker-Prager asin(q_phi).
 Real bladeFrictionAngle(const Blade& c);
+// The shipped scene config/scenes/excavator_blade.yaml with what the case sweeps: its cell,
+// sand, depth, rake, thickness, rounding, blade friction and speed, every point awake and no
+// initial stress (pushBlade sets the layer's weight as its stress).
 WorldDef excavatorBlade(const Blade& c);
 // Pushes excavatorBlade's blade (block 0) until it has travelled `travel` (m): the horizontal
 // and vertical forces of the material on it (N/m, the resistance positive against the motion,

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cases_common.hpp"
+#include "mpm_sdem/scene/scene.hpp"
 
 namespace mpm_sdem::cases {
 
@@ -361,39 +362,15 @@ WorldDef dropDisk(CouplingScheme scheme) {
 }
 
 WorldDef rockIntoBed(CouplingScheme scheme, Real disc_radius) {
-  WorldDef def;
-  def.domain.min = Vec2(0, 0);
-  def.domain.max = Vec2(0.3, 0.2);
-  def.cell_size = 0.005;
-  def.domain.bottom.type = WallType::kSticky;
-  MaterialDef m;
-  m.name = "bed";
-  m.model = MaterialModel::kDruckerPrager;
-  m.density = 1500;
-  m.bulk_modulus = 1e6 / (3 * (1 - 2 * 0.3));
-  m.shear_modulus = 1e6 / (2 * (1 + 0.3));
-  m.friction_angle = 30 * M_PI / 180;
-  m.dilation_angle = 0;
-  def.materials.push_back(m);
-  BodyDef bed;
-  bed.name = "bed";
-  bed.shape.type = ShapeType::kRectangle;
-  bed.shape.min = Vec2(0, 0);
-  bed.shape.max = Vec2(0.3, 0.08);
-  bed.points_per_cell = 2;
-  def.bodies.push_back(bed);
-  BlockDef rock = boxBlock("rock", Vec2(0.15, 0.08 + 0.005 + 0.015 + 0.003), 0.03, 0.03, 0.005,
-                           BodyType::kDynamic, 2500);
+  // The shipped scene, under the case's scheme.
+  WorldDef def = loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/rock_into_bed.yaml",
+                           {std::string("coupling.scheme=") + couplingSchemeName(scheme)})
+                     .world;
+  BlockDef& rock = def.blocks.at(0);
   if (disc_radius > 0) {
     rock.discs = fillWithDiscs({rock.core, rock.rounding}, disc_radius, disc_radius);
     rock.core.clear();
   }
-  rock.velocity = Vec2(3, -20);
-  rock.restitution = 0.2;
-  def.blocks.push_back(rock);
-  def.coupling.scheme = scheme;
-  def.coupling.normal_stiffness = 1e7;
-  def.coupling.tangential_stiffness = 5e6;
   return def;
 }
 

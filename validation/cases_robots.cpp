@@ -6,6 +6,7 @@
 #include "mpm_sdem/core/stepper.hpp"
 
 #include "mpm_sdem/mesh/mesher.hpp"
+#include "mpm_sdem/scene/scene.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -75,18 +76,41 @@ WheelRun runWheel(World& w, Real t_end) {
 }
 
 namespace {
-constexpr Real kBladeSand = 1500;  // kg/m^3
+
+// A number as a scene override writes it: every bit kept (%.17g reads back to the same double).
+std::string exact(Real v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+std::string exact(const Vec2& v) {
+  return "[" + exact(v.x()) + ", " + exact(v.y()) + "]";
+}
+
+std::string exact(const std::vector<Vec2>& points) {
+  std::string out;
+  for (const Vec2& v : points) out += (out.empty() ? "[" : ", ") + exact(v);
+  return out + "]";
+}
+
+// The shipped blade scene (config/scenes/excavator_blade.yaml) with overrides.
+WorldDef bladeScene(std::vector<std::string> set) {
+  return loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/excavator_blade.yaml", set)
+      .world;
+}
+
+// The overrides of the blade scene's sand: the case's elasticity and friction angle.
+std::vector<std::string> sandSet(const Blade& c) {
+  return {"materials.sand.friction_angle=" + exact(c.friction_angle),
+          "materials.sand.youngs_modulus=" + exact(c.young_modulus),
+          "materials.sand.poisson_ratio=" + exact(c.poisson_ratio)};
+}
+
 }  // namespace
 
 MaterialDef bladeSand(const Blade& c) {
-  MaterialDef m;
-  m.name = "sand";
-  m.density = kBladeSand;
-  const Real E = c.young_modulus, nu = c.poisson_ratio;
-  m.bulk_modulus = E / (3 * (1 - 2 * nu));
-  m.shear_modulus = E / (2 * (1 + nu));
-  m.model = MaterialModel::kDruckerPrager;
-  m.friction_angle = c.friction_angle * M_PI / 180;
+  const MaterialDef m = bladeScene(sandSet(c)).materials.at(0);
   // The granular sand flows at the same in-plane angle (bladeFrictionAngle); grains of 1 mm.
   return c.sand == Blade::Sand::kGranular ? matchedGranular(m, 0.001) : m;
 }
@@ -103,13 +127,7 @@ WorldDef excavatorBlade(const Blade& c) {
   const Real t = c.thickness, a = c.rounding;
   const Real face = 0.05;     // x of the blade's front face at the free surface (m)
   const Real top = H + 0.08;  // the blade's upper end (m)
-  WorldDef def;
-  def.domain.min = Vec2(0, 0);
-  def.domain.max = Vec2(std::round(0.4 / h) * h, std::round((top + 0.04) / h) * h);
-  def.domain.bottom.type = WallType::kSticky;
-  def.cell_size = h;
-  def.solver.damping = c.damping;
-  def.materials.push_back(bladeSand(c));
+  const Vec2 domain_max(std::round(0.4 / h) * h, std::round((top + 0.04) / h) * h);
   // The blade: a parallelogram core, its lower edge horizontal at a above the cut (the rounded
   // outline's lowest line at H - d), its front edge along u = (-cos alpha, sin alpha) and a
   // normal thickness t - 2a; the outline is that grown by a.
@@ -123,41 +141,29 @@ WorldDef excavatorBlade(const Blade& c) {
   makeCounterClockwise(core);
   Vec2 centre = Vec2::Zero();
   for (const Vec2& v : core) centre += v / 4;
-  BlockDef blade;
-  blade.name = "blade";
-  blade.type = BodyType::kKinematic;
-  blade.position = centre;
-  for (const Vec2& v : core) blade.core.push_back(v - centre);
-  blade.rounding = a;
-  blade.density = 7850;  // steel (a kinematic block's mass is not used)
-  blade.friction = c.friction;
-  blade.restitution = 0.2;
-  blade.velocity = Vec2(c.speed, 0);
-  def.blocks.push_back(blade);
+  for (Vec2& v : core) v -= centre;  // in the blade's frame
   // The layer: full ahead of the blade's grown front edge, cut to H - d behind it.
   auto faceAt = [&](Real y) { return face - (y - H) / std::tan(alpha); };
-  BodyDef bed;
-  bed.name = "bed";
-  bed.shape.type = ShapeType::kPolygon;
-  bed.shape.vertices = {
-      Vec2(0, 0),         Vec2(def.domain.max.x(), 0), Vec2(def.domain.max.x(), H),
-      Vec2(faceAt(H), H), Vec2(faceAt(H - d), H - d),  Vec2(0, H - d)};
-  bed.points_per_cell = c.points_per_cell;
-  def.bodies.push_back(bed);
-  def.coupling.scheme = CouplingScheme::kImp;
-  // Springs per metre of contact, so that the blade's face is equally stiff at every cell size:
-  // the pressure at the edge of an 8 cm cut (gamma d K_p, 4 kPa on a smooth blade, 7 kPa on a
-  // rough one) closes them by 0.08 and 0.15 mm, an eighth of the point spacing at 2.5 mm cells.
-  def.coupling.stiffness_per = SpringBasis::kPerLength;
-  // Contact disks of half the point spacing: a face's points then cover it edge to edge, and
-  // no point reaches further than its own share of the material. The default reach (h / sqrt(2)
-  // at 2 x 2 points per cell, eq. 45) lets a point the blade meets inside the layer feel it from
-  // 7 mm away at 1 cm cells: the blade cuts that much deeper and thicker (with the edge 5 cells
-  // deep, 3.6 instead of 2.55 times Reece's force, measured when this case was first set up,
-  // with local damping and no initial stress).
-  def.coupling.contact_radius = 0.5 * h / c.points_per_cell;
-  def.coupling.normal_stiffness = 5e7;
-  def.coupling.tangential_stiffness = 2.5e7;
+  const std::vector<Vec2> bed = {
+      Vec2(0, 0),         Vec2(domain_max.x(), 0),    Vec2(domain_max.x(), H),
+      Vec2(faceAt(H), H), Vec2(faceAt(H - d), H - d), Vec2(0, H - d)};
+  // The shipped scene with what the case sweeps: its cell, sand, depth, blade (rake, thickness,
+  // rounding, friction, speed), and every point awake (the reference for the scene's sleeping
+  // material). Contact disks of half the point spacing, as the scene's (its header says why).
+  std::vector<std::string> set = sandSet(c);
+  set.insert(
+      set.end(),
+      {"grid.cell_size=" + exact(h), "domain.max=" + exact(domain_max), "solver.sleep_speed=0",
+       "solver.damping=" + exact(c.damping), "bodies.bed.vertices=" + exact(bed),
+       "bodies.bed.points_per_cell=" + std::to_string(c.points_per_cell),
+       // pushBlade sets the layer's weight as its stress (c.geostatic)
+       "bodies.bed.initial_stress=none", "blocks.blade.position=" + exact(centre),
+       "blocks.blade.vertices=" + exact(core), "blocks.blade.rounding=" + exact(a),
+       "blocks.blade.friction=" + exact(c.friction),
+       "blocks.blade.velocity=" + exact(Vec2(c.speed, 0)),
+       "coupling.contact_radius=" + exact(0.5 * h / c.points_per_cell)});
+  WorldDef def = bladeScene(set);
+  def.materials.at(0) = bladeSand(c);
   return def;
 }
 
@@ -238,7 +244,7 @@ Reece reece(Real alpha, Real phi, Real delta) {
 Real reeceHorizontal(const Blade& c) {
   const Real phi = bladeFrictionAngle(c);
   const Reece r = reece(c.rake * M_PI / 180, phi, std::atan(c.friction));
-  return kBladeSand * 9.81 * c.depth * c.depth * r.horizontal;
+  return bladeSand(c).density * 9.81 * c.depth * c.depth * r.horizontal;
 }
 
 Real wedgeRise(const Blade& c) {
