@@ -22,14 +22,10 @@ bool read(const ros::NodeHandle& pnh, const std::string& key, T& value, const ch
   return false;
 }
 
+// Its type only: the bound is runtimeProblem's, checked once every parameter is read.
 bool readRate(const ros::NodeHandle& pnh, const std::string& key, double& value,
               std::string& error) {
-  if (!read(pnh, key, value, "a number (Hz)", error)) return false;
-  if (!(value >= 0) || !std::isfinite(value)) {
-    error = "parameter ~" + key + " must be >= 0 Hz (0: off), got " + std::to_string(value);
-    return false;
-  }
-  return true;
+  return read(pnh, key, value, "a number (Hz)", error);
 }
 
 std::string defaultBagPath(const std::string& scene) {
@@ -61,8 +57,16 @@ Problem frameProblem(const std::string& frame) {
 }
 
 Problem runtimeProblem(const NodeParams& p) {
+  // The one place of these bounds: the parameters at start and dynamic_reconfigure's changes
+  // (whose cfg gives none, so that a value out of them is refused, not clamped) are held to them.
+  // Every message says the value it got, as asked ("got -5", not a value made of it).
   auto finite = [](double v, double lo, bool open) {
     return std::isfinite(v) && (open ? v > lo : v >= lo);
+  };
+  auto got = [](const char* rule, double v) {
+    char m[160];
+    std::snprintf(m, sizeof m, "%s, got %g", rule, v);
+    return std::string(m);
   };
   const std::pair<const char*, double> rates[] = {
       {"rates/particles", p.particles_rate}, {"rates/blocks", p.blocks_rate},
@@ -70,16 +74,18 @@ Problem runtimeProblem(const NodeParams& p) {
       {"rates/clock", p.clock_rate},         {"rates/terrain", p.terrain_rate}};
   for (const auto& [key, v] : rates)
     if (!finite(v, 0, false))
-      return {std::string("~") + key, "must be >= 0 Hz (0: off), got " + std::to_string(v)};
-  if (p.cloud_decimation < 1) return {"~cloud_decimation", "must be >= 1"};
+      return {std::string("~") + key, got("must be a finite number >= 0 Hz (0: off)", v)};
+  if (p.cloud_decimation < 1)
+    return {"~cloud_decimation", "must be >= 1, got " + std::to_string(p.cloud_decimation)};
   if (!finite(p.real_time_factor, 0, false))
-    return {"~real_time_factor", "must be >= 0 (0: as fast as possible)"};
+    return {"~real_time_factor",
+            got("must be a finite number >= 0 (0: as fast as possible)", p.real_time_factor)};
   if (!finite(p.cmd_vel_timeout, 0, false))
     return {"~cmd_vel_timeout",
-            "must be a finite number >= 0 s (0: never), got " + std::to_string(p.cmd_vel_timeout)};
+            got("must be a finite number >= 0 s (0: never)", p.cmd_vel_timeout)};
   if (!finite(p.follow_tf_time_constant, 0, true))
     return {"~follow_tf_time_constant",
-            "must be a finite number > 0 s, got " + std::to_string(p.follow_tf_time_constant)};
+            got("must be a finite number > 0 s", p.follow_tf_time_constant)};
   if (!(p.follow_tf_max_speed > 0) || !(p.follow_tf_max_speed <= limits::kSpeed.max)) {
     char m[160];
     std::snprintf(m, sizeof m, "must be in (0, %g] m/s (the speed cap of every block), got %g",

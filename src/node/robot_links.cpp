@@ -1,10 +1,16 @@
 #include "robot_links.hpp"
 
+#include <netdb.h>
+#include <poll.h>
+#include <ros/network.h>
 #include <ros/package.h>
 #include <ros/ros.h>
+#include <sys/socket.h>
 #include <tf2_eigen/tf2_eigen.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -15,6 +21,47 @@
 namespace mpm_sdem::node {
 
 namespace {
+
+// Whether something accepts a connection at the XML-RPC uri within half a second.
+bool answers(const std::string& uri) {
+  std::string host;
+  std::uint32_t port = 0;
+  if (!ros::network::splitURI(uri, host, port)) return false;
+  addrinfo hints{}, *found = nullptr;
+  hints.ai_socktype = SOCK_STREAM;
+  if (getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found) != 0) return false;
+  bool up = false;
+  for (addrinfo* a = found; a && !up; a = a->ai_next) {
+    const int fd = socket(a->ai_family, a->ai_socktype | SOCK_NONBLOCK, a->ai_protocol);
+    if (fd < 0) continue;
+    if (connect(fd, a->ai_addr, a->ai_addrlen) == 0) {
+      up = true;
+    } else if (errno == EINPROGRESS) {
+      pollfd p{fd, POLLOUT, 0};
+      int error = 0;
+      socklen_t size = sizeof error;
+      up = poll(&p, 1, 500) == 1 && getsockopt(fd, SOL_SOCKET, SO_ERROR, &error, &size) == 0 &&
+           error == 0;
+    }
+    close(fd);
+  }
+  freeaddrinfo(found);
+  return up;
+}
+
+// The launches on this master that have ended: roslaunch (roscore too) registers each under
+// /roslaunch/uris and never removes it, and an ended one no longer answers there.
+std::vector<std::string> endedLaunches() {
+  XmlRpc::XmlRpcValue uris;
+  std::vector<std::string> ended;
+  if (!ros::param::get("/roslaunch/uris", uris) ||
+      uris.getType() != XmlRpc::XmlRpcValue::TypeStruct)
+    return ended;
+  for (auto& [key, uri] : uris)
+    if (uri.getType() == XmlRpc::XmlRpcValue::TypeString && !answers(std::string(uri)))
+      ended.push_back(key);
+  return ended;
+}
 
 // The URDF text, from the file or the parameter.
 std::string description(const ros::NodeHandle& nh, const NodeParams& p) {
@@ -33,13 +80,27 @@ std::string description(const ros::NodeHandle& nh, const NodeParams& p) {
         "~robot_links is set but there is no robot description: set the parameter '" +
         p.robot_description_param +
         "' (as robot_state_publisher reads it) or ~robot_description_file");
-  // The master keeps parameters across launches, so this may be an earlier launch's robot: say
-  // which one is read and how to clear it (the master gives no time a parameter was set).
-  ROS_INFO(
-      "~robot_links: the robot description is parameter '%s' (%zu bytes); one left on this "
-      "master by an earlier launch is read too: `rosparam delete %s` clears it, or set "
-      "~robot_description_file",
-      key.c_str(), text.size(), key.c_str());
+  // The master keeps parameters across launches, and no record of who set one or when. The rule:
+  // a description is current while every launch on this master still runs (this one, roscore,
+  // another that brought up the robot); once one has ended, it may be that launch's robot, left
+  // behind, and the node warns, saying how to clear it. A launch run twice on one master gets the
+  // warning the second time even when it set the description again: a stale robot is never
+  // read without a word.
+  const std::vector<std::string> ended = endedLaunches();
+  if (ended.empty()) {
+    ROS_INFO(
+        "~robot_links: the robot description is parameter '%s' (%zu bytes), set by a launch "
+        "that still runs (no launch on this master has ended)",
+        key.c_str(), text.size());
+  } else {
+    ROS_WARN(
+        "~robot_links: the robot description parameter '%s' (%zu bytes) may be left from before: "
+        "%zu launch(es) on this master have ended (/roslaunch/uris/%s%s), and the master keeps "
+        "no record of which one set it. If this launch did not set it, it is an earlier robot: "
+        "`rosparam delete %s` and launch again, or set ~robot_description_file",
+        key.c_str(), text.size(), ended.size(), ended.front().c_str(),
+        ended.size() > 1 ? ", ..." : "", key.c_str());
+  }
   return text;
 }
 

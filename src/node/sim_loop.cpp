@@ -207,10 +207,12 @@ void SimLoop::fail(const std::string& what, Real dt) {
                                 ? "Call ~reset, and lower time.cfl or time.dt in the scene."
                                 : "The last request before it was " + last_request_ +
                                       "; call ~reset (a request like it will do the same).";
-  ROS_ERROR("%s at step %ld, t = %.6g s (dt = %.3g s, %s); paused. %s", what.c_str(),
-            world_->stepCount(), world_->time(), dt, stepLimitName(sim_->stableStep().limit),
-            cause.c_str());
+  char at[160];
+  std::snprintf(at, sizeof at, " at step %ld, t = %.6g s (dt = %.3g s, %s)", world_->stepCount(),
+                world_->time(), dt, stepLimitName(sim_->stableStep().limit));
   publishers_.publish(*world_, status(), true);
+  if (endInsteadOfPausing(what + at)) return;
+  ROS_ERROR("%s%s; paused. %s", what.c_str(), at, cause.c_str());
 }
 
 void SimLoop::pauseOutside(const std::string& what) {
@@ -218,11 +220,27 @@ void SimLoop::pauseOutside(const std::string& what) {
   pending_steps_ = 0;
   const std::string cause =
       last_request_.empty() ? "" : " The last request before it was " + last_request_ + ".";
-  ROS_ERROR(
-      "%s at step %ld, t = %.6g s; paused.%s Move it back (~set_obstacle_state), remove it "
-      "(~remove_obstacle) or call ~reset, then ~resume.",
-      what.c_str(), world_->stepCount(), world_->time(), cause.c_str());
   publishers_.publish(*world_, status(), true);
+  char at[96];
+  std::snprintf(at, sizeof at, " at step %ld, t = %.6g s", world_->stepCount(), world_->time());
+  if (endInsteadOfPausing(what + at + cause)) return;
+  ROS_ERROR(
+      "%s%s; paused.%s Move it back (~set_obstacle_state), remove it (~remove_obstacle) or call "
+      "~reset, then ~resume.",
+      what.c_str(), at, cause.c_str());
+}
+
+bool SimLoop::endInsteadOfPausing(const std::string& why) {
+  if (params_.end_action != EndAction::kShutdown) return false;
+  // The runner's status for a run that cannot go on (docs/running.md); the recordings close
+  // properly on the way out, up to this state.
+  exit_status_ = 3;
+  shutdown_ = true;
+  ROS_ERROR(
+      "%s; the run cannot go on without a request, and with end_action shutdown none is awaited: "
+      "shutting down with status %d (end_action pause waits for ~reset or ~resume instead)",
+      why.c_str(), exit_status_);
+  return true;
 }
 
 void SimLoop::publishWhilePaused() {
@@ -306,7 +324,7 @@ int SimLoop::run(const volatile std::sig_atomic_t& stop) {
   commands_.close("the node is shutting down");
   if (stop) ROS_INFO("signal received at t = %.4f s; closing the recordings", world_->time());
   closeRecordings();
-  return 0;
+  return exit_status_;
 }
 
 Reply SimLoop::pause() {

@@ -65,6 +65,10 @@ class SimLoop {
   void fail(const std::string& what, Real dt);
   // A sound state with a block outside the domain: paused, saying what to do.
   void pauseOutside(const std::string& what);
+  // With end_action shutdown, a pause for a problem (fail, pauseOutside) ends the run instead:
+  // such a run is a script's, and no one will call ~resume (a headless run waited for ever).
+  // Logs why and sets the exit status; false with any other end_action.
+  bool endInsteadOfPausing(const std::string& why);
   conversions::StatsInput status() const;
   void publishWhilePaused();
   void openRecordings();
@@ -96,6 +100,7 @@ class SimLoop {
   bool end_reached_ = false;
   bool unstable_ = false;
   bool shutdown_ = false;
+  int exit_status_ = 0;    // of run(): non-zero when endInsteadOfPausing ended it
   bool recording_ = true;  // false after a reset unless record_after_reset
   int resets_ = 0;
   long pending_steps_ = 0, asked_steps_ = 0;  // of a ~step request

@@ -7,7 +7,8 @@
 // - node_resume.test: a node started with ~resume from a runner's bag continues /clock, tf and
 //   the bag from the time asked for (its bag's checkpoint before it, then the steps to it): its
 //   bag equals the uninterrupted run's.
-// - node_reconfigure.test: dynamic_reconfigure's ~set_parameters changes gravity and the
+// - node_reconfigure.test: dynamic_reconfigure's ~set_parameters refuses a value past each
+//   setting's bound, naming it as asked for, and accepts one on it; it changes gravity and the
 //   real-time factor between steps; an out-of-range gravity is refused and the values in effect
 //   come back; the gravity is a recorded command, so the runner replays the node's bag exactly.
 #include <dynamic_reconfigure/Reconfigure.h>
@@ -25,6 +26,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -246,22 +248,117 @@ TEST(Resume, NodeContinuesClockTfAndBagFromACheckpoint) {
 
 namespace {
 
-// ~set_parameters with the given doubles; the values in effect it answers with, by name.
-std::map<std::string, double> reconfigure(const std::map<std::string, double>& values) {
+// What ~set_parameters answers: the values in force, by name, and why a change was refused.
+struct Answer {
+  std::map<std::string, double> values;  // the doubles, and cloud_decimation
+  std::string refused;
+};
+
+Answer toAnswer(const dynamic_reconfigure::Config& c) {
+  Answer a;
+  for (const auto& d : c.doubles) a.values[d.name] = d.value;
+  for (const auto& i : c.ints) a.values[i.name] = i.value;
+  for (const auto& s : c.strs)
+    if (s.name == "refused") a.refused = s.value;
+  return a;
+}
+
+// ~set_parameters with the given values (cloud_decimation as an int, the rest as doubles).
+Answer reconfigureAnswer(const std::map<std::string, double>& values) {
   dynamic_reconfigure::Reconfigure r;
   for (const auto& [name, value] : values) {
+    if (name == "cloud_decimation") {
+      dynamic_reconfigure::IntParameter i;
+      i.name = name;
+      i.value = static_cast<int>(value);
+      r.request.config.ints.push_back(i);
+      continue;
+    }
     dynamic_reconfigure::DoubleParameter d;
     d.name = name;
     d.value = value;
     r.request.config.doubles.push_back(d);
   }
   EXPECT_TRUE(ros::service::call(test::kNs + "set_parameters", r));
-  std::map<std::string, double> out;
-  for (const auto& d : r.response.config.doubles) out[d.name] = d.value;
-  return out;
+  return toAnswer(r.response.config);
+}
+
+std::map<std::string, double> reconfigure(const std::map<std::string, double>& values) {
+  return reconfigureAnswer(values).values;
 }
 
 }  // namespace
+
+// Every setting's bounds (runtimeProblem's, World::gravityProblem's): a value just past one is
+// refused, named as asked for (not clamped to the cfg's range, as dynamic_reconfigure's server
+// did: real_time_factor -1 ran as fast as possible), with the value in force answered and
+// published on ~parameter_updates; a value on the bound is accepted. Runs first, while the node
+// is paused, and puts every value back.
+TEST(Reconfigure, EachBoundRefusesWithTheValueAskedFor) {
+  test::NodeClient& n = *g_node;
+  test::Latest<dynamic_reconfigure::Config> updates(n.nh, test::kNs + "parameter_updates");
+  ASSERT_TRUE(ros::service::waitForService(test::kNs + "set_parameters", ros::Duration(20)));
+  ASSERT_TRUE(waitFor([&] { return n.stats.has() && updates.has(); }, 20));
+  const std::map<std::string, double> start = reconfigure({});
+  const double inf = std::numeric_limits<double>::infinity();
+  struct Bound {
+    std::string name;
+    double refused;   // just past the bound
+    const char* as;   // how the refusal prints it
+    double accepted;  // on the bound (or, for an open one, just inside)
+  };
+  const Bound bounds[] = {
+      {"real_time_factor", -1, "real_time_factor -1", 0},
+      {"real_time_factor", inf, "real_time_factor inf", 1e6},
+      {"particles_rate", -1, "particles_rate -1", 0},
+      {"particles_rate", inf, "particles_rate inf", 1e6},
+      {"blocks_rate", -5, "blocks_rate -5", 0},
+      {"blocks_rate", inf, "blocks_rate inf", 1e6},
+      {"stats_rate", -0.5, "stats_rate -0.5", 0},
+      {"stats_rate", inf, "stats_rate inf", 1e6},
+      {"image_rate", -1, "image_rate -1", 0},
+      {"image_rate", inf, "image_rate inf", 1e6},
+      {"terrain_rate", -1, "terrain_rate -1", 0},
+      {"terrain_rate", inf, "terrain_rate inf", 1e6},
+      {"clock_rate", -1, "clock_rate -1", 0},
+      {"clock_rate", inf, "clock_rate inf", 1e6},
+      {"cloud_decimation", 0, "cloud_decimation 0", 1},
+      {"cloud_decimation", -3, "cloud_decimation -3", 1000},
+      {"cmd_vel_timeout", -1, "cmd_vel_timeout -1", 0},
+      {"cmd_vel_timeout", inf, "cmd_vel_timeout inf", 1e6},
+      {"follow_tf_time_constant", 0, "follow_tf_time_constant 0", 1e-6},
+      {"follow_tf_time_constant", inf, "follow_tf_time_constant inf", 1e6},
+      {"follow_tf_max_speed", 0, "follow_tf_max_speed 0", 1e-6},
+      {"follow_tf_max_speed", 1000.5, "follow_tf_max_speed 1000.5", 1000},
+      {"gravity_x", 10000.5, "gravity_x 10000.5", 10000},
+      {"gravity_y", -20000, "gravity_y -20000", -10000},
+      {"gravity_y", inf, "gravity_y inf", -10000},
+  };
+  for (const Bound& b : bounds) {
+    SCOPED_TRACE(b.as);
+    // gravity_x's bound with gravity_y at 0 and the other way round: the magnitude is bounded.
+    if (b.name == "gravity_x") {
+      ASSERT_EQ(reconfigureAnswer({{"gravity_y", 0}}).refused, "");
+    }
+    if (b.name == "gravity_y") {
+      ASSERT_EQ(reconfigureAnswer({{"gravity_x", 0}}).refused, "");
+    }
+    const Answer before = reconfigureAnswer({});
+    const Answer a = reconfigureAnswer({{b.name, b.refused}});
+    EXPECT_EQ(a.values, before.values) << "a refused change leaves every value in force";
+    EXPECT_NE(a.refused.find(std::string("refused ") + b.as + ":"), std::string::npos) << a.refused;
+    // The server publishes what it answered: the value in force, and the refusal.
+    EXPECT_TRUE(waitFor([&] { return toAnswer(updates.get()).refused == a.refused; }, 5));
+    EXPECT_EQ(toAnswer(updates.get()).values, before.values);
+    const Answer ok = reconfigureAnswer({{b.name, b.accepted}});
+    EXPECT_EQ(ok.refused, "") << "the value on the bound is accepted";
+    EXPECT_EQ(ok.values.at(b.name), b.accepted);
+    reconfigure(start);
+  }
+  // Back to the start: the next test begins from the node's own values.
+  EXPECT_EQ(reconfigure({}), start);
+  EXPECT_EQ(reconfigureAnswer({}).refused, "");
+}
 
 TEST(Reconfigure, GravityAndPacingChangeBetweenStepsAndReplay) {
   test::NodeClient& n = *g_node;
@@ -288,7 +385,8 @@ TEST(Reconfigure, GravityAndPacingChangeBetweenStepsAndReplay) {
   reconfigure({{"gravity_y", -12.0}});
   ASSERT_TRUE(waitFor([&] { return fs::exists(node_bag); }, 60))
       << node_bag << " never appeared: the node did not reach its end and close the bag";
-  // Both changes of gravity are in the bag, at their times.
+  // Both changes of gravity are in the bag, at their times, after those of the bounds' test
+  // (all before the first step).
   std::vector<double> gravity_y;
   {
     rosbag::Bag bag(node_bag, rosbag::bagmode::Read);
@@ -296,12 +394,14 @@ TEST(Reconfigure, GravityAndPacingChangeBetweenStepsAndReplay) {
       const auto c = m.instantiate<RecordedCommand>();
       if (!c || c->kind != RecordedCommand::SET_GRAVITY) continue;
       gravity_y.push_back(c->vector.y);
-      if (gravity_y.size() == 1) {
+      if (c->vector.y != -12.0) {
         EXPECT_EQ(c->time, 0.0) << "applied before the first step";
       }
     }
   }
-  EXPECT_EQ(gravity_y, (std::vector<double>{-5.0, -12.0}));
+  ASSERT_GE(gravity_y.size(), 2u);
+  EXPECT_EQ(std::vector<double>(gravity_y.end() - 2, gravity_y.end()),
+            (std::vector<double>{-5.0, -12.0}));
   // The runner under the node's commands: the same bag, but the stats.
   const std::string replay = node_bag + ".replay.bag";
   ASSERT_EQ(run(std::string(MPM_SDEM_RUNNER) + " " + param("scene") +
