@@ -24,13 +24,15 @@ const std::vector<StageInfo>& stageTable() {
        "the stable step: the smallest of the CFL, contact, element, viscous and SPH terms "
        "(seed 000 eq. 51), or the fixed one"},
       {Stage::kBodiesBegin, "bodies_begin", StageOwner::kBodies, "blocks or FEM bodies", coupled,
-       "FEM internal forces (seed 002 sec. 2.3), the coupling record cleared, trial velocities; "
-       "subcycled FEM: its free motion in substeps"},
+       "FEM internal forces (seed 002 sec. 2.3), the coupling record cleared, trial velocities",
+       "once per step; with time.fem_integration: subcycled, the FEM bodies' free motion in "
+       "substeps of kappa_1 times their element step"},
       {Stage::kContactSearch, "contact_search", StageOwner::kCoupling,
        "the scheme searches (IMP, partitioned)",
        [](const M& m) { return m.contact_bodies && m.hooks.before_step; },
        "the contact search (Verlet list) and, explicit, the spring forces of seed 000 eq. 43 from "
-       "the state at the start of the step"},
+       "the state at the start of the step",
+       "once per step; explicit springs bound dt (contact)"},
       {Stage::kSort, "sort", StageOwner::kMpm, "no SPH", [](const M& m) { return !m.sph; },
        "the awake points binned by tiles of 3 x 3 cells"},
       {Stage::kSphSort, "sph_sort", StageOwner::kSph, "SPH", [](const M& m) { return m.sph; },
@@ -73,7 +75,8 @@ const std::vector<StageInfo>& stageTable() {
        [](const M& m) { return m.sleep && !m.usl; },
        "the sleeping points' internal force added to the awake nodes"},
       {Stage::kSphForces, "sph_forces", StageOwner::kSph, "SPH", [](const M& m) { return m.sph; },
-       "the SPH particles' accelerations (seed 001 eq. 2.6-2.8), from the first pass's pairs"},
+       "the SPH particles' accelerations (seed 001 eq. 2.6-2.8), from the first pass's pairs",
+       "once per step; the SPH term bounds dt (sph)"},
       {Stage::kPointLoads, "point_loads", StageOwner::kWorld, "a point load is set",
        [](const M& m) { return m.point_loads; },
        "the points' external forces spread on the grid (the f^ext of seed 000 eq. 13)"},
@@ -94,7 +97,9 @@ const std::vector<StageInfo>& stageTable() {
        "the scheme corrects velocities (multi-velocity, particle-surface, subcycled IMP)",
        [](const M& m) { return m.contact_bodies && m.hooks.correct; },
        "impulses on the trial grid velocities, or the subcycled springs with the bodies' Box2D "
-       "substeps within them"},
+       "substeps within them",
+       "subcycled IMP: ceil(dt / substep) substeps, each within time.contact_factor of the "
+       "springs' period; else once per step"},
       {Stage::kCorrectedWalls, "corrected_walls", StageOwner::kMpm,
        "the scheme changes nodal velocities",
        [](const M& m) { return m.contact_bodies && m.corrects; },
@@ -118,8 +123,10 @@ const std::vector<StageInfo>& stageTable() {
        "the reactions summed for the bodies (seed 000 eq. 49-50)"},
       {Stage::kBodies, "bodies", StageOwner::kBodies, "blocks or FEM bodies, not subcycled",
        [](const M& m) { return m.contact_bodies && !m.subcycles; },
-       "blocks: Box2D with the block-block springs, in the substeps their springs need; FEM "
-       "bodies: central differences, or the material's impulse as a kick when subcycled"},
+       "blocks: Box2D with the block-block springs; FEM bodies: central differences, or the "
+       "material's impulse as a kick when subcycled",
+       "blocks: as many substeps as their springs need (stableStep); FEM bodies: once per step, "
+       "their element step bounding dt (element)"},
       {Stage::kCheckBlocks, "check_blocks", StageOwner::kWorld, "blocks",
        [](const M& m) { return m.blocks; },
        "each moving block's state finite and its centre inside the domain"},
@@ -164,12 +171,12 @@ std::vector<Stage> composeStep(const StepMakeup& makeup) {
 
 std::string stepTableMarkdown() {
   std::string md =
-      "| # | stage (profile name) | owner of its data | runs when | what it does |\n"
-      "| --- | --- | --- | --- | --- |\n";
+      "| # | stage (profile name) | owner of its data | runs when | what it does | its rate |\n"
+      "| --- | --- | --- | --- | --- | --- |\n";
   int n = 0;
   for (const StageInfo& row : stageTable())
     md += "| " + std::to_string(n++) + " | `" + row.name + "` | " + ownerName(row.owner) + " | " +
-          row.when + " | " + row.what + " |\n";
+          row.when + " | " + row.what + " | " + row.rate + " |\n";
   return md;
 }
 

@@ -22,7 +22,8 @@ bool read(const ros::NodeHandle& pnh, const std::string& key, T& value, const ch
   return false;
 }
 
-// Its type only: the bound is runtimeProblem's, checked once every parameter is read.
+// Its type only: the bound is checked once every parameter is read (runtimeProblem for the
+// publishing rates, loadParams for the bag's).
 bool readRate(const ros::NodeHandle& pnh, const std::string& key, double& value,
               std::string& error) {
   return read(pnh, key, value, "a number (Hz)", error);
@@ -168,8 +169,13 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
             std::to_string(v);
     return false;
   };
+  // The bag's rates are fixed for the run; the rates dynamic_reconfigure changes are
+  // runtimeProblem's, below.
   if (!nonNegative("terrain/resolution", p.terrain_resolution, "m (0: the cell size)") ||
-      !nonNegative("force_arrow_scale", p.force_arrow_scale, "m per N/m (0: automatic)"))
+      !nonNegative("force_arrow_scale", p.force_arrow_scale, "m per N/m (0: automatic)") ||
+      !nonNegative("bag_cloud_rate", p.record_def.cloud_rate, "Hz (0: off)") ||
+      !nonNegative("bag_state_rate", p.record_def.state_rate, "Hz (0: off)") ||
+      !nonNegative("bag_checkpoint_rate", p.record_def.checkpoint_rate, "Hz (0: off)"))
     return false;
   if (!(p.robot_rounding > 0 && p.robot_rounding <= 0.1))
     return fail("parameter ~robot_rounding must be in (0, 0.1] m, got " +

@@ -37,7 +37,7 @@ enum class Feature : int {
 
 /// A feature as a scene turns it on.
 struct FeatureInfo {
-  Feature feature;
+  Feature feature;   ///< which (the row's place in features())
   const char* name;  ///< in words ("sleeping material")
   const char* key;   ///< the scene key that turns it on ("solver.sleep_speed")
   const char* how;   ///< the value that does ("> 0")
@@ -53,9 +53,9 @@ const FeatureInfo& featureInfo(Feature f);
 
 /// Two features that may not be combined, and why.
 struct Exclusion {
-  Feature first;   ///< the one blamed: the problem names its key
-  Feature second;  ///< the one it cannot meet
-  const char* reason;
+  Feature first;       ///< the one blamed: the problem names its key
+  Feature second;      ///< the one it cannot meet
+  const char* reason;  ///< why they may not meet, as the refusal states it
 };
 
 /// Every exclusion: the one table.

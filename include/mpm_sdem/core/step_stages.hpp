@@ -80,12 +80,13 @@ enum class StageOwner { kWorld, kMpm, kSleep, kCoupling, kBodies, kSph };
 
 /// One row of the table.
 struct StageInfo {
-  Stage stage;
-  const char* name;  ///< as profiles and outputs name it
-  StageOwner owner;
-  const char* when;  ///< the condition of runs, in words
-  bool (*runs)(const StepMakeup&);
-  const char* what;  ///< what it does, citing the seeds' equations
+  Stage stage;                         ///< which (the row's place in stageTable())
+  const char* name;                    ///< as profiles and outputs name it
+  StageOwner owner;                    ///< who holds the data it works on
+  const char* when;                    ///< the condition of runs, in words
+  bool (*runs)(const StepMakeup&);     ///< whether a world of this makeup runs it
+  const char* what;                    ///< what it does, citing the seeds' equations
+  const char* rate = "once per step";  ///< how often it runs within a step
 };
 
 /// Every stage, in step order (rows indexed by Stage).
