@@ -4,15 +4,7 @@
 # the default scene lacks, and the node refused to start). Run by ctest through the devel space's
 # env.sh; each launch must end with status 0 at its scene's end.
 set -euo pipefail
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
-export ROS_HOSTNAME=127.0.0.1
-export ROS_MASTER_URI="http://127.0.0.1:$((20000 + $$ % 20000))"
-export ROS_HOME="${ROS_HOME:-$(mktemp -d)}"
-export ROSCONSOLE_STDOUT_LINE_BUFFERED=1
-roscore -p "${ROS_MASTER_URI##*:}" >/dev/null 2>&1 &
-core=$!
-trap 'kill $core 2>/dev/null; wait $core 2>/dev/null || true' EXIT
-for _ in $(seq 100); do rosparam list >/dev/null 2>&1 && break; sleep 0.1; done
+source "$(dirname "${BASH_SOURCE[0]}")/own_master.sh" 0
 launch() {
   timeout 120 "$ROOT/scripts/mpm_sdem_launch" mpm_sdem "$@" headless:=true end_action:=shutdown \
     threads:=1 >"$ROS_HOME/launch.log" 2>&1 || { cat "$ROS_HOME/launch.log"; return 1; }
