@@ -1,8 +1,8 @@
 // Issue 20's robot scenes.
 //  - The validation's blade and rock cases start from the shipped scenes (cases::excavatorBlade,
 //    rockIntoBed): the blade case's defaults are the scene's values (the same domain, grid,
-//    materials, material points, blocks), but for sleep. The silo scene builds the world of its
-//    case (cases::silo), its plates as its file explains.
+//    materials, material points, blocks), but for sleep. The silo cases are the silo scene with
+//    their neck, cell and sand (cases::silo).
 //  - The excavator blade against Reece's fundamental earth-moving equation with McKyes' N_gamma,
 //    at the CI resolution (5 mm cells: the edge 8, 12 and 16 cells deep), for a smooth vertical
 //    blade, where the planar wedge is Rankine's passive state and exact. The bands come from the
@@ -178,32 +178,25 @@ TEST(RobotScenes, ExcavatorBladeCaseAtItsDefaultsIsTheScene) {
   expectSameOutline(scene.blocks[0], c.blocks[0]);
 }
 
-TEST(RobotScenes, SiloSceneIsTheValidationWorld) {
+// The silo cases load the silo scene and set its neck: at the scene's own neck, cell and points
+// per cell they give its world (to the last bits of the plates' arithmetic), and another neck
+// moves the plates' inner ends and nothing else.
+TEST(RobotScenes, SiloCasesAreTheSiloSceneWithTheirNeck) {
   const WorldDef scene = loadScene(test::sourcePath("config/scenes/silo.yaml")).world;
   const WorldDef c = cases::silo(0.04, 0.007, 2);
   expectSameWorld(scene, c);
   ASSERT_EQ(c.blocks.size(), 4u);
-  expectSameOutline(scene.blocks[0], c.blocks[0]);  // the walls
-  expectSameOutline(scene.blocks[1], c.blocks[1]);
-  // The plates: the same top face and neck; the case's reach 5 mm into the walls, the scene's
-  // start at the walls' inner faces (the scene format refuses overlapping blocks).
-  for (int i : {2, 3}) {
-    const auto [s_lo, s_hi] = outlineBox(scene.blocks[i]);
-    const auto [c_lo, c_hi] = outlineBox(c.blocks[i]);
-    EXPECT_NEAR(s_lo.y(), c_lo.y(), 1e-12);
-    EXPECT_NEAR(s_hi.y(), c_hi.y(), 1e-12);
-    if (i == 2) {
-      EXPECT_NEAR(s_hi.x(), c_hi.x(), 1e-12);  // the neck's left edge
-      EXPECT_NEAR(s_lo.x(), outlineBox(scene.blocks[0]).second.x(), 1e-12);
-      EXPECT_LT(c_lo.x(), outlineBox(c.blocks[0]).second.x());
-    } else {
-      EXPECT_NEAR(s_lo.x(), c_lo.x(), 1e-12);  // the neck's right edge
-      EXPECT_NEAR(s_hi.x(), outlineBox(scene.blocks[1]).first.x(), 1e-12);
-      EXPECT_GT(c_hi.x(), outlineBox(c.blocks[1]).first.x());
-    }
-  }
-  EXPECT_NEAR(outlineBox(scene.blocks[3]).first.x() - outlineBox(scene.blocks[2]).second.x(), 0.04,
-              1e-12);
+  for (int i = 0; i < 4; ++i) expectSameOutline(scene.blocks[i], c.blocks[i]);
+  auto neck = [](const WorldDef& w) {
+    return outlineBox(w.blocks[3]).first.x() - outlineBox(w.blocks[2]).second.x();
+  };
+  EXPECT_NEAR(neck(scene), 0.04, 1e-12);
+  const WorldDef narrow = cases::silo(0.03, 0.007, 2);
+  EXPECT_NEAR(neck(narrow), 0.03, 1e-12);
+  for (int i = 0; i < 2; ++i) expectSameOutline(scene.blocks[i], narrow.blocks[i]);  // the walls
+  // The plates' outer ends stay inside the walls.
+  EXPECT_LT(outlineBox(narrow.blocks[2]).first.x(), outlineBox(narrow.blocks[0]).second.x());
+  EXPECT_GT(outlineBox(narrow.blocks[3]).second.x(), outlineBox(narrow.blocks[1]).first.x());
 }
 
 // The smooth vertical blade at the CI resolution (5 mm cells), at d = 4, 6 and 8 cm, against

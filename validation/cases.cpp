@@ -4,11 +4,13 @@
 #include "mpm_sdem/core/stepper.hpp"
 
 #include "mpm_sdem/mesh/mesher.hpp"
+#include "mpm_sdem/scene/scene.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <random>
@@ -53,6 +55,27 @@ BodyDef diskBody(const Vec2& center, Real radius, int ppc) {
   b.shape.radius = radius;
   b.points_per_cell = ppc;
   return b;
+}
+
+std::string exact(Real v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+std::string exact(const Vec2& v) {
+  return "[" + exact(v.x()) + ", " + exact(v.y()) + "]";
+}
+
+std::string exact(const std::vector<Vec2>& points) {
+  std::string out;
+  for (const Vec2& v : points) out += (out.empty() ? "[" : ", ") + exact(v);
+  return out + "]";
+}
+
+WorldDef shippedScene(const std::string& name, const std::vector<std::string>& set) {
+  return loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/" + name + ".yaml", set)
+      .world;
 }
 
 MaterialDef elasticDisk() {

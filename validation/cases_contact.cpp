@@ -363,9 +363,8 @@ WorldDef dropDisk(CouplingScheme scheme) {
 
 WorldDef rockIntoBed(CouplingScheme scheme, Real disc_radius) {
   // The shipped scene, under the case's scheme.
-  WorldDef def = loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/rock_into_bed.yaml",
-                           {std::string("coupling.scheme=") + couplingSchemeName(scheme)})
-                     .world;
+  WorldDef def =
+      shippedScene("rock_into_bed", {std::string("coupling.scheme=") + couplingSchemeName(scheme)});
   BlockDef& rock = def.blocks.at(0);
   if (disc_radius > 0) {
     rock.discs = fillWithDiscs({rock.core, rock.rounding}, disc_radius, disc_radius);

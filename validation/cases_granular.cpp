@@ -23,7 +23,7 @@ namespace mpm_sdem::cases {
 
 namespace {
 
-constexpr Real kSiloPlateTop = 0.25, kSiloLeft = 0.1, kSiloWidth = 0.2, kSiloFill = 0.2;
+constexpr Real kSiloPlateTop = 0.25, kSiloLeft = 0.1, kSiloWidth = 0.2;
 constexpr Real kSandDensity = 1500, kSiloGravity = 10, kSiloContactRadius = 0.001;
 
 // Seed 000 Table 3's dry sand (Drucker-Prager, no cohesion or tension).
@@ -63,51 +63,47 @@ MaterialDef matchedGranular(const MaterialDef& dp, Real grain_diameter) {
   return g;
 }
 
+namespace {
+
+// The shipped silo scene (config/scenes/silo.yaml) with overrides.
+WorldDef siloScene(const std::vector<std::string>& set) {
+  return shippedScene("silo", set);
+}
+
+}  // namespace
+
 MaterialDef siloGranularSand(const char* name) {
   // Table 3's sand dilates, so it flows at no single angle to match (matchedGranular): its 35
   // deg is read as the Mohr-Coulomb angle, mu_s = sin 35 deg.
-  MaterialDef m = matchedGranular(tableThreeSand(name), 2 * kSiloContactRadius);
+  MaterialDef sand = siloScene({}).materials.at(0);
+  sand.name = name;
+  MaterialDef m = matchedGranular(sand, 2 * kSiloContactRadius);
   m.mu_s = std::sin(35 * M_PI / 180);
   m.mu_2 = m.mu_s + kBeadsMuSpan;
   return m;
 }
 
 WorldDef silo(Real neck, Real h, int ppc, SiloSand material) {
-  const Real a = 0.005, t = 0.02;  // rounding and plate thickness (m)
-  WorldDef def;
-  def.domain.min = Vec2(0, 0);
-  def.domain.max = Vec2(std::round(0.4 / h) * h, std::round(0.5 / h) * h);
-  def.cell_size = h;
-  def.solver.gravity = Vec2(0, -kSiloGravity);
-  def.solver.kernel = KernelType::kGimp;
-  def.solver.transfer = TransferScheme::kApic;
-  def.materials.push_back(material == SiloSand::kGranular ? siloGranularSand("sand")
-                                                          : tableThreeSand("sand"));
-  const Real right = kSiloLeft + kSiloWidth, wall_top = kSiloPlateTop + 0.2;
-  auto add = [&def](const char* name, const Vec2& lo, const Vec2& hi) {
-    BlockDef b =
-        boxBlock(name, 0.5 * (lo + hi), hi.x() - lo.x(), hi.y() - lo.y(), 0.005, BodyType::kStatic);
-    b.friction = 0.2;
-    def.blocks.push_back(b);
+  // The shipped scene with what the silo cases sweep: the neck, the cell (the domain a whole
+  // number of cells) and the points per cell, and the sand.
+  const Real a = 0.005, t = 0.02;  // the plates' rounding and thickness (m), as the scene's
+  const Real mid = kSiloLeft + kSiloWidth / 2, right = kSiloLeft + kSiloWidth;
+  // The plates from inside the walls (their rounded ends hidden in them) to the neck.
+  auto plate = [](const std::string& name, const Vec2& lo, const Vec2& hi) {
+    return std::vector<std::string>{"blocks." + name + ".position=" + exact(0.5 * (lo + hi)),
+                                    "blocks." + name + ".size=" + exact(Vec2(hi - lo))};
   };
-  const Real mid = kSiloLeft + kSiloWidth / 2;
-  add("left_wall", Vec2(kSiloLeft - t, kSiloPlateTop - t), Vec2(kSiloLeft, wall_top));
-  add("right_wall", Vec2(right, kSiloPlateTop - t), Vec2(right + t, wall_top));
-  add("left_plate", Vec2(kSiloLeft - a, kSiloPlateTop - t), Vec2(mid - neck / 2, kSiloPlateTop));
-  add("right_plate", Vec2(mid + neck / 2, kSiloPlateTop - t), Vec2(right + a, kSiloPlateTop));
-  def.coupling.normal_stiffness = 1e6;
-  def.coupling.tangential_stiffness = 5e5;
-  def.coupling.contact_radius = kSiloContactRadius;
-  def.coupling.verlet_distance = 0.002;
-  // The fill starts r_p clear of the walls: no spring is loaded at the start.
-  const Real gap = kSiloContactRadius;
-  BodyDef sand;
-  sand.name = "sand";
-  sand.shape.type = ShapeType::kRectangle;
-  sand.shape.min = Vec2(kSiloLeft + gap, kSiloPlateTop + gap);
-  sand.shape.max = Vec2(right - gap, kSiloPlateTop + kSiloFill);
-  sand.points_per_cell = ppc;
-  def.bodies.push_back(sand);
+  std::vector<std::string> set = {
+      "grid.cell_size=" + exact(h),
+      "domain.max=" + exact(Vec2(std::round(0.4 / h) * h, std::round(0.5 / h) * h)),
+      "bodies.sand.points_per_cell=" + std::to_string(ppc)};
+  for (const auto& more : {plate("left_plate", Vec2(kSiloLeft - a, kSiloPlateTop - t),
+                                 Vec2(mid - neck / 2, kSiloPlateTop)),
+                           plate("right_plate", Vec2(mid + neck / 2, kSiloPlateTop - t),
+                                 Vec2(right + a, kSiloPlateTop))})
+    set.insert(set.end(), more.begin(), more.end());
+  WorldDef def = siloScene(set);
+  if (material == SiloSand::kGranular) def.materials.at(0) = siloGranularSand("sand");
   return def;
 }
 

@@ -77,27 +77,9 @@ WheelRun runWheel(World& w, Real t_end) {
 
 namespace {
 
-// A number as a scene override writes it: every bit kept (%.17g reads back to the same double).
-std::string exact(Real v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", v);
-  return text;
-}
-
-std::string exact(const Vec2& v) {
-  return "[" + exact(v.x()) + ", " + exact(v.y()) + "]";
-}
-
-std::string exact(const std::vector<Vec2>& points) {
-  std::string out;
-  for (const Vec2& v : points) out += (out.empty() ? "[" : ", ") + exact(v);
-  return out + "]";
-}
-
 // The shipped blade scene (config/scenes/excavator_blade.yaml) with overrides.
-WorldDef bladeScene(std::vector<std::string> set) {
-  return loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/config/scenes/excavator_blade.yaml", set)
-      .world;
+WorldDef bladeScene(const std::vector<std::string>& set) {
+  return shippedScene("excavator_blade", set);
 }
 
 // The overrides of the blade scene's sand: the case's elasticity and friction angle.

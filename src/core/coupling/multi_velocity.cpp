@@ -43,6 +43,23 @@ void MultiVelocityCoupling::correctGridVelocity(CouplingStep& s) {
       const int i1 = std::min(G.nx - 1, static_cast<int>((hi.x() - G.origin.x()) * G.inv_h) + 3);
       const int j1 = std::min(G.ny - 1, static_cast<int>((hi.y() - G.origin.y()) * G.inv_h) + 3);
       const int w = i1 - i0 + 1;
+      // The material's nodes in the patch: only they can share momentum with the block, so the
+      // samples that reach none of them are skipped (a floor block's lattice spans the floor; the
+      // material touches a few cells of it). The kept nodes sum the same terms in the same order.
+      int mi0 = i1 + 1, mi1 = i0 - 1, mj0 = j1 + 1, mj1 = j0 - 1;
+      for (int j = j0; j <= j1; ++j) {
+        for (int i = i0; i <= i1; ++i) {
+          if (!(G.mass[G.index(i, j)] > 0)) continue;
+          mi0 = std::min(mi0, i);
+          mi1 = std::max(mi1, i);
+          mj0 = std::min(mj0, j);
+          mj1 = std::max(mj1, j);
+        }
+      }
+      if (mi0 > mi1) continue;  // no material near this block
+      // A sample's stencil starts at most a node below it and spans S nodes.
+      const Vec2 reach_lo = G.origin + Vec2(mi0 - S, mj0 - S) * G.h;
+      const Vec2 reach_hi = G.origin + Vec2(mi1 + S, mj1 + S) * G.h;
       patch_mass_.assign(static_cast<std::size_t>(w) * (j1 - j0 + 1), 0);
       patch_normal_.assign(patch_mass_.size(), Vec2(0, 0));
       // f(q, w, grad) for each patch entry q of the nodes around x (GIMP half size lp, cells),
@@ -61,6 +78,9 @@ void MultiVelocityCoupling::correctGridVelocity(CouplingStep& s) {
         }
       };
       for (const Vec2& x : samples_) {
+        if (x.x() < reach_lo.x() || x.y() < reach_lo.y() || x.x() > reach_hi.x() ||
+            x.y() > reach_hi.y())
+          continue;
         forPatchNodes(x, half_size, [&](std::size_t q, Real weight, const Vec2& grad) {
           patch_mass_[q] += weight * sample_mass;
           patch_normal_[q] += sample_mass * grad;  // eq. 23: n_I = sum_p m_p grad S_Ip, outwards
