@@ -602,6 +602,15 @@ struct Plate {
   // Sand at rest sleeps below this speed (m/s, solver.sleep_speed; 0: every point awake).
   Real sleep_speed = 0;
   StressUpdate stress_update = StressUpdate::kUsf;  // solver.stress_update
+  // The numerical choices that issue 90's diagnosis switches one at a time (the defaults are the
+  // report's): the kernel, the points per cell side, the coupling scheme (IMP's contact disks
+  // are half the point spacing), and for a drag (gamma = 0) whether sand lies behind the
+  // plate: without the wake, the layer behind the plate's start is cut away down to the plate's
+  // lower edge, so that no sand shares the grid's nodes with the plate's trailing face.
+  KernelType kernel = KernelType::kGimp;
+  int points_per_cell = 2;
+  CouplingScheme scheme = CouplingScheme::kImp;
+  bool wake = true;
 };
 WorldDef plateIntrusion(const Plate& c);
 // The plate's motion: for gamma > 0 from its start along gamma until its centre is `reach` deep;

@@ -328,8 +328,14 @@ namespace {
 // Where the plate's centre starts: over the layer by its covered depth plus a point's contact
 // reach and a millimetre (no contact yet), so far left of the domain's middle that the path's
 // middle is there (gamma > 0), or 1.5 L left of it (gamma = 0, dragged 3 L).
+// The IMP contact disks' radius: half the point spacing, so that a face's points cover it edge
+// to edge and reach no further (as the blade's, excavatorBlade).
+Real plateContactRadius(const Plate& c) {
+  return 0.5 * c.cell_size / c.points_per_cell;
+}
+
 Vec2 plateStart(const Plate& c) {
-  const Real lift = plateCovered(c) + 0.25 * c.cell_size + 0.001;
+  const Real lift = plateCovered(c) + plateContactRadius(c) + 0.001;
   const Real gamma = c.direction * M_PI / 180;
   const Real run = c.direction > 0 ? (c.reach + lift) / std::tan(gamma) : 3 * c.length;
   return Vec2(0.5 * c.width - 0.5 * run, c.bed + lift);
@@ -352,6 +358,7 @@ WorldDef plateIntrusion(const Plate& c) {
   def.solver.transfer = c.transfer;
   def.solver.sleep.speed = c.sleep_speed;
   def.solver.stress_update = c.stress_update;
+  def.solver.kernel = c.kernel;
   Blade sand;  // the blade's sand
   sand.friction_angle = c.friction_angle;
   def.materials.push_back(bladeSand(sand));
@@ -366,13 +373,24 @@ WorldDef plateIntrusion(const Plate& c) {
   bed.shape.type = ShapeType::kRectangle;
   bed.shape.min = Vec2(0, 0);
   bed.shape.max = Vec2(def.domain.max.x(), c.bed);
-  bed.points_per_cell = 2;
+  if (!c.wake && c.direction == 0) {
+    // The layer less a trench behind the plate's start, from its trailing face down to its
+    // lower edge.
+    const Vec2 start = plateStart(c);
+    const Real half_width =  // the plate's half extent along x
+        0.5 * c.length * std::fabs(std::cos(c.angle * M_PI / 180)) + 0.5 * c.thickness;
+    const Real trail = start.x() - half_width - plateContactRadius(c);
+    const Real floor = c.bed - c.depth - plateCovered(c);
+    bed.shape.type = ShapeType::kPolygon;
+    bed.shape.vertices = {Vec2(0, 0),         Vec2(bed.shape.max.x(), 0), bed.shape.max,
+                          Vec2(trail, c.bed), Vec2(trail, floor),         Vec2(0, floor)};
+  }
+  bed.points_per_cell = c.points_per_cell;
   def.bodies.push_back(bed);
-  // The blade's contact (excavatorBlade): springs per metre of contact, disks of half the point
-  // spacing, so that a face's points cover it edge to edge and reach no further.
-  def.coupling.scheme = CouplingScheme::kImp;
+  // The blade's contact (excavatorBlade): springs per metre of contact.
+  def.coupling.scheme = c.scheme;
   def.coupling.stiffness_per = SpringBasis::kPerLength;
-  def.coupling.contact_radius = 0.25 * h;
+  def.coupling.contact_radius = plateContactRadius(c);
   def.coupling.normal_stiffness = 5e7;
   def.coupling.tangential_stiffness = 2.5e7;
   return def;
@@ -391,6 +409,10 @@ std::string plateText(const Plate& c) {
     << c.friction_angle << " gravity " << c.gravity << " transfer " << static_cast<int>(c.transfer);
   if (c.sleep_speed > 0) o << " sleep " << c.sleep_speed;
   if (c.stress_update == StressUpdate::kUsl) o << " usl";
+  if (c.kernel != KernelType::kGimp) o << " kernel " << static_cast<int>(c.kernel);
+  if (c.points_per_cell != 2) o << " points_per_cell " << c.points_per_cell;
+  if (c.scheme != CouplingScheme::kImp) o << " scheme " << couplingSchemeName(c.scheme);
+  if (!c.wake) o << " no wake";
   return o.str();
 }
 

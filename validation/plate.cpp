@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <string>
 
 #include "cases.hpp"
@@ -25,11 +26,32 @@ int usage(const char* program, FILE* to = stderr) {
                "usage: %s [--cell M] [--angle DEG] [--direction DEG] [--speed M/S] [--depth M]\n"
                "          [--gravity M/S2] [--friction-angle DEG] [--transfer apic|asflip]\n"
                "          [--threads N] [--curve FILE] [--checkpoint FILE]\n"
+               "          [--kernel gimp|quadratic|cubic] [--points-per-cell N] [--scheme NAME]\n"
+               "          [--thickness M] [--rounding M] [--friction MU] [--wake 0|1]\n"
                "  defaults: cases::Plate's (5 mm, beta 0, gamma 90: the flat plate pushed\n"
                "  straight down at 0.1 m/s, the blade's sand under gravity, APIC); --depth is\n"
                "  a drag's (gamma 0) depth\n",
                program);
   return to == stderr ? 2 : 0;
+}
+
+const char* kernelName(KernelType k) {
+  switch (k) {
+    case KernelType::kQuadraticBSpline:
+      return "quadratic B-spline";
+    case KernelType::kCubicBSpline:
+      return "cubic B-spline";
+    case KernelType::kGimp:
+      break;
+  }
+  return "GIMP";
+}
+
+// The coupling scheme a scene names `name`, if any.
+std::optional<CouplingScheme> schemeNamed(const char* name) {
+  for (const SchemeTraits& t : couplingSchemes())
+    if (!std::strcmp(t.name, name)) return t.scheme;
+  return std::nullopt;
 }
 
 }  // namespace
@@ -54,6 +76,14 @@ int main(int argc, char** argv) {
       c.transfer = TransferScheme::kApic;
     else if (a == "--transfer" && !std::strcmp(v, "asflip"))
       c.transfer = TransferScheme::kAsflip;
+    else if (a == "--kernel" && !std::strcmp(v, "gimp"))
+      c.kernel = KernelType::kGimp;
+    else if (a == "--kernel" && !std::strcmp(v, "quadratic"))
+      c.kernel = KernelType::kQuadraticBSpline;
+    else if (a == "--kernel" && !std::strcmp(v, "cubic"))
+      c.kernel = KernelType::kCubicBSpline;
+    else if (a == "--scheme" && schemeNamed(v))
+      c.scheme = *schemeNamed(v);
     else if (!number)
       return usage(argv[0]);
     else if (a == "--cell" && x >= 1e-4)
@@ -70,6 +100,16 @@ int main(int argc, char** argv) {
       c.gravity = x;
     else if (a == "--friction-angle" && x >= 0 && x < 60)
       c.friction_angle = x;
+    else if (a == "--points-per-cell" && x >= 1 && x <= 8 && x == static_cast<int>(x))
+      c.points_per_cell = static_cast<int>(x);
+    else if (a == "--thickness" && x > 0)
+      c.thickness = x;
+    else if (a == "--rounding" && x > 0)
+      c.rounding = x;
+    else if (a == "--friction" && x >= 0)
+      c.friction = x;
+    else if (a == "--wake" && (x == 0 || x == 1))
+      c.wake = x == 1;
     else if (a == "--threads" && x >= 1)
       omp_set_num_threads(static_cast<int>(x));
     else
@@ -88,6 +128,9 @@ int main(int argc, char** argv) {
       "%ld steps, %.0f s\n",
       c.cell_size, c.angle, c.direction, c.speed, c.gravity, c.friction_angle,
       c.transfer == TransferScheme::kAsflip ? "ASFLIP" : "APIC", r.points, r.steps, r.seconds);
+  std::printf("%s, %d points per cell side, %s, plate %g m thick (rounding %g m), mu %g%s\n",
+              kernelName(c.kernel), c.points_per_cell, couplingSchemeName(c.scheme), c.thickness,
+              c.rounding, c.friction, c.wake ? "" : ", no sand behind it");
   const Real L = c.length;
   if (c.direction > 0) {
     const cases::PlateLines l = cases::pushLines(c, r);
