@@ -607,7 +607,7 @@ struct Plate {
   // are half the point spacing), and for a drag (gamma = 0) whether sand lies behind the
   // plate: without the wake, the layer behind the plate's start is cut away down to the plate's
   // lower edge, so that no sand shares the grid's nodes with the plate's trailing face.
-  KernelType kernel = KernelType::kGimp;
+  KernelType kernel = KernelType::kQuadraticBSpline;
   int points_per_cell = 2;
   CouplingScheme scheme = CouplingScheme::kImp;
   bool wake = true;

@@ -409,7 +409,7 @@ std::string plateText(const Plate& c) {
     << c.friction_angle << " gravity " << c.gravity << " transfer " << static_cast<int>(c.transfer);
   if (c.sleep_speed > 0) o << " sleep " << c.sleep_speed;
   if (c.stress_update == StressUpdate::kUsl) o << " usl";
-  if (c.kernel != KernelType::kGimp) o << " kernel " << static_cast<int>(c.kernel);
+  if (c.kernel != KernelType::kQuadraticBSpline) o << " kernel " << static_cast<int>(c.kernel);
   if (c.points_per_cell != 2) o << " points_per_cell " << c.points_per_cell;
   if (c.scheme != CouplingScheme::kImp) o << " scheme " << couplingSchemeName(c.scheme);
   if (!c.wake) o << " no wake";
