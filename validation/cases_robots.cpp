@@ -389,7 +389,7 @@ WorldDef plateIntrusion(const Plate& c) {
   def.bodies.push_back(bed);
   // The blade's contact (excavatorBlade): springs per metre of contact.
   def.coupling.scheme = c.scheme;
-  def.coupling.stiffness_per = SpringBasis::kPerLength;
+  if (schemeTraits(c.scheme).springs) def.coupling.stiffness_per = SpringBasis::kPerLength;
   def.coupling.contact_radius = plateContactRadius(c);
   def.coupling.normal_stiffness = 5e7;
   def.coupling.tangential_stiffness = 2.5e7;
