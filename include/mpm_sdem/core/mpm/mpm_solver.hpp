@@ -19,6 +19,7 @@
 #include "mpm_sdem/core/mpm/solver.hpp"
 #include "mpm_sdem/core/mpm/tiles.hpp"
 #include "mpm_sdem/core/mpm/volume_fit.hpp"
+#include "mpm_sdem/core/mpm/volumetric_average.hpp"
 #include "mpm_sdem/core/time_step.hpp"
 
 namespace mpm_sdem {
@@ -162,8 +163,9 @@ class MpmSolver {
   Tiles tiles_;
   Sleep sleep_;
   VolumeFit volume_fit_;
-  std::vector<char> flows_;  ///< per material: MaterialTraits::flows
-  bool fits_ = false;        ///< SolverDef::volume_fit, and some material flows
+  VolumetricAverage volumetric_average_;  ///< solver.volumetric_average
+  std::vector<char> flows_;               ///< per material: MaterialTraits::flows
+  bool fits_ = false;                     ///< SolverDef::volume_fit, and some material flows
   VolumeFit::Result last_fit_;
   ///@{
   /// The sleepers' fastest wave speed (m/s), as of Sleep::generation (materialStep's cache).
