@@ -112,6 +112,9 @@ class MpmSolver {
   void dampVelocityChange(Real kick);
   /// The domain's walls on the nodes' velocities (vel_x, vel_y).
   void applyWalls() { applyWalls(grid_.vel_x, grid_.vel_y); }
+  /// Each point's L_p from the pre-kick velocity, its divergence averaged over the nodes
+  /// (SolverDef::volumetric_average; stressAndInternalForce then takes L_p as it is).
+  void averageVolumetricRate();
   /// USF: velocity gradient, stress update and internal force in one sweep, with the side walls'
   /// load from the new pressure.
   void stressAndInternalForce(Real dt);
