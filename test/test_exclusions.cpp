@@ -35,6 +35,9 @@ void enable(Feature f, WorldDef& d) {
     case Feature::kVolumeFit:
       d.solver.volume_fit = true;
       break;
+    case Feature::kVolumetricAverage:
+      d.solver.volumetric_average = true;
+      break;
     case Feature::kPeriodic:
       d.domain.left.type = d.domain.right.type = WallType::kPeriodic;
       break;

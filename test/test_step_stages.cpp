@@ -41,7 +41,8 @@ TEST(StepStages, OneRowPerStageInStepOrder) {
   }
   StepMakeup all;  // every optional stage's condition, two makeups for the exclusive ones
   all.sph = all.sleep = all.periodic = all.sidewalls = all.inertia_scaled = all.volume_fit =
-      all.point_loads = all.contact_bodies = all.corrects = all.blocks = true;
+      all.volumetric_average = all.point_loads = all.contact_bodies = all.corrects = all.blocks =
+          true;
   all.hooks = {true, true, true, true};
   StepMakeup usl = all;
   usl.usl = true;

@@ -611,6 +611,7 @@ struct Plate {
   int points_per_cell = 2;
   CouplingScheme scheme = CouplingScheme::kImp;
   bool wake = true;
+  bool volumetric_average = false;  // solver.volumetric_average (anti-locking)
 };
 WorldDef plateIntrusion(const Plate& c);
 // The plate's motion: for gamma > 0 from its start along gamma until its centre is `reach` deep;

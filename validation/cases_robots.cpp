@@ -359,6 +359,7 @@ WorldDef plateIntrusion(const Plate& c) {
   def.solver.sleep.speed = c.sleep_speed;
   def.solver.stress_update = c.stress_update;
   def.solver.kernel = c.kernel;
+  def.solver.volumetric_average = c.volumetric_average;
   Blade sand;  // the blade's sand
   sand.friction_angle = c.friction_angle;
   def.materials.push_back(bladeSand(sand));
@@ -413,6 +414,7 @@ std::string plateText(const Plate& c) {
   if (c.points_per_cell != 2) o << " points_per_cell " << c.points_per_cell;
   if (c.scheme != CouplingScheme::kImp) o << " scheme " << couplingSchemeName(c.scheme);
   if (!c.wake) o << " no wake";
+  if (c.volumetric_average) o << " volumetric average";
   return o.str();
 }
 

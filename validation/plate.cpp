@@ -28,6 +28,7 @@ int usage(const char* program, FILE* to = stderr) {
                "          [--threads N] [--curve FILE] [--checkpoint FILE]\n"
                "          [--kernel gimp|quadratic|cubic] [--points-per-cell N] [--scheme NAME]\n"
                "          [--thickness M] [--rounding M] [--friction MU] [--wake 0|1]\n"
+               "          [--average 0|1]\n"
                "  defaults: cases::Plate's (5 mm, beta 0, gamma 90: the flat plate pushed\n"
                "  straight down at 0.1 m/s, the blade's sand under gravity, APIC); --depth is\n"
                "  a drag's (gamma 0) depth\n",
@@ -110,6 +111,8 @@ int main(int argc, char** argv) {
       c.friction = x;
     else if (a == "--wake" && (x == 0 || x == 1))
       c.wake = x == 1;
+    else if (a == "--average" && (x == 0 || x == 1))
+      c.volumetric_average = x == 1;
     else if (a == "--threads" && x >= 1)
       omp_set_num_threads(static_cast<int>(x));
     else
@@ -131,6 +134,7 @@ int main(int argc, char** argv) {
   std::printf("%s, %d points per cell side, %s, plate %g m thick (rounding %g m), mu %g%s\n",
               kernelName(c.kernel), c.points_per_cell, couplingSchemeName(c.scheme), c.thickness,
               c.rounding, c.friction, c.wake ? "" : ", no sand behind it");
+  if (c.volumetric_average) std::printf("divergence averaged over the nodes\n");
   const Real L = c.length;
   if (c.direction > 0) {
     const cases::PlateLines l = cases::pushLines(c, r);

@@ -22,6 +22,7 @@ const std::vector<FeatureInfo>& features() {
       {F::kSleep, "sleeping material", "solver.sleep_speed", "> 0", 0},
       {F::kInertiaScale, "scaled inertia", "solver.inertia_scale", "!= 1", 0},
       {F::kVolumeFit, "the volume fit", "solver.volume_fit", "true", 0},
+      {F::kVolumetricAverage, "the volumetric average", "solver.volumetric_average", "true", 0},
       {F::kPeriodic, "periodic sides", "domain.walls", "periodic", 0},
       {F::kSidewalls, "side walls", "domain.sidewalls", "width > 0", 0},
       {F::kBlocks, "blocks", "blocks", "a block", 0},
@@ -72,6 +73,13 @@ const std::vector<Exclusion>& exclusions() {
       {F::kPeriodic, F::kBlocks, kPeriodicAlone},
       {F::kPeriodic, F::kFem, kPeriodicAlone},
       {F::kPeriodic, F::kSph, kPeriodicAlone},
+      {F::kVolumetricAverage, F::kUsl,
+       "it averages the gradient of the USF stress update; USL takes G2P's gradient after the "
+       "kick"},
+      {F::kVolumetricAverage, F::kSleep,
+       "the sleepers' volumes are not in the nodes' sums, so their awake neighbours would average "
+       "without them"},
+      {F::kVolumetricAverage, F::kPeriodic, "the nodes' sums are not folded across the sides"},
       {F::kInertiaScale, F::kFem, kInertiaPointsOnly},
       {F::kInertiaScale, F::kSph, kInertiaPointsOnly},
       {F::kSph, F::kUsl,
@@ -103,6 +111,7 @@ std::vector<bool> featuresOf(const WorldDef& def) {
   set(F::kSleep, def.solver.sleep.on());
   set(F::kInertiaScale, def.solver.inertia_scale != 1);
   set(F::kVolumeFit, def.solver.volume_fit);
+  set(F::kVolumetricAverage, def.solver.volumetric_average);
   set(F::kPeriodic,
       def.domain.left.type == WallType::kPeriodic || def.domain.right.type == WallType::kPeriodic);
   set(F::kSidewalls, def.domain.sidewalls.width > 0);

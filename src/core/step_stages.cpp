@@ -67,10 +67,14 @@ const std::vector<StageInfo>& stageTable() {
        "the nodes' mass and momentum times s (their velocity unchanged)"},
       {Stage::kGridVelocity, "grid_velocity", StageOwner::kMpm, "always", always,
        "v0 = p / m (seed 000 eq. 20) and the walls"},
+      {Stage::kVolumetricAverage, "volumetric_average", StageOwner::kMpm,
+       "solver.volumetric_average (USF)", [](const M& m) { return m.volumetric_average && !m.usl; },
+       "each point's velocity gradient (seed 000 eq. 21-22), its divergence averaged over the "
+       "nodes around it (B-bar against volumetric locking, VolumetricAverage)"},
       {Stage::kStressForce, "stress_force", StageOwner::kMpm, "USF",
        [](const M& m) { return !m.usl; },
-       "velocity gradient, stress update and internal force (seed 000 eq. 13, 21-25) in one "
-       "sweep, with the side walls' load"},
+       "velocity gradient (unless volumetric_average gave it), stress update and internal force "
+       "(seed 000 eq. 13, 21-25) in one sweep, with the side walls' load"},
       {Stage::kSleepForce, "sleep_force", StageOwner::kSleep, "solver.sleep_speed > 0 (USF)",
        [](const M& m) { return m.sleep && !m.usl; },
        "the sleeping points' internal force added to the awake nodes"},

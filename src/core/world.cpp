@@ -193,6 +193,7 @@ StepMakeup World::makeup() const {
   m.sidewalls = mpm_.hasSidewalls();
   m.inertia_scaled = def_.solver.inertia_scale != 1;
   m.volume_fit = mpm_.fits();
+  m.volumetric_average = def_.solver.volumetric_average;
   m.point_loads = !point_loads_.empty();
   m.contact_bodies = hasContactBodies();
   if (m.contact_bodies) {
@@ -286,6 +287,9 @@ void World::runStage(Stage stage, StepScratch& s) {
       break;
     case Stage::kGridVelocity:
       mpm.gridVelocity(0, false);
+      break;
+    case Stage::kVolumetricAverage:
+      mpm.averageVolumetricRate();
       break;
     case Stage::kStressForce:
       // USF: the stress of the velocities at the start of the step, lagging the positions by the

@@ -82,10 +82,10 @@ void parseGrid(const Context& ctx, const MapReader& top, Scene& s) {
 
 void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
   if (!top.has("solver")) return;
-  MapReader r(
-      ctx, top.node("solver"), "solver",
-      {"kernel", "transfer", "pic_fraction", "asflip_relaxation_time", "stress_update", "gravity",
-       "damping", "inertia_scale", "sleep_speed", "sleep_time", "sleep_margin", "volume_fit"});
+  MapReader r(ctx, top.node("solver"), "solver",
+              {"kernel", "transfer", "pic_fraction", "asflip_relaxation_time", "stress_update",
+               "gravity", "damping", "inertia_scale", "sleep_speed", "sleep_time", "sleep_margin",
+               "volume_fit", "volumetric_average"});
   SolverDef& sol = s.world.solver;
   sol.kernel = r.choice<KernelType>("kernel",
                                     {{"quadratic_bspline", KernelType::kQuadraticBSpline},
@@ -131,6 +131,7 @@ void parseSolver(const Context& ctx, const MapReader& top, Scene& s) {
   for (const char* key : {"sleep_time", "sleep_margin"})
     r.require(!r.has(key) || sol.sleep.on(), key, "applies only with sleep_speed > 0");
   sol.volume_fit = r.boolean("volume_fit", sol.volume_fit);
+  sol.volumetric_average = r.boolean("volumetric_average", sol.volumetric_average);
 }
 
 void parseTime(const Context& ctx, const MapReader& top, Scene& s) {

@@ -14,24 +14,25 @@ struct WorldDef;
 
 /// The features a scene turns on, each by one key.
 enum class Feature : int {
-  kUsl,               ///< solver.stress_update: usl
-  kSleep,             ///< solver.sleep_speed > 0
-  kInertiaScale,      ///< solver.inertia_scale != 1
-  kVolumeFit,         ///< solver.volume_fit: true
-  kPeriodic,          ///< domain.walls: left and right periodic
-  kSidewalls,         ///< domain.sidewalls
-  kBlocks,            ///< blocks
-  kFem,               ///< fem_bodies
-  kFemSubcycled,      ///< time.fem_integration: subcycled
-  kSph,               ///< sph
-  kImp,               ///< coupling.scheme: imp
-  kImpGrid,           ///< coupling.scheme: imp_grid
-  kMultiVelocity,     ///< coupling.scheme: multi_velocity
-  kParticleSurface,   ///< coupling.scheme: particle_surface
-  kPartitioned,       ///< coupling.scheme: partitioned
-  kContactExact,      ///< coupling.normal_integration: exact
-  kContactSubcycled,  ///< coupling.normal_integration: subcycled
-  kSpringsPerLength,  ///< coupling.stiffness_per: length
+  kUsl,                ///< solver.stress_update: usl
+  kSleep,              ///< solver.sleep_speed > 0
+  kInertiaScale,       ///< solver.inertia_scale != 1
+  kVolumeFit,          ///< solver.volume_fit: true
+  kVolumetricAverage,  ///< solver.volumetric_average: true
+  kPeriodic,           ///< domain.walls: left and right periodic
+  kSidewalls,          ///< domain.sidewalls
+  kBlocks,             ///< blocks
+  kFem,                ///< fem_bodies
+  kFemSubcycled,       ///< time.fem_integration: subcycled
+  kSph,                ///< sph
+  kImp,                ///< coupling.scheme: imp
+  kImpGrid,            ///< coupling.scheme: imp_grid
+  kMultiVelocity,      ///< coupling.scheme: multi_velocity
+  kParticleSurface,    ///< coupling.scheme: particle_surface
+  kPartitioned,        ///< coupling.scheme: partitioned
+  kContactExact,       ///< coupling.normal_integration: exact
+  kContactSubcycled,   ///< coupling.normal_integration: subcycled
+  kSpringsPerLength,   ///< coupling.stiffness_per: length
   kCount
 };
 

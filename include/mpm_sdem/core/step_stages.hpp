@@ -29,6 +29,7 @@ enum class Stage : int {
   kFoldMomentum,
   kScaleInertia,
   kGridVelocity,
+  kVolumetricAverage,
   kStressForce,
   kSleepForce,
   kSphForces,
@@ -60,19 +61,20 @@ struct CouplingHooks {
 
 /// What a world is made of, as far as its step's stages go.
 struct StepMakeup {
-  bool usl = false;             ///< SolverDef::stress_update is USL (else USF)
-  bool sph = false;             ///< an SPH region or SPH bodies
-  bool sleep = false;           ///< SolverDef::sleep on
-  bool periodic = false;        ///< the left and right sides are one
-  bool sidewalls = false;       ///< the flume's side walls (DomainDef::sidewalls)
-  bool inertia_scaled = false;  ///< SolverDef::inertia_scale != 1
-  bool volume_fit = false;      ///< SolverDef::volume_fit and some material flows
-  bool point_loads = false;     ///< World::setPointLoad holds a load
-  bool contact_bodies = false;  ///< blocks or FEM bodies with a shape
-  CouplingHooks hooks;          ///< the coupling's (with contact bodies)
-  bool corrects = false;        ///< the coupling changes nodal velocities after the kick
-  bool subcycles = false;       ///< the coupling steps the bodies in its substeps
-  bool blocks = false;          ///< rigid blocks (their state checked after the step)
+  bool usl = false;                 ///< SolverDef::stress_update is USL (else USF)
+  bool sph = false;                 ///< an SPH region or SPH bodies
+  bool sleep = false;               ///< SolverDef::sleep on
+  bool periodic = false;            ///< the left and right sides are one
+  bool sidewalls = false;           ///< the flume's side walls (DomainDef::sidewalls)
+  bool inertia_scaled = false;      ///< SolverDef::inertia_scale != 1
+  bool volume_fit = false;          ///< SolverDef::volume_fit and some material flows
+  bool volumetric_average = false;  ///< SolverDef::volumetric_average
+  bool point_loads = false;         ///< World::setPointLoad holds a load
+  bool contact_bodies = false;      ///< blocks or FEM bodies with a shape
+  CouplingHooks hooks;              ///< the coupling's (with contact bodies)
+  bool corrects = false;            ///< the coupling changes nodal velocities after the kick
+  bool subcycles = false;           ///< the coupling steps the bodies in its substeps
+  bool blocks = false;              ///< rigid blocks (their state checked after the step)
 };
 
 /// Where a stage's data lives.

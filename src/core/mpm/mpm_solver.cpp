@@ -350,7 +350,12 @@ void MpmSolver::sidewallFriction(Real kick) {
 void MpmSolver::stressAndInternalForce(Real dt) {
   detail::SidewallLoad walls;
   if (Real* load = clearedSidewallLoad()) walls = {sidewallCoefficient(), load};
-  detail::stressAndInternalForce(def_.kernel, particles_, grid_, tiles_, params_, dt, walls);
+  detail::stressAndInternalForce(def_.kernel, particles_, grid_, tiles_, params_, dt, walls,
+                                 def_.volumetric_average);
+}
+
+void MpmSolver::averageVolumetricRate() {
+  volumetric_average_.apply(def_.kernel, particles_, grid_, tiles_);
 }
 
 void MpmSolver::addSleepersForce() {

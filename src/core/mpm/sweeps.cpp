@@ -116,7 +116,8 @@ void particleToGrid(const Particles& P, Grid& G, const Tiles& T) {
 // The SPH particles of the transition band lend the nodes their stress, which the SPH sums
 // updated (seed 001 sec. 4). With side walls, the new pressure's wall load onto the same nodes
 // (sidewallForce in transfer.hpp): one pass over the points instead of two.
-template <class K>
+// With kGiven, L_p is the points' own (volumetric_average.hpp corrected it) and is not summed.
+template <class K, bool kGiven>
 void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
                             const std::vector<MaterialParams>& materials, Real dt,
                             SidewallLoad walls) {
@@ -180,21 +181,23 @@ void stressAndInternalForce(Particles& P, Grid& G, const Tiles& T,
       Window sx;
       Stencil1D sy;
       sweepStencils<K>(G, P, p, yg, sx, sy);
-      Row4 lxx = {}, lxy = {}, lyx = {}, lyy = {};
-      for (int j = 0; j < S; ++j) {
-        const int row = (sy.base + j) * nx + sx.first;
-        const Row4 gx = sx.dw * sy.w[j], gy = sx.w * sy.dw[j];
-        const Row4 vx = loadRow(vx0 + row), vy = loadRow(vy0 + row);
-        lxx += vx * gx;
-        lxy += vx * gy;
-        lyx += vy * gx;
-        lyy += vy * gy;
+      if constexpr (!kGiven) {
+        Row4 lxx = {}, lxy = {}, lyx = {}, lyy = {};
+        for (int j = 0; j < S; ++j) {
+          const int row = (sy.base + j) * nx + sx.first;
+          const Row4 gx = sx.dw * sy.w[j], gy = sx.w * sy.dw[j];
+          const Row4 vx = loadRow(vx0 + row), vy = loadRow(vy0 + row);
+          lxx += vx * gx;
+          lxy += vx * gy;
+          lyx += vy * gx;
+          lyy += vy * gy;
+        }
+        const Row4 l = sums(lxx, lxy, lyx, lyy) * inv_h;
+        P.lxx[p] = l[0];
+        P.lxy[p] = l[1];
+        P.lyx[p] = l[2];
+        P.lyy[p] = l[3];
       }
-      const Row4 l = sums(lxx, lxy, lyx, lyy) * inv_h;
-      P.lxx[p] = l[0];
-      P.lxy[p] = l[1];
-      P.lyx[p] = l[2];
-      P.lyy[p] = l[3];
       const MaterialParams& m = materials[P.material[p]];
       if (dt == 0 || !batchesStress(m)) {
         if (dt != 0) updatePointStress(m, P, p, dt);
@@ -585,9 +588,12 @@ void ParticleToGrid(KernelType kernel, P2GParts parts, const Particles& P, Grid&
 
 void StressAndInternalForce(KernelType kernel, Particles& P, Grid& G, const Tiles& T,
                             const std::vector<MaterialParams>& materials, Real dt,
-                            SidewallLoad walls) {
-  withKernel(kernel,
-             [&](auto k) { stressAndInternalForce<decltype(k)>(P, G, T, materials, dt, walls); });
+                            SidewallLoad walls, bool gradient_given) {
+  withKernel(kernel, [&](auto k) {
+    using K = decltype(k);
+    gradient_given ? stressAndInternalForce<K, true>(P, G, T, materials, dt, walls)
+                   : stressAndInternalForce<K, false>(P, G, T, materials, dt, walls);
+  });
 }
 
 void GridToParticle(KernelType kernel, TransferScheme scheme, bool gradient, Particles& P,
@@ -645,8 +651,8 @@ void particleToGrid(KernelType kernel, P2GParts parts, const Particles& P, Grid&
 
 void stressAndInternalForce(KernelType kernel, Particles& P, Grid& G, const Tiles& T,
                             const std::vector<MaterialParams>& materials, Real dt,
-                            SidewallLoad walls) {
-  MPM_SDEM_SWEEP(StressAndInternalForce)(kernel, P, G, T, materials, dt, walls);
+                            SidewallLoad walls, bool gradient_given) {
+  MPM_SDEM_SWEEP(StressAndInternalForce)(kernel, P, G, T, materials, dt, walls, gradient_given);
 }
 
 void gridToParticle(KernelType kernel, TransferScheme scheme, bool gradient, Particles& P,

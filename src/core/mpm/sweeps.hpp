@@ -47,10 +47,11 @@ struct SidewallLoad {
 
 // USF's middle (seed 000 sec. 2.2): each point's L_p from the pre-kick grid velocity, its stress
 // over dt (none when dt = 0) and the new stress's internal force on the nodes; and, given walls,
-// the new pressure's side-wall load.
+// the new pressure's side-wall load. With gradient_given, each point's L_p is taken as it is
+// (set beforehand: volumetric_average.hpp) instead of summed from the grid.
 void stressAndInternalForce(KernelType kernel, Particles& P, Grid& G, const Tiles& T,
                             const std::vector<MaterialParams>& materials, Real dt,
-                            SidewallLoad walls = {});
+                            SidewallLoad walls = {}, bool gradient_given = false);
 
 // G2P in the scheme's way, moving every point; with gradient (USL) also L_p from the post-kick
 // velocity. Points outside the domain box are clamped onto it (counted in clamped); a

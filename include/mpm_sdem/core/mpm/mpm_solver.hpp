@@ -19,6 +19,7 @@
 #include "mpm_sdem/core/mpm/solver.hpp"
 #include "mpm_sdem/core/mpm/tiles.hpp"
 #include "mpm_sdem/core/mpm/volume_fit.hpp"
+#include "mpm_sdem/core/mpm/volumetric_average.hpp"
 #include "mpm_sdem/core/time_step.hpp"
 
 namespace mpm_sdem {
@@ -111,6 +112,9 @@ class MpmSolver {
   void dampVelocityChange(Real kick);
   /// The domain's walls on the nodes' velocities (vel_x, vel_y).
   void applyWalls() { applyWalls(grid_.vel_x, grid_.vel_y); }
+  /// Each point's L_p from the pre-kick velocity, its divergence averaged over the nodes
+  /// (SolverDef::volumetric_average; stressAndInternalForce then takes L_p as it is).
+  void averageVolumetricRate();
   /// USF: velocity gradient, stress update and internal force in one sweep, with the side walls'
   /// load from the new pressure.
   void stressAndInternalForce(Real dt);
@@ -162,8 +166,9 @@ class MpmSolver {
   Tiles tiles_;
   Sleep sleep_;
   VolumeFit volume_fit_;
-  std::vector<char> flows_;  ///< per material: MaterialTraits::flows
-  bool fits_ = false;        ///< SolverDef::volume_fit, and some material flows
+  VolumetricAverage volumetric_average_;  ///< solver.volumetric_average
+  std::vector<char> flows_;               ///< per material: MaterialTraits::flows
+  bool fits_ = false;                     ///< SolverDef::volume_fit, and some material flows
   VolumeFit::Result last_fit_;
   ///@{
   /// The sleepers' fastest wave speed (m/s), as of Sleep::generation (materialStep's cache).

@@ -65,6 +65,9 @@ struct SolverDef {
   /// the flowing materials (granular, fluid) move down the nodes' over-fill, so that their
   /// volumes keep tiling the space they share. Off: the points go where the grid carries them.
   bool volume_fit = false;
+  /// The velocity's divergence averaged over the nodes before each stress update (USF), against
+  /// volumetric locking (VolumetricAverage, issue 90). Off: each point's own divergence.
+  bool volumetric_average = false;
   /// A world of fewer awake material points and no SPH steps on the calling thread alone:
   /// below this, starting and ending a step's ~24 parallel regions (3.5 us each on two cores
   /// here) costs more than sharing its work saves (docs/performance.md). Speed only: the results
