@@ -283,6 +283,22 @@ TEST(RuntimeBlocks, AddedToASceneWithoutBlocksFallsAndIsRemoved) {
   EXPECT_TRUE(stepStable(world).finite);
 }
 
+// Static blocks may overlap (a wall of parts, as the silo's plates reaching into its walls),
+// spawned as in a scene; a moving block may not start inside one (mayOverlap).
+TEST(RuntimeBlocks, OnlyStaticBlocksMayOverlap) {
+  WorldDef def = loadScene(std::string(MPM_SDEM_SOURCE_DIR) + "/test/data/valid.yaml").world;
+  World world(def);
+  world.addBlock(test::boxBlock("wall", Vec2(0.3, 0.1), 0.02, 0.1, 0.002, BodyType::kStatic));
+  BlockDef plate = test::boxBlock("plate", Vec2(0.26, 0.06), 0.1, 0.02, 0.002, BodyType::kStatic);
+  EXPECT_EQ(world.placementProblem(plate, false).text(), "");
+  plate.type = BodyType::kDynamic;
+  EXPECT_NE(world.placementProblem(plate, false).text().find("overlaps block 'wall'"),
+            std::string::npos);
+  plate.type = BodyType::kKinematic;
+  EXPECT_NE(world.placementProblem(plate, false).text().find("overlaps block 'wall'"),
+            std::string::npos);
+}
+
 // The step names a moving block whose centre leaves the domain (a disk thrown out of its top)
 // while the state stays finite, and one whose state is no longer finite (a load of 1e300 N/m,
 // beyond what single-precision Box2D holds). Neither a static floor reaching outside nor a disk

@@ -29,7 +29,7 @@ Problem World::placementProblem(const BlockDef& d, bool allow_overlap, BlockId m
   const std::vector<Spheropolygon> parts = placedParts(d);
   if (blocks_) {
     for (int i = 0; i < blocks_->count(); ++i) {
-      if (blocks_->id(i) == moving) continue;
+      if (blocks_->id(i) == moving || mayOverlap(d, blocks_->def(i))) continue;
       if (const Real depth = startingOverlap(parts, blocks_->currentParts(i)); depth > 0)
         return {"position", "it overlaps block '" + blocks_->def(i).name + "' by " +
                                 std::to_string(depth) + " m"};

@@ -165,10 +165,7 @@ void parseBlocks(const Context& ctx, const MapReader& top, Scene& s) {
     for (const BlockDef& other : s.world.blocks) {
       if (other.name == b.name)
         ctx.fail(list[i], path, "a block named '" + b.name + "' exists already");
-      // Static blocks never meet one another (Box2D moves neither and the couplings join blocks
-      // to material only), so a wall may be built of overlapping static parts. A moving block
-      // starts clear of every other: an overlap would be a spring loaded at t = 0.
-      if (b.type == BodyType::kStatic && other.type == BodyType::kStatic) continue;
+      if (mayOverlap(b, other)) continue;
       if (const Real depth = startingOverlap(parts, placedParts(other)); depth > 0) {
         ctx.fail(list[i], path,
                  "block '" + b.name + "' overlaps block '" + other.name + "' by " + num(depth) +

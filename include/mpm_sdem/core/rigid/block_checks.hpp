@@ -49,6 +49,13 @@ bool keepInsideDomain(const Box& bounds, Real reach, Real h, const Vec2& domain_
 /// that is more than 1% of the smaller rounding of the parts that meet, else 0: touching is fine
 /// (stacked blocks); more would start the penalty springs loaded and throw the blocks apart.
 Real startingOverlap(const std::vector<Spheropolygon>& a, const std::vector<Spheropolygon>& b);
+/// Whether blocks a and b may start overlapping: when both are static. They never meet (Box2D
+/// moves neither, and the couplings join blocks to material only), so a wall may be built of
+/// overlapping parts. A moving block starts clear of every other: an overlap would be a spring
+/// loaded at t = 0.
+inline bool mayOverlap(const BlockDef& a, const BlockDef& b) {
+  return a.type == BodyType::kStatic && b.type == BodyType::kStatic;
+}
 /// Whether a material point at p lies inside a placed outline (the contact springs would throw
 /// it out).
 bool insideOutline(const std::vector<Spheropolygon>& parts, const Vec2& p);
