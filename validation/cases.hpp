@@ -612,6 +612,7 @@ struct Plate {
   CouplingScheme scheme = CouplingScheme::kImp;
   bool wake = true;
   bool volumetric_average = false;  // solver.volumetric_average (anti-locking)
+  Real step_scale = 1;  // time.cfl and time.contact_factor times this (0.5: the step halved)
 };
 WorldDef plateIntrusion(const Plate& c);
 // The plate's motion: for gamma > 0 from its start along gamma until its centre is `reach` deep;

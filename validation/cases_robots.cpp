@@ -360,6 +360,8 @@ WorldDef plateIntrusion(const Plate& c) {
   def.solver.stress_update = c.stress_update;
   def.solver.kernel = c.kernel;
   def.solver.volumetric_average = c.volumetric_average;
+  def.time_step.cfl *= c.step_scale;
+  def.time_step.contact_factor *= c.step_scale;
   Blade sand;  // the blade's sand
   sand.friction_angle = c.friction_angle;
   def.materials.push_back(bladeSand(sand));
@@ -415,6 +417,7 @@ std::string plateText(const Plate& c) {
   if (c.scheme != CouplingScheme::kImp) o << " scheme " << couplingSchemeName(c.scheme);
   if (!c.wake) o << " no wake";
   if (c.volumetric_average) o << " volumetric average";
+  if (c.step_scale != 1) o << " step scale " << c.step_scale;
   return o.str();
 }
 

@@ -22,30 +22,42 @@ using namespace mpm_sdem;
 namespace {
 
 int usage(const char* program, FILE* to = stderr) {
-  std::fprintf(to,
-               "usage: %s [--cell M] [--angle DEG] [--direction DEG] [--speed M/S] [--depth M]\n"
-               "          [--gravity M/S2] [--friction-angle DEG] [--transfer apic|asflip]\n"
-               "          [--threads N] [--curve FILE] [--checkpoint FILE]\n"
-               "          [--kernel gimp|quadratic|cubic] [--points-per-cell N] [--scheme NAME]\n"
-               "          [--thickness M] [--rounding M] [--friction MU] [--wake 0|1]\n"
-               "          [--average 0|1]\n"
-               "  defaults: cases::Plate's (5 mm, beta 0, gamma 90: the flat plate pushed\n"
-               "  straight down at 0.1 m/s, the blade's sand under gravity, APIC); --depth is\n"
-               "  a drag's (gamma 0) depth\n",
-               program);
+  std::fprintf(
+      to,
+      "usage: %s [--cell M] [--angle DEG] [--direction DEG] [--speed M/S] [--depth M]\n"
+      "          [--gravity M/S2] [--friction-angle DEG] [--transfer apic|asflip]\n"
+      "          [--threads N] [--curve FILE] [--checkpoint FILE]\n"
+      "          [--kernel gimp|quadratic|cubic] [--points-per-cell N] [--scheme NAME]\n"
+      "          [--thickness M] [--rounding M] [--friction MU] [--wake 0|1]\n"
+      "          [--average 0|1] [--step-scale S (0, 1]: time.cfl and contact_factor times S]\n"
+      "  defaults: cases::Plate's (5 mm, beta 0, gamma 90: the flat plate pushed\n"
+      "  straight down at 0.1 m/s, the blade's sand under gravity, APIC); --depth is\n"
+      "  a drag's (gamma 0) depth\n",
+      program);
   return to == stderr ? 2 : 0;
 }
 
-const char* kernelName(KernelType k) {
-  switch (k) {
-    case KernelType::kQuadraticBSpline:
-      return "quadratic B-spline";
-    case KernelType::kCubicBSpline:
-      return "cubic B-spline";
-    case KernelType::kGimp:
-      break;
-  }
-  return "GIMP";
+// The kernels by the names --kernel takes, and as the run's line prints them.
+struct KernelName {
+  const char* option;
+  KernelType kernel;
+  const char* printed;
+};
+constexpr KernelName kKernels[] = {
+    {"quadratic", KernelType::kQuadraticBSpline, "quadratic B-spline"},
+    {"cubic", KernelType::kCubicBSpline, "cubic B-spline"},
+    {"gimp", KernelType::kGimp, "GIMP"}};
+
+const KernelName* kernelNamed(const char* option) {
+  for (const KernelName& k : kKernels)
+    if (!std::strcmp(k.option, option)) return &k;
+  return nullptr;
+}
+
+const char* kernelName(KernelType kernel) {
+  for (const KernelName& k : kKernels)
+    if (k.kernel == kernel) return k.printed;
+  return "?";
 }
 
 // The coupling scheme a scene names `name`, if any.
@@ -77,12 +89,8 @@ int main(int argc, char** argv) {
       c.transfer = TransferScheme::kApic;
     else if (a == "--transfer" && !std::strcmp(v, "asflip"))
       c.transfer = TransferScheme::kAsflip;
-    else if (a == "--kernel" && !std::strcmp(v, "gimp"))
-      c.kernel = KernelType::kGimp;
-    else if (a == "--kernel" && !std::strcmp(v, "quadratic"))
-      c.kernel = KernelType::kQuadraticBSpline;
-    else if (a == "--kernel" && !std::strcmp(v, "cubic"))
-      c.kernel = KernelType::kCubicBSpline;
+    else if (a == "--kernel" && kernelNamed(v))
+      c.kernel = kernelNamed(v)->kernel;
     else if (a == "--scheme" && schemeNamed(v))
       c.scheme = *schemeNamed(v);
     else if (!number)
@@ -113,6 +121,8 @@ int main(int argc, char** argv) {
       c.wake = x == 1;
     else if (a == "--average" && (x == 0 || x == 1))
       c.volumetric_average = x == 1;
+    else if (a == "--step-scale" && x > 0 && x <= 1)
+      c.step_scale = x;
     else if (a == "--threads" && x >= 1)
       omp_set_num_threads(static_cast<int>(x));
     else
