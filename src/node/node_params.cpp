@@ -84,9 +84,9 @@ Problem runtimeProblem(const NodeParams& p) {
   if (!finite(p.cmd_vel_timeout, 0, false))
     return {"~cmd_vel_timeout",
             got("must be a finite number >= 0 s (0: never)", p.cmd_vel_timeout)};
-  if (!finite(p.follow_tf_time_constant, 0, true))
-    return {"~follow_tf_time_constant",
-            got("must be a finite number > 0 s", p.follow_tf_time_constant)};
+  // tf's buffer keeps 10 s: a follower looks up its frame that far back.
+  if (!finite(p.follow_tf_delay, 0, true) || !(p.follow_tf_delay <= 5))
+    return {"~follow_tf_delay", got("must be in (0, 5] s", p.follow_tf_delay)};
   if (!(p.follow_tf_max_speed > 0) || !(p.follow_tf_max_speed <= limits::kSpeed.max)) {
     char m[160];
     std::snprintf(m, sizeof m, "must be in (0, %g] m/s (the speed cap of every block), got %g",
@@ -123,7 +123,7 @@ bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
       read(pnh, "cmd_vel_timeout", p.cmd_vel_timeout, "a number (s; 0: never)", error) &&
       read(pnh, "follow_tf", p.follow_tf,
            "a dictionary {block name: tf frame}, e.g. {blade: excavator/blade_link}", error) &&
-      read(pnh, "follow_tf_time_constant", p.follow_tf_time_constant, "a number (s)", error) &&
+      read(pnh, "follow_tf_delay", p.follow_tf_delay, "a number (s)", error) &&
       read(pnh, "follow_tf_max_speed", p.follow_tf_max_speed, "a number (m/s)", error) &&
       read(pnh, "robot_links", p.robot_links, "a list of link names, e.g. [boom, stick, bucket]",
            error) &&

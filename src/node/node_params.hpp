@@ -39,7 +39,7 @@ struct NodeParams {
   // diff_drive_controller's cmd_vel_timeout.
   double cmd_vel_timeout = 0.5;
   std::map<std::string, std::string> follow_tf;  // kinematic block name -> tf frame it follows
-  double follow_tf_time_constant = 0.05;         // s: how fast a follower closes on its frame
+  double follow_tf_delay = 0.1;                  // s: how far behind its frame a follower tracks it
   // m/s: the fastest a follower's points move. A frame that moves faster (a jump) is closed on
   // at this speed, with a warning naming it.
   double follow_tf_max_speed = 5;

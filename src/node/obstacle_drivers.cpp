@@ -54,6 +54,10 @@ void ObstacleDrivers::follow(const std::string& name, const std::string& frame,
 
 void ObstacleDrivers::sync(const World& world, bool fresh) {
   if (fresh) loads_.clear();
+  // A reset takes the clock back: the samples in tf's buffer belong to the run before,
+  // and a follower would go where its frame was at its end. tf2's listener clears its buffer
+  // when it sees the clock go back, but only at the next message; cleared here at once.
+  if (fresh) tf_.clear();
   const Blocks* B = world.blocks();
   auto gone = [&](BlockId id) { return fresh || place(world, id) < 0; };
   loads_.erase(
@@ -71,7 +75,7 @@ void ObstacleDrivers::sync(const World& world, bool fresh) {
                f.name.c_str(), f.frame.c_str());
     f.id = kinematic ? id : BlockId();
     if (kinematic) f.reach = blockReach(B->def(B->indexOf(id)));
-    f.samples = 0;
+    f.sampled = false;
   }
   for (int i = 0; B && i < B->count(); ++i) {
     const BlockDef& d = B->def(i);
@@ -194,7 +198,7 @@ void ObstacleDrivers::beforeStep(World& world, Real h) {
     ROS_INFO("~obstacles/%s/cmd_vel: no command for %g s; '%s' stopped at t = %.4f s",
              c.name.c_str(), params_.cmd_vel_timeout, c.name.c_str(), t);
   }
-  for (Follower& f : followers_) steer(world, f);
+  for (Follower& f : followers_) steer(world, f, h);
   if (const Blocks* B = world.blocks())
     for (const int i : B->movingBlocks())
       if (B->def(i).type == BodyType::kKinematic) keepInside(world, i, h);
@@ -240,7 +244,7 @@ void ObstacleDrivers::warnIfOutOfPlane(const Follower& f,
                            f.frame.c_str(), tilt * 180 / M_PI, 1e3 * shift, f.name.c_str());
 }
 
-void ObstacleDrivers::steer(World& world, Follower& f) {
+void ObstacleDrivers::steer(World& world, Follower& f, Real h) {
   const int i = place(world, f.id);
   if (i < 0) return;
   geometry_msgs::TransformStamped ts;
@@ -254,41 +258,60 @@ void ObstacleDrivers::steer(World& world, Follower& f) {
   }
   const Vec2 p(ts.transform.translation.x, ts.transform.translation.y);
   const Real yaw = conversions::yaw(ts.transform.rotation);
-  const Blocks& B = *world.blocks();
-  const Real reach = f.reach;
   const Real max_speed = params_.follow_tf_max_speed;
-  if (f.samples == 0 || ts.header.stamp != f.stamp[1]) {
+  if (!f.sampled || ts.header.stamp != f.stamp) {  // a new sample
     // A frame that moves faster than the followers may (a jump, a reset of its publisher) is
     // closed on at that speed, not followed.
-    if (f.samples > 0) {
-      const Real gap = (ts.header.stamp - f.stamp[1]).toSec();
-      const Real moved = (p - f.position[1]).norm() + std::abs(wrapped(yaw - f.angle[1])) * reach;
+    if (f.sampled) {
+      const Real gap = (ts.header.stamp - f.stamp).toSec();
+      const Real moved = (p - f.position).norm() + std::abs(wrapped(yaw - f.angle)) * f.reach;
       if (!(moved <= max_speed * std::fmax(gap, 0.0)))
         MPM_SDEM_WARN_THROTTLE(1,
                                "~follow_tf: frame %s moved %.3g m in %.3g s, faster than "
                                "~follow_tf_max_speed %g m/s; '%s' closes in at that speed",
                                f.frame.c_str(), moved, gap, max_speed, f.name.c_str());
+      else if (gap > params_.follow_tf_delay && moved > 0)
+        MPM_SDEM_WARN_THROTTLE(5,
+                               "~follow_tf: frame %s's samples come %.3g s apart, more than "
+                               "~follow_tf_delay %g s: '%s' waits at each one (set the delay "
+                               "above tf's period)",
+                               f.frame.c_str(), gap, params_.follow_tf_delay, f.name.c_str());
     }
     if (f.has_section) warnIfOutOfPlane(f, ts);
-    f.stamp[0] = f.stamp[1], f.position[0] = f.position[1], f.angle[0] = f.angle[1];
-    f.stamp[1] = ts.header.stamp, f.position[1] = p, f.angle[1] = yaw;
-    f.samples = std::min(f.samples + 1, 2);
+    f.sampled = true, f.stamp = ts.header.stamp, f.position = p, f.angle = yaw;
   }
-  // The frame's velocity from its last two samples (its publisher's clock; ROS time, which is
-  // ours with /use_sim_time), and where that puts it now; a sample older than 0.5 s is held.
-  Vec2 v_ff(0, 0);
-  Real w_ff = 0;
-  const Real gap = (f.stamp[1] - f.stamp[0]).toSec();
-  if (f.samples == 2 && gap > 0 && gap < 0.5) {
-    v_ff = (f.position[1] - f.position[0]) / gap;
-    w_ff = wrapped(f.angle[1] - f.angle[0]) / gap;
+  // The block ends this step where the frame was ~follow_tf_delay before its end: tf's
+  // interpolation between the samples that bracket that time. Samples come with gaps and
+  // jitter, but a path sampled at any times is the same path, so the block's motion does not
+  // depend on when they came, and it never runs past the frame: where the frame stops, it stops.
+  // (A block run on at the frame's last speed until the next sample overshoots a frame that
+  // stops, then pulls back, unloading what it pressed.) When that time is not bracketed (the
+  // first sample, a sample late, tf slower than the delay), the block closes on the latest sample
+  // in the delay instead: slower, and never past it.
+  const Real delay = params_.follow_tf_delay;
+  // With /use_sim_time the clock is the world's (this node publishes it): exact, where
+  // ros::Time::now() is /clock as it came back, up to a millisecond behind.
+  const ros::Time now =
+      ros::Time::isSimTime() ? conversions::toRosTime(world.time()) : ros::Time::now();
+  const ros::Time end = now + ros::Duration(h);
+  Vec2 target = f.position;
+  Real target_angle = f.angle;
+  Real closing = std::fmax(delay, h);
+  if (end.toSec() > delay) {
+    try {
+      const geometry_msgs::TransformStamped then =
+          tf_.lookupTransform(params_.fixed_frame, f.frame, end - ros::Duration(delay));
+      target = Vec2(then.transform.translation.x, then.transform.translation.y);
+      target_angle = conversions::yaw(then.transform.rotation);
+      closing = h;
+    } catch (const tf2::TransformException&) {  // not bracketed: the latest sample
+    }
   }
-  const Real ahead = std::clamp((ros::Time::now() - f.stamp[1]).toSec(), 0.0, 0.5);
-  const Real tau = params_.follow_tf_time_constant;
-  Vec2 v = v_ff + (f.position[1] + ahead * v_ff - B.origin(i)) / tau;
-  Real w = w_ff + wrapped(f.angle[1] + ahead * w_ff - B.state(i).angle) / tau;
+  const Blocks& B = *world.blocks();
+  Vec2 v = (target - B.origin(i)) / closing;
+  Real w = wrapped(target_angle - B.state(i).angle) / closing;
   // Far from its frame, a block closes in no faster than its fastest point may move.
-  const Real speed = v.norm() + std::abs(w) * reach;
+  const Real speed = v.norm() + std::abs(w) * f.reach;
   if (speed > max_speed) {
     v *= max_speed / speed;
     w *= max_speed / speed;

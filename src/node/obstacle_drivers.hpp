@@ -4,8 +4,9 @@
 // - velocity commands on ~obstacles/<name>/cmd_vel, in the block's own axes like a robot base's,
 //   that lapse to zero after ~cmd_vel_timeout of simulation time without a new one
 //   (diff_drive_controller's rule);
-// - kinematic blocks that follow a tf frame (~follow_tf: a robot's blade link): each step their
-//   twist is the frame's velocity plus the pose error over ~follow_tf_time_constant, its
+// - kinematic blocks that follow a tf frame (~follow_tf: a robot's blade link): each step ends
+//   with the block where its frame was ~follow_tf_delay before (tf's interpolation between its
+//   samples), so it moves as the frame did, whenever the samples came, and never past it; its
 //   fastest point no faster than ~follow_tf_max_speed (a frame that jumps is closed on at that
 //   speed, with a warning naming it).
 // And the domain's walls: every kinematic block, however it is driven, stops at them (its
@@ -85,17 +86,18 @@ class ObstacleDrivers {
     std::string name, frame;
     BlockId id;
     Real reach = 0;  // m, of its block's outline from its frame origin (blockReach)
-    // The frame's last two distinct samples, for its velocity.
-    ros::Time stamp[2];
-    Vec2 position[2];
-    Real angle[2] = {0, 0};
-    int samples = 0;
+    // The frame's latest sample, for the warnings and when tf cannot interpolate.
+    bool sampled = false;
+    ros::Time stamp;
+    Vec2 position = Vec2(0, 0);
+    Real angle = 0;
     bool has_section = false;  // follow()'s section: its rotation and height
     Eigen::Quaterniond section_rotation = Eigen::Quaterniond::Identity();
     Real section_height = 0;
   };
   void onCmdVel(const std::string& name, const geometry_msgs::Twist& twist);
-  void steer(World& world, Follower& f);
+  // Sets the follower's twist for the step of h (s) that comes next.
+  void steer(World& world, Follower& f, Real h);
   void warnIfOutOfPlane(const Follower& f, const geometry_msgs::TransformStamped& ts) const;
   // Cuts a kinematic block's velocity towards a wall it would cross in h (keepInsideDomain).
   void keepInside(World& world, int i, Real h);

@@ -23,7 +23,7 @@ mpm_sdem::NodeConfig toConfig(const RuntimeSettings& s, const std::string& refus
   c.terrain_rate = p.terrain_rate;
   c.clock_rate = p.clock_rate;
   c.cmd_vel_timeout = p.cmd_vel_timeout;
-  c.follow_tf_time_constant = p.follow_tf_time_constant;
+  c.follow_tf_delay = p.follow_tf_delay;
   c.follow_tf_max_speed = p.follow_tf_max_speed;
   c.gravity_x = s.gravity.x();
   c.gravity_y = s.gravity.y();
@@ -41,7 +41,7 @@ RuntimeSettings fromConfig(const mpm_sdem::NodeConfig& c, RuntimeSettings s) {
   p.terrain_rate = c.terrain_rate;
   p.clock_rate = c.clock_rate;
   p.cmd_vel_timeout = c.cmd_vel_timeout;
-  p.follow_tf_time_constant = c.follow_tf_time_constant;
+  p.follow_tf_delay = c.follow_tf_delay;
   p.follow_tf_max_speed = c.follow_tf_max_speed;
   s.gravity = {c.gravity_x, c.gravity_y};
   return s;
@@ -60,7 +60,7 @@ std::string asked(const mpm_sdem::NodeConfig& now, const mpm_sdem::NodeConfig& n
       {"terrain_rate", &C::terrain_rate},
       {"clock_rate", &C::clock_rate},
       {"cmd_vel_timeout", &C::cmd_vel_timeout},
-      {"follow_tf_time_constant", &C::follow_tf_time_constant},
+      {"follow_tf_delay", &C::follow_tf_delay},
       {"follow_tf_max_speed", &C::follow_tf_max_speed},
       {"gravity_x", &C::gravity_x},
       {"gravity_y", &C::gravity_y}};

@@ -414,8 +414,7 @@ Reply SimLoop::applySettings(const RuntimeSettings& s) {
   // The drivers read these before every step; the velocities they give are recorded commands.
   for (auto [name, from, to] :
        {std::tuple{"cmd_vel_timeout", &p.cmd_vel_timeout, q.cmd_vel_timeout},
-        std::tuple{"follow_tf_time_constant", &p.follow_tf_time_constant,
-                   q.follow_tf_time_constant},
+        std::tuple{"follow_tf_delay", &p.follow_tf_delay, q.follow_tf_delay},
         std::tuple{"follow_tf_max_speed", &p.follow_tf_max_speed, q.follow_tf_max_speed}})
     if (note(name, *from, to)) *from = to;
   const Vec2 g = world_->def().solver.gravity;

@@ -386,7 +386,7 @@ TEST(Requests, BadParametersStopTheNodeBeforeItSimulates) {
       {"_cmd_vel_timeout:=-1", "~cmd_vel_timeout"},
       {"_terrain/resolution:=-0.01", "~terrain/resolution"},
       {"_terrain/resolution:=1e-9", "more than 100000 columns"},
-      {"_follow_tf_time_constant:=0", "~follow_tf_time_constant"},
+      {"_follow_tf_delay:=0", "~follow_tf_delay"},
       {"_vtk/interval:=0", "~vtk/interval"},
       {"_bag_checkpoint_rate:=-1", "~bag_checkpoint_rate"},
       {"_resume:=" + (dir / "none.bag").string(), "~resume " + (dir / "none.bag").string()},
