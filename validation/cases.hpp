@@ -597,6 +597,7 @@ struct Plate {
   // that carries pressure only), under gravity g (m/s^2, downwards; 0: no weight, so that
   // nothing but inertia loads the plate), with the points' velocities by `transfer`.
   Real friction_angle = 35;
+  Real cohesion = 0;  // Pa (with phi = 0 and no weight: Prandtl's punch, the locking benchmark)
   Real gravity = 9.81;
   TransferScheme transfer = TransferScheme::kApic;
   // Sand at rest sleeps below this speed (m/s, solver.sleep_speed; 0: every point awake).

@@ -365,6 +365,7 @@ WorldDef plateIntrusion(const Plate& c) {
   Blade sand;  // the blade's sand
   sand.friction_angle = c.friction_angle;
   def.materials.push_back(bladeSand(sand));
+  def.materials.back().cohesion = c.cohesion;
   // A kinematic block's mass is not used.
   BlockDef plate = boxBlock("plate", plateStart(c), c.length, c.thickness, c.rounding,
                             BodyType::kKinematic, 7850);
@@ -410,6 +411,7 @@ std::string plateText(const Plate& c) {
     << c.thickness << " rounding " << c.rounding << " friction " << c.friction << " cell "
     << c.cell_size << " bed " << c.bed << " width " << c.width << " friction_angle "
     << c.friction_angle << " gravity " << c.gravity << " transfer " << static_cast<int>(c.transfer);
+  if (c.cohesion > 0) o << " cohesion " << c.cohesion;
   if (c.sleep_speed > 0) o << " sleep " << c.sleep_speed;
   if (c.stress_update == StressUpdate::kUsl) o << " usl";
   if (c.kernel != KernelType::kQuadraticBSpline) o << " kernel " << static_cast<int>(c.kernel);

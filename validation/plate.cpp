@@ -25,7 +25,8 @@ int usage(const char* program, FILE* to = stderr) {
   std::fprintf(
       to,
       "usage: %s [--cell M] [--angle DEG] [--direction DEG] [--speed M/S] [--depth M]\n"
-      "          [--gravity M/S2] [--friction-angle DEG] [--transfer apic|asflip]\n"
+      "          [--gravity M/S2] [--friction-angle DEG] [--cohesion PA] [--reach M]\n"
+      "          [--transfer apic|asflip]\n"
       "          [--threads N] [--curve FILE] [--checkpoint FILE]\n"
       "          [--kernel gimp|quadratic|cubic] [--points-per-cell N] [--scheme NAME]\n"
       "          [--thickness M] [--rounding M] [--friction MU] [--wake 0|1]\n"
@@ -105,6 +106,10 @@ int main(int argc, char** argv) {
       c.speed = x;
     else if (a == "--depth" && x > 0 && x < c.bed)
       c.depth = x;
+    else if (a == "--cohesion" && x >= 0)
+      c.cohesion = x;
+    else if (a == "--reach" && x > 0 && x < c.bed)
+      c.reach = x;
     else if (a == "--gravity" && x >= 0)
       c.gravity = x;
     else if (a == "--friction-angle" && x >= 0 && x < 60)
@@ -144,8 +149,11 @@ int main(int argc, char** argv) {
   std::printf("%s, %d points per cell side, %s, plate %g m thick (rounding %g m), mu %g%s\n",
               kernelName(c.kernel), c.points_per_cell, couplingSchemeName(c.scheme), c.thickness,
               c.rounding, c.friction, c.wake ? "" : ", no sand behind it");
-  if (c.volumetric_average) std::printf("divergence averaged over the nodes\n");
   const Real L = c.length;
+  if (c.volumetric_average) std::printf("divergence averaged over the nodes\n");
+  if (c.cohesion > 0)
+    std::printf("cohesion %g Pa: Prandtl's (2 + pi) c L = %.2f N/m\n", c.cohesion,
+                (2 + M_PI) * c.cohesion * L);
   if (c.direction > 0) {
     const cases::PlateLines l = cases::pushLines(c, r);
     const Vec2 m = cases::pushMean(c, r);
