@@ -93,6 +93,10 @@ CASES = [
     ("intrusion_drag", "Issue 44: the upright plate of `intrusion` dragged along x at 6 cm "
                        "(0.1 m/s), APIC, from 1 cm to 1.25 mm: alpha_x, its order and limit",
      True),
+    ("intrusion_diagnosis", "Issue 90: what the cell does to a tool's force - the upright "
+                            "plate's drag at 6 cm and the flat plate's k_z at 1 cm and 5 mm, one "
+                            "numerical choice switched at a time against the report's, and the "
+                            "drag's line F(z) through 4, 6 and 8 cm", True),
     ("intrusion_frontier", "Issue 78: speed against error for the robot scenes: the drag of "
                            "`intrusion_drag` at 1 cm, 5 mm and 2.5 mm, every point awake, sand at"
                            " rest asleep, and USL; the error from the drag's limit against wall"
@@ -633,6 +637,39 @@ def plot_intrusion_frontier(data, out):
     return finish(fig, out, "intrusion_frontier.png")
 
 
+def plot_intrusion_diagnosis(data, out):
+    """The upright plate's drag error against its converged limit, one bar per numerical choice
+    and cell (issue 90's diagnosis)."""
+    path = os.path.join(data, "results.csv")
+    if not os.path.exists(path):
+        return None
+    bars = OrderedDict()  # choice -> {cell: error %}
+    for r in read_csv(path):
+        # "alpha_x of the upright plate dragged at 6 cm, <choice>, h <cell>"
+        if r["case"] != "intrusion_diagnosis" or "dragged at 6 cm" not in r["quantity"]:
+            continue
+        parts = r["quantity"].split(", ")
+        bars.setdefault(", ".join(parts[1:-1]), {})[parts[-1][2:]] = 100 * (
+            float(r["value"]) / float(r["reference"]) - 1)
+    if not bars:
+        return None
+    cells = sorted({c for v in bars.values() for c in v}, key=lambda c: -float(c.split()[0]))
+    fig, ax = plt.subplots(figsize=(8, 4.2))
+    width = 0.8 / len(cells)
+    for k, cell in enumerate(cells):
+        xs = [i + (k - (len(cells) - 1) / 2) * width for i in range(len(bars))]
+        ax.bar(xs, [v.get(cell, float("nan")) for v in bars.values()], width, label="h " + cell)
+    ax.set_xticks(range(len(bars)))
+    ax.set_xticklabels(list(bars), rotation=35, ha="right", fontsize=7)
+    for tol in (-10, 10):
+        ax.axhline(tol, color="0.6", lw=0.6, ls=":")
+    ax.axhline(0, color="k", lw=0.6)
+    ax.set_ylabel("drag - converged drag (%)")
+    ax.set_title("upright plate dragged at 6 cm: one numerical choice at a time")
+    ax.legend(fontsize=7)
+    return finish(fig, out, "intrusion_diagnosis.png")
+
+
 def family(quantity):
     """Rows of one quantity measured at different settings: the name up to its first comma."""
     return quantity.split(",")[0]
@@ -733,6 +770,7 @@ def main():
              "compression": plot_compression(data, out),
              "wheel": plot_wheel(data, out),
              "blade": plot_blade(data, out),
+             "intrusion_diagnosis": plot_intrusion_diagnosis(data, out),
              "intrusion_frontier": plot_intrusion_frontier(data, out),
              "chute": plot_chute(data, out),
              "water_gate": plot_water_gate(data, out),

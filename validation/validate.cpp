@@ -92,6 +92,8 @@ const std::vector<Case>& allCases() {
        report::robots::intrusionRefinementRuns, report::robots::intrusionRefinementFits},
       {"intrusion_drag", report::robots::intrusionDrag, report::robots::intrusionDragRuns,
        report::robots::intrusionDragFits},
+      {"intrusion_diagnosis", report::robots::intrusionDiagnosis,
+       report::robots::intrusionDiagnosisRuns, report::robots::intrusionDiagnosisFits},
       {"intrusion_frontier", report::robots::intrusionFrontier,
        report::robots::intrusionFrontierRuns, report::robots::intrusionFrontierFits},
       {"intrusion_angles", report::robots::intrusionAngles, report::robots::intrusionAnglesRuns,

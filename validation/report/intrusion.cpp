@@ -674,8 +674,6 @@ void intrusionDragFits(const Options& o, Results& r) {
 // over 2.5 and 1.25 mm). --fast: 2 and 1 cm.
 namespace {
 
-constexpr Real kDragLimit = 102.3e3;  // N/m^3, intrusion_drag's limit (docs/robots.md)
-
 std::vector<IntrusionRun> intrusionFrontierRunList(bool fast) {
   std::vector<IntrusionRun> runs;
   const std::vector<Real> cells =

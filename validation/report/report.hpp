@@ -180,6 +180,9 @@ void wheelGranular(const Options& o, Results& r);
 int wheelRuns(bool fast);
 void blade(const Options& o, Results& r);
 void bladeGranular(const Options& o, Results& r);
+// N/m^3: the upright plate's drag at its converged limit, alpha_x (intrusion_drag: Richardson
+// over 2.5 and 1.25 mm; docs/robots.md).
+inline constexpr Real kDragLimit = 102.3e3;
 void intrusion(const Options& o, Results& r);
 int intrusionRuns(bool fast);
 void intrusionFits(const Options& o, Results& r);
@@ -191,6 +194,9 @@ int intrusionRefinementRuns(bool fast);
 void intrusionRefinementFits(const Options& o, Results& r);
 void intrusionDrag(const Options& o, Results& r);
 int intrusionDragRuns(bool fast);
+void intrusionDiagnosis(const Options& o, Results& r);
+int intrusionDiagnosisRuns(bool fast);
+void intrusionDiagnosisFits(const Options& o, Results& r);
 void intrusionFrontier(const Options& o, Results& r);
 void intrusionFrontierFits(const Options& o, Results& r);
 int intrusionFrontierRuns(bool fast);
