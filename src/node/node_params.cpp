@@ -97,6 +97,13 @@ Problem runtimeProblem(const NodeParams& p) {
 }
 
 bool loadParams(const ros::NodeHandle& pnh, NodeParams& p, std::string& error) {
+  // A renamed parameter is refused by its old name, not ignored.
+  if (pnh.hasParam("follow_tf_time_constant")) {
+    error =
+        "parameter ~follow_tf_time_constant is now ~follow_tf_delay: how far behind its tf frame "
+        "a follower tracks it (s, default 0.1; docs/node.md)";
+    return false;
+  }
   if (!pnh.getParam("scene", p.scene) || p.scene.empty()) {
     error =
         "parameter ~scene (the scene file path) is required, e.g. _scene:=$(rospack find "

@@ -387,6 +387,7 @@ TEST(Requests, BadParametersStopTheNodeBeforeItSimulates) {
       {"_terrain/resolution:=-0.01", "~terrain/resolution"},
       {"_terrain/resolution:=1e-9", "more than 100000 columns"},
       {"_follow_tf_delay:=0", "~follow_tf_delay"},
+      {"_follow_tf_time_constant:=0.05", "is now ~follow_tf_delay"},
       {"_vtk/interval:=0", "~vtk/interval"},
       {"_bag_checkpoint_rate:=-1", "~bag_checkpoint_rate"},
       {"_resume:=" + (dir / "none.bag").string(), "~resume " + (dir / "none.bag").string()},
