@@ -7,6 +7,7 @@
 //    leaves out); the vertical plate dragged along x at 4 and 8 cm: the force per depth nearly
 //    constant (RFT's linear law), and its ratio to the push's the generic shapes' (no zeta).
 //  - Without weight or strength the plate meets the swept material's momentum, rho L v^2.
+//  - Under ASFLIP the dragged plate's force does not move when the step halves (issue 90).
 //  - A run stopped at a checkpoint and continued in a new world is the run that never stopped,
 //    bit for bit (the report's 1.25 mm runs take hours; cases::PlateCheckpoints).
 // The bands come from the report's study at 1 cm, 5 mm and 2.5 mm (docs/validation/REPORT.md,
@@ -116,6 +117,28 @@ TEST(Intrusion, WithoutWeightOrStrengthThePlateMeetsTheSweptMomentum) {
   EXPECT_NEAR(lambda[1], 1, 0.25);
   EXPECT_GT(lambda[1] / lambda[0], 0.9);
   EXPECT_LT(lambda[1] / lambda[0], 1.2);
+}
+
+// Issue 90: a tool's force must not depend on the step. Under APIC it does: each transfer loses
+// the velocity jump between the points the contact drives and the sand sliding past the tool,
+// and the tool pays for it again every step, a force that grows as v / dt (docs/robots.md, What
+// the cell does to a tool's force). ASFLIP keeps that jump. The upright plate dragged at 6 cm,
+// 2 cm cells: ASFLIP measured 383.7 / 384.3 N/m at the full and the half step (0.14%; 377.1 /
+// 376.7 at 1 cm), APIC 656.3 / 641.5 (2.2%; 508.7 / 550.7 at 1 cm, 8%). The 1% band holds
+// ASFLIP and catches a transfer that loses per step.
+TEST(Intrusion, DragUnderAsflipDoesNotMoveWhenTheStepHalves) {
+  double drag[2];
+  for (int k = 0; k < 2; ++k) {
+    cases::Plate c;
+    c.cell_size = 0.02;
+    c.angle = 90, c.direction = 0, c.depth = 0.06;
+    c.transfer = TransferScheme::kAsflip;
+    c.step_scale = k == 0 ? 1 : 0.5;
+    World w(cases::plateIntrusion(c));
+    drag[k] = -cases::dragMean(c, cases::movePlate(w, c)).x();
+    std::printf("step x%g: drag %.2f N/m\n", c.step_scale, drag[k]);
+  }
+  EXPECT_NEAR(drag[1] / drag[0], 1, 0.01);
 }
 
 // A drag stopped once while it descends and once while it is dragged, each time continued in a

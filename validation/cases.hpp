@@ -590,14 +590,16 @@ struct Plate {
   Real thickness = 0.005;  // across its faces, rounding included (m)
   Real rounding = 0.002;   // m
   Real friction = 0.3;     // plate-sand Coulomb coefficient (steel, as the blade's)
-  Real cell_size = 0.005;  // m
-  Real bed = 0.2;          // the layer's depth (m)
-  Real width = 0.5;        // the domain's (m)
+  Real restitution = BlockDef{}.restitution;  // the plate's: its contacts' dashpots
+  Real cell_size = 0.005;                     // m
+  Real bed = 0.2;                             // the layer's depth (m)
+  Real width = 0.5;                           // the domain's (m)
   // The medium and the solver: the blade's sand at phi (deg; 0: no shear strength, a fluid
   // that carries pressure only), under gravity g (m/s^2, downwards; 0: no weight, so that
   // nothing but inertia loads the plate), with the points' velocities by `transfer`.
   Real friction_angle = 35;
-  Real cohesion = 0;  // Pa (with phi = 0 and no weight: Prandtl's punch, the locking benchmark)
+  Real cohesion = 0;    // Pa (with phi = 0 and no weight: Prandtl's punch, the locking benchmark)
+  Real separation = 0;  // the sand's separation_volume_ratio (0: off; ASFLIP's free surface)
   Real gravity = 9.81;
   TransferScheme transfer = TransferScheme::kApic;
   // Sand at rest sleeps below this speed (m/s, solver.sleep_speed; 0: every point awake).

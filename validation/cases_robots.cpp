@@ -366,11 +366,13 @@ WorldDef plateIntrusion(const Plate& c) {
   sand.friction_angle = c.friction_angle;
   def.materials.push_back(bladeSand(sand));
   def.materials.back().cohesion = c.cohesion;
+  def.materials.back().separation_volume_ratio = c.separation;
   // A kinematic block's mass is not used.
   BlockDef plate = boxBlock("plate", plateStart(c), c.length, c.thickness, c.rounding,
                             BodyType::kKinematic, 7850);
   plate.angle = c.angle * M_PI / 180;
   plate.friction = c.friction;
+  plate.restitution = c.restitution;
   def.blocks.push_back(plate);
   BodyDef bed;
   bed.name = "bed";
@@ -412,6 +414,7 @@ std::string plateText(const Plate& c) {
     << c.cell_size << " bed " << c.bed << " width " << c.width << " friction_angle "
     << c.friction_angle << " gravity " << c.gravity << " transfer " << static_cast<int>(c.transfer);
   if (c.cohesion > 0) o << " cohesion " << c.cohesion;
+  if (c.separation > 0) o << " separation " << c.separation;
   if (c.sleep_speed > 0) o << " sleep " << c.sleep_speed;
   if (c.stress_update == StressUpdate::kUsl) o << " usl";
   if (c.kernel != KernelType::kQuadraticBSpline) o << " kernel " << static_cast<int>(c.kernel);
@@ -420,6 +423,7 @@ std::string plateText(const Plate& c) {
   if (!c.wake) o << " no wake";
   if (c.volumetric_average) o << " volumetric average";
   if (c.step_scale != 1) o << " step scale " << c.step_scale;
+  if (c.restitution != BlockDef{}.restitution) o << " restitution " << c.restitution;
   return o.str();
 }
 

@@ -8,11 +8,14 @@
 // same command continues a run that was stopped (cases::PlateCheckpoints).
 #include <omp.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cases.hpp"
 #include "mpm_sdem/core/world.hpp"
@@ -22,19 +25,19 @@ using namespace mpm_sdem;
 namespace {
 
 int usage(const char* program, FILE* to = stderr) {
-  std::fprintf(
-      to,
-      "usage: %s [--cell M] [--angle DEG] [--direction DEG] [--speed M/S] [--depth M]\n"
-      "          [--gravity M/S2] [--friction-angle DEG] [--cohesion PA] [--reach M]\n"
-      "          [--transfer apic|asflip]\n"
-      "          [--threads N] [--curve FILE] [--checkpoint FILE]\n"
-      "          [--kernel gimp|quadratic|cubic] [--points-per-cell N] [--scheme NAME]\n"
-      "          [--thickness M] [--rounding M] [--friction MU] [--wake 0|1]\n"
-      "          [--average 0|1] [--step-scale S (0, 1]: time.cfl and contact_factor times S]\n"
-      "  defaults: cases::Plate's (5 mm, beta 0, gamma 90: the flat plate pushed\n"
-      "  straight down at 0.1 m/s, the blade's sand under gravity, APIC); --depth is\n"
-      "  a drag's (gamma 0) depth\n",
-      program);
+  std::fprintf(to,
+               "usage: %s [--cell M] [--angle DEG] [--direction DEG] [--speed M/S] [--depth M]\n"
+               "          [--gravity M/S2] [--friction-angle DEG] [--cohesion PA] [--reach M]\n"
+               "          [--transfer apic|asflip] [--separation J (0: off, or > 1)]\n"
+               "          [--threads N] [--curve FILE] [--surface FILE] [--checkpoint FILE]\n"
+               "          [--kernel gimp|quadratic|cubic] [--points-per-cell N] [--scheme NAME]\n"
+               "          [--thickness M] [--rounding M] [--friction MU] [--restitution E (0, 1]]\n"
+               "          [--wake 0|1] [--average 0|1]\n"
+               "          [--step-scale S (0, 1]: time.cfl and contact_factor times S]\n"
+               "  defaults: cases::Plate's (5 mm, beta 0, gamma 90: the flat plate pushed\n"
+               "  straight down at 0.1 m/s, the blade's sand under gravity, APIC); --depth is\n"
+               "  a drag's (gamma 0) depth; --surface FILE: the layer's top at the end, per cell\n",
+               program);
   return to == stderr ? 2 : 0;
 }
 
@@ -68,11 +71,38 @@ std::optional<CouplingScheme> schemeNamed(const char* name) {
   return std::nullopt;
 }
 
+// The layer's top at the end of the run: per column of one cell, the highest point's height
+// above the bed's initial surface (m), written to f (and closed); and the
+// highest ahead of the plate (the heap it pushes) and the lowest behind it (the trough it
+// leaves), printed.
+void writeSurface(const World& w, const cases::Plate& c, FILE* f) {
+  const Particles& p = w.particles();
+  const Real h = c.cell_size;
+  const int columns = static_cast<int>(std::ceil(c.width / h));
+  std::vector<Real> top(columns, -c.bed);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const int k = std::clamp(static_cast<int>(p.x[i] / h), 0, columns - 1);
+    top[k] = std::max(top[k], p.y[i] - c.bed);
+  }
+  const Vec2 plate = w.blocks()->state(0).position;
+  std::fprintf(f, "x_m,top_m\n");
+  Real ahead = -c.bed, behind = c.bed;
+  for (int k = 0; k < columns; ++k) {
+    const Real x = (k + 0.5) * h;
+    std::fprintf(f, "%.6f,%.6f\n", x, top[k]);
+    if (x > plate.x()) ahead = std::max(ahead, top[k]);
+    if (x < plate.x() && x > plate.x() - c.length) behind = std::min(behind, top[k]);
+  }
+  std::fclose(f);
+  std::printf("surface: heap ahead %.4f m, trough within L behind %.4f m (plate at x %.4f m)\n",
+              ahead, behind, plate.x());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   cases::Plate c;
-  std::string curve;
+  std::string curve, surface;
   cases::PlateCheckpoints checkpoints;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -84,6 +114,8 @@ int main(int argc, char** argv) {
     const bool number = end != v && *end == '\0';
     if (a == "--curve")
       curve = v;
+    else if (a == "--surface")
+      surface = v;
     else if (a == "--checkpoint")
       checkpoints.path = v;
     else if (a == "--transfer" && !std::strcmp(v, "apic"))
@@ -106,6 +138,8 @@ int main(int argc, char** argv) {
       c.speed = x;
     else if (a == "--depth" && x > 0 && x < c.bed)
       c.depth = x;
+    else if (a == "--separation" && (x == 0 || x > 1))
+      c.separation = x;
     else if (a == "--cohesion" && x >= 0)
       c.cohesion = x;
     else if (a == "--reach" && x > 0 && x < c.bed)
@@ -122,6 +156,8 @@ int main(int argc, char** argv) {
       c.rounding = x;
     else if (a == "--friction" && x >= 0)
       c.friction = x;
+    else if (a == "--restitution" && x > 0 && x <= 1)
+      c.restitution = x;
     else if (a == "--wake" && (x == 0 || x == 1))
       c.wake = x == 1;
     else if (a == "--average" && (x == 0 || x == 1))
@@ -137,6 +173,9 @@ int main(int argc, char** argv) {
   FILE* curve_file = curve.empty() ? nullptr : std::fopen(curve.c_str(), "w");
   if (!curve.empty() && !curve_file)
     return std::fprintf(stderr, "cannot write %s\n", curve.c_str()), 1;
+  FILE* surface_file = surface.empty() ? nullptr : std::fopen(surface.c_str(), "w");
+  if (!surface.empty() && !surface_file)
+    return std::fprintf(stderr, "cannot write %s\n", surface.c_str()), 1;
   const WorldDef def = cases::plateIntrusion(c);
   const Real rho_l_v2 = def.materials.at(0).density * c.length * c.speed * c.speed;
   World w(def);
@@ -168,6 +207,7 @@ int main(int argc, char** argv) {
     std::printf("drag at %g m: F_x %.2f, F_z %.2f N/m, alpha_x %.4g N/m^3\n", c.depth, m.x(), m.y(),
                 -m.x() / (c.depth * L));
   }
+  if (surface_file) writeSurface(w, c, surface_file);
   if (FILE* f = curve_file) {
     std::fprintf(f, "travel_m,depth_m,fx_n_m,fz_n_m\n");
     for (std::size_t k = 0; k < r.depth.size(); ++k)
