@@ -71,10 +71,9 @@ std::optional<CouplingScheme> schemeNamed(const char* name) {
   return std::nullopt;
 }
 
-// The layer's top at the end of the run: per column of one cell, the highest point's height
-// above the bed's initial surface (m), written to f (and closed); and the
-// highest ahead of the plate (the heap it pushes) and the lowest behind it (the trough it
-// leaves), printed.
+// The layer's top at the end of the run, written to f (then closed): per column of one cell,
+// the highest point's height above the bed's initial surface (m). Printed: the highest ahead
+// of the plate (the heap it pushes) and the lowest within L behind it (the trough it leaves).
 void writeSurface(const World& w, const cases::Plate& c, FILE* f) {
   const Particles& p = w.particles();
   const Real h = c.cell_size;
