@@ -8,7 +8,6 @@
 // same command continues a run that was stopped (cases::PlateCheckpoints).
 #include <omp.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -18,6 +17,7 @@
 #include <vector>
 
 #include "cases.hpp"
+#include "mpm_sdem/core/terrain.hpp"
 #include "mpm_sdem/core/world.hpp"
 
 using namespace mpm_sdem;
@@ -71,26 +71,22 @@ std::optional<CouplingScheme> schemeNamed(const char* name) {
   return std::nullopt;
 }
 
-// The layer's top at the end of the run, written to f (then closed): per column of one cell,
-// the highest point's height above the bed's initial surface (m). Printed: the highest ahead
-// of the plate (the heap it pushes) and the lowest within L behind it (the trough it leaves).
+// The layer's top at the end of the run (heightProfile, per column of one cell), as heights
+// above the bed's initial surface (m) written to f (then closed). Printed: the highest ahead of
+// the plate (the heap it pushes) and the lowest within L behind it (the trough it leaves).
 void writeSurface(const World& w, const cases::Plate& c, FILE* f) {
-  const Particles& p = w.particles();
   const Real h = c.cell_size;
   const int columns = static_cast<int>(std::ceil(c.width / h));
-  std::vector<Real> top(columns, -c.bed);
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const int k = std::clamp(static_cast<int>(p.x[i] / h), 0, columns - 1);
-    top[k] = std::max(top[k], p.y[i] - c.bed);
-  }
+  std::vector<Real> top;
+  heightProfile(w.particles(), 0, h, columns, top);
   const Vec2 plate = w.blocks()->state(0).position;
   std::fprintf(f, "x_m,top_m\n");
   Real ahead = -c.bed, behind = c.bed;
   for (int k = 0; k < columns; ++k) {
-    const Real x = (k + 0.5) * h;
-    std::fprintf(f, "%.6f,%.6f\n", x, top[k]);
-    if (x > plate.x()) ahead = std::max(ahead, top[k]);
-    if (x < plate.x() && x > plate.x() - c.length) behind = std::min(behind, top[k]);
+    const Real x = (k + 0.5) * h, z = top[k] - c.bed;  // NaN: an empty column
+    std::fprintf(f, "%.6f,%.6f\n", x, z);
+    if (x > plate.x()) ahead = std::fmax(ahead, z);
+    if (x < plate.x() && x > plate.x() - c.length) behind = std::fmin(behind, z);
   }
   std::fclose(f);
   std::printf("surface: heap ahead %.4f m, trough within L behind %.4f m (plate at x %.4f m)\n",

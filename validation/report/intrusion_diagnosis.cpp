@@ -13,7 +13,6 @@
 // --fast: 2 cm, five choices dragged at 6 cm (a smoke test of the case's machinery).
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <functional>
 #include <string>
 #include <vector>
@@ -165,27 +164,23 @@ void intrusionDiagnosisFits(const Options& o, Results& r) {
   if (o.fast) return;  // one depth
   const Table t(o.out + "/" + kName + ".csv");
   const Real L = cases::Plate().length;
-  for (const char* choice : {"report's", "divergence average", "ASFLIP"}) {
-    const bool finest = !std::strcmp(choice, "report's");  // 2.5 mm: the report's line only
-    for (Real h : {0.01, 0.005, 0.0025}) {
-      if (h == 0.0025 && !finest) continue;
-      cases::LineFit line;  // F = a + k z through the three depths (N/m, N/m^2)
-      for (std::size_t i = 0; i < t.size(); ++i)
-        if (t.at(i, "choice") == choiceNamed(choice) && t.at(i, "push") == 0 &&
-            t.at(i, "cell_m") == h)
-          line.add(t.at(i, "depth_m"), -t.at(i, "fx_n_m"));
-      if (line.n < 3) throw std::runtime_error(std::string(kName) + ".csv lacks a depth");
-      const Real k = line.slope(), a = line.intercept();
-      char q[200];
-      std::snprintf(q, sizeof q, "drag's line F(z), slope, %s, h %s", choice,
-                    millimetres(h).c_str());
-      r.add(kName, q, k, kDragLimit * L, "N/m^2", "the converged line, alpha_x L", 0,
-            "least squares through 4, 6 and 8 cm");
-      std::snprintf(q, sizeof q, "drag's line F(z), intercept, %s, h %s", choice,
-                    millimetres(h).c_str());
-      r.add(kName, q, a, 0, "N/m", "the converged line passes through 0", 0,
-            "least squares through 4, 6 and 8 cm");
-    }
+  // A line for each choice and cell the run list drags at 4 cm (and so at 4, 6 and 8 cm).
+  for (const DiagnosisRun& lined : diagnosisRunList(false)) {
+    if (lined.push || lined.depth != 0.04) continue;
+    cases::LineFit line;  // F = a + k z through the three depths (N/m, N/m^2)
+    for (std::size_t i = 0; i < t.size(); ++i)
+      if (t.at(i, "choice") == lined.choice && t.at(i, "push") == 0 && t.at(i, "cell_m") == lined.h)
+        line.add(t.at(i, "depth_m"), -t.at(i, "fx_n_m"));
+    if (line.n < 3) throw std::runtime_error(std::string(kName) + ".csv lacks a depth");
+    const char* choice = choices()[lined.choice].name;
+    const std::string cell = millimetres(lined.h);
+    char q[200];
+    std::snprintf(q, sizeof q, "drag's line F(z), slope, %s, h %s", choice, cell.c_str());
+    r.add(kName, q, line.slope(), kDragLimit * L, "N/m^2", "the converged line, alpha_x L", 0,
+          "least squares through 4, 6 and 8 cm");
+    std::snprintf(q, sizeof q, "drag's line F(z), intercept, %s, h %s", choice, cell.c_str());
+    r.add(kName, q, line.intercept(), 0, "N/m", "the converged line passes through 0", 0,
+          "least squares through 4, 6 and 8 cm");
   }
 }
 
