@@ -598,6 +598,52 @@ def plot_chute(data, out):
     return finish(fig, out, "chute_l2_overfill.png")
 
 
+def plot_cross_solver(data, out):
+    """cross_chute and cross_column: our profiles at each cell and transfer beside Basilisk's."""
+    chute = sorted(f for f in os.listdir(data) if f.startswith("cross_chute.") and f.endswith(".csv"))
+    column = sorted(f for f in os.listdir(data) if f.startswith("cross_column.") and f.endswith(".csv"))
+    if not chute and not column:
+        return None
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4))
+    for name in chute:
+        rows = read_csv(os.path.join(data, name))
+        if not rows:
+            continue
+        label = "%s, %g mm" % (rows[0]["transfer"], 1e3 * float(rows[0]["cell_m"]))
+        style = "-" if rows[0]["transfer"] == "ASFLIP" else "--"
+        left.plot([float(r["u_m_s"]) for r in rows], [100 * float(r["z_m"]) for r in rows],
+                  style, marker=".", label=label)
+    if chute:
+        rows = read_csv(os.path.join(data, chute[0]))
+        left.plot([float(r["basilisk_m_s"]) for r in rows], [100 * float(r["z_m"]) for r in rows],
+                  "k-", linewidth=2, label="Basilisk")
+    left.set_xlabel("speed along the slope (m/s)")
+    left.set_ylabel("height (cm)")
+    left.set_title("chute at 24.64 deg after 6 s")
+    left.legend(fontsize=7)
+    for name in column:
+        rows = read_csv(os.path.join(data, name))
+        if not rows:
+            continue
+        label = "%s, %g mm" % (rows[0]["transfer"], 1e3 * float(rows[0]["cell_m"]))
+        style = "-" if rows[0]["transfer"] == "ASFLIP" else "--"
+        right.plot([100 * float(r["x_m"]) for r in rows],
+                   [100 * float(r["thickness_m"]) for r in rows], style, label=label)
+    reference = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "validation",
+                             "basilisk", "column_deposit.csv")
+    if column and os.path.exists(reference):
+        rows = read_csv(reference)
+        right.plot([10 * float(r["x_over_h0"]) for r in rows],
+                   [10 * float(r["thickness_over_h0"]) for r in rows], "k-", linewidth=2,
+                   label="Basilisk")  # H0 = 10 cm
+    right.set_xlim(0, 50)
+    right.set_xlabel("distance from the back wall (cm)")
+    right.set_ylabel("deposit thickness (cm)")
+    right.set_title("column a = 0.5, H0 = 10 cm")
+    right.legend(fontsize=7)
+    return finish(fig, out, "cross_solver.png")
+
+
 def plot_intrusion_frontier(data, out):
     """The upright plate's drag: |error| from its limit against wall seconds per simulated second,
     one line per configuration through the cells (labelled), real time marked."""
@@ -773,6 +819,7 @@ def main():
              "intrusion_diagnosis": plot_intrusion_diagnosis(data, out),
              "intrusion_frontier": plot_intrusion_frontier(data, out),
              "chute": plot_chute(data, out),
+             "cross_chute": plot_cross_solver(data, out),
              "water_gate": plot_water_gate(data, out),
              "water_gate_snapshots": plot_water_gate_snapshots(data, out)}
     lines = ["# Validation report", "",

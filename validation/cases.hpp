@@ -572,6 +572,77 @@ Real lubeHeight(Real aspect);
 // L0) / L0 = 1.8 a for a < 3, 2.3 a^(2/3) from a = 3.
 Real lajeunesseRunout(Real aspect);
 
+// Issue 91: Lagree's mu(I) cases in Basilisk (sandbox/M1EMN/Exemples: bagnold_periodic.c,
+// granular_column.c and silo2DCo.c), set up for our solver. Basilisk's are dimensionless (g = 1,
+// the continuum's density 1, a length unit L); ours take L in metres, g = 9.81 m/s^2 and the
+// continuum's density 1500 kg/m^3, so that its speeds scale by sqrt(g L), its times by
+// sqrt(L / g) and its stresses by rho g L. Its inertial number I = d gamma_dot / sqrt(p / rho)
+// takes the continuum's density, ours the grains' (rho / phi): our d is Basilisk's times
+// sqrt(phi). Basilisk's fluid is incompressible; ours is stiff (K = 1 MPa: under 0.2% of volume
+// at these depths).
+struct CrossSolverRheology {
+  Real mu_s = 0.32, delta_mu = 0.28, i0 = 0.4;  // mu(I) = mu_s + delta_mu I / (I0 + I)
+  Real grain = 0;                               // Basilisk's d (m)
+};
+MaterialDef crossSolverGranular(const CrossSolverRheology& r);
+// Bagnold's profile of a layer of depth h at theta for material m (granular):
+// u(z) = (2/3) (I_theta / d) sqrt(phi g cos theta) [h^1.5 - (h - z)^1.5], with
+// I_theta = I_0 (tan theta - mu_s) / (mu_2 - tan theta) (m/s).
+Real bagnoldProfile(const MaterialDef& m, Real theta, Real h, Real z);
+// bagnold_periodic.c: a periodic layer h = 5 cm deep on a sticky base at 0.43 rad (24.64 deg),
+// mu_s 0.38, delta mu 0.26, I0 0.3, d = h / 25, starting (as Basilisk's) from Bagnold's profile.
+struct CrossChute {
+  Real depth = 0.05;  // h (m)
+  Real theta = 0.43;  // rad
+  Real cell_size = 0.005;
+  TransferScheme transfer = TransferScheme::kAsflip;
+};
+CrossSolverRheology crossChuteRheology(const CrossChute& c);
+WorldDef crossSolverChute(const CrossChute& c);
+// Sets every point's velocity to Bagnold's at its height (the start of bagnold_periodic.c).
+void startOnBagnold(World& w, const CrossChute& c);
+// The points' mean speed along the slope in layers one cell thick, at the layers' mean height.
+struct LayerProfile {
+  std::vector<Real> z, u;  // m, m/s
+};
+LayerProfile layerProfile(const World& w, Real layer);
+// granular_column.c's first column: a = H0 / L0 = 0.5 with H0 = 10 cm, mu_s 0.32, delta mu 0.28,
+// I0 0.4, d = H0 / 30, on a sticky floor against a smooth back wall.
+struct CrossColumn {
+  Real height = 0.1;  // H0 (m)
+  Real cell_size = 0.005;
+  TransferScheme transfer = TransferScheme::kAsflip;
+};
+GranularColumn crossColumnShape(const CrossColumn& c);
+WorldDef crossSolverColumn(const CrossColumn& c);
+// The deposit's thickness (m) per column of cells, at the columns' centres x (m): the points'
+// volume over the column's width.
+struct Deposit {
+  std::vector<Real> x, thickness;
+};
+Deposit depositThickness(const World& w, Real cell);
+// Where the deposit, followed from its first abscissa, first thins below `thin` (m), linearly
+// between the two samples around it; its last abscissa if it never does.
+Real depositFront(const Deposit& d, Real thin);
+// silo2DCo.c without cohesion: a flat-bottomed silo 10 W wide filled 4.5 W deep, discharging
+// through an opening W = 4 cm in the middle of its floor (between the surfaces the sand
+// touches: the plates stand a contact radius further apart on each side); sticky side walls,
+// the floor Coulomb with friction 1 (above every mu(I), so that it does not slip: Basilisk's is
+// no-slip); mu_s as asked, delta mu 0.28, I0 0.4, d = W / 30. The floor lies 5 W above the
+// domain's bottom, so that the heap below stays clear of the opening.
+struct CrossSilo {
+  Real opening = 0.04;  // W (m)
+  Real mu_s = 0.3;
+  Real cell_size = 0.004;
+  TransferScheme transfer = TransferScheme::kAsflip;
+};
+WorldDef crossSolverSilo(const CrossSilo& c);
+// The floor's top (m): the gauge counts what has fallen below the floor's underside.
+Real crossSiloFloor(const CrossSilo& c);
+// The discharge's volume rate per metre (m^2/s at the initial density): the least-squares slope
+// of the mass below the floor over [t_from, t_to] (sampled every 1% of t_to) over rho.
+Real dischargeRate(World& w, const CrossSilo& c, Real t_from, Real t_to);
+
 // Issue 44: a plate intruding into the blade's sand (Drucker-Prager, 1500 kg/m^3, E = 1 MPa,
 // phi = 35 deg; bladeSand), against resistive force theory (RFT: Li, Zhang & Goldman 2013,
 // Science 339): each element of a plate at depth |z| moving in a granular bed feels a stress

@@ -332,10 +332,7 @@ WorldDef chute(const Chute& c) {
 }
 
 Real bagnold(const Chute& c, Real h, Real z) {
-  const Real t = std::tan(c.theta);
-  const Real i = kChuteI0 * (t - kChuteMuS) / (kChuteMu2 - t);
-  return Real(2) / 3 * i / c.grain * std::sqrt(kChutePhi * 9.81 * std::cos(c.theta)) *
-         (std::pow(h, Real(1.5)) - std::pow(h - z, Real(1.5)));
+  return bagnoldProfile(chute(c).materials.at(0), c.theta, h, z);
 }
 
 ChuteVolume chuteVolume(const World& w, const Chute& c) {
@@ -402,10 +399,12 @@ ChuteProfile chuteProfile(const World& w, const Chute& c) {
     height[k] += P.y[p];
     count[k] += 1;
   }
-  const Real scale = bagnold(c, out.depth, out.depth);
+  const MaterialDef& m = w.def().materials.at(0);
+  const Real scale = bagnoldProfile(m, c.theta, out.depth, out.depth);
   for (int k = 0; k < layers; ++k) {
     if (count[k] == 0) continue;
-    const Real u = sum[k] / count[k], ub = bagnold(c, out.depth, height[k] / count[k]);
+    const Real u = sum[k] / count[k];
+    const Real ub = bagnoldProfile(m, c.theta, out.depth, height[k] / count[k]);
     out.worst = std::max(out.worst, std::abs(u - ub) / scale);
     if (k == layers - 1) out.surface = u / ub;
   }
@@ -416,7 +415,7 @@ ChuteProfile chuteProfile(const World& w, const Chute& c) {
       const int k = g.index(i, j);
       if (!(g.mass[k] > 0)) continue;
       const Real z = std::clamp(g.origin.y() + j * g.h, Real(0), c.depth);
-      const Real ub = bagnold(c, c.depth, z);
+      const Real ub = bagnoldProfile(m, c.theta, c.depth, z);
       err += g.mass[k] * (g.vel_x[k] - ub) * (g.vel_x[k] - ub);
       norm += g.mass[k] * ub * ub;
     }

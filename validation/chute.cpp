@@ -26,7 +26,8 @@ int usage(const char* program, FILE* to = stderr) {
   std::fprintf(to,
                "usage: %s [--cell M] [--angle DEG] [--end S] [--every S] [--perturb M]\n"
                "          [--seed N] [--transfer apic|asflip] [--film] [--threads N]\n"
-               "          [--ppc N] [--relax S] [--grain M] [--fit] [--usl]\n"
+               "          [--ppc N] [--relax S] [--grain M] [--fit] [--usl] [--average]\n"
+               "          [--basilisk]\n"
                "  defaults: 2.5 mm cells, 27 deg, 3 s, every 0.25 s, perturbed by 1e-5 m\n"
                "  (seed 1; 0: the symmetric start), 4 mm grains (--grain: the beads' own\n"
                "  are 0.53 mm), volume fit off (--fit: on), USF (--usl: USL),\n"
@@ -34,7 +35,10 @@ int usage(const char* program, FILE* to = stderr) {
                "  points per cell (--ppc 1-4), ASFLIP kept whole (--relax: its departure's\n"
                "  relaxation time in s); below\n"
                "  21 deg the beads do not flow (the profile's columns are then meaningless),\n"
-               "  and --film needs a flowing angle\n",
+               "  and --film needs a flowing angle; --average: the divergence average\n"
+               "  (solver.volumetric_average); --basilisk: the report's cross_chute instead\n"
+               "  (cases::CrossChute: Basilisk's mu(I), 24.64 deg unless --angle, from Bagnold's\n"
+               "  profile)\n",
                program);
   return to == stderr ? 2 : 0;
 }
@@ -48,12 +52,17 @@ int main(int argc, char** argv) {
   Real end = 3, every = 0.25, perturb = 1e-5, relax = 0;
   unsigned seed = 1;
   int threads = 1, ppc = 2;
-  bool film = false, apic = false, fit = false, usl = false;
+  bool film = false, apic = false, fit = false, usl = false, average = false, basilisk = false;
+  bool angle_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") return usage(argv[0], stdout);
-    if (a == "--film" || a == "--fit" || a == "--usl") {
-      (a == "--film" ? film : a == "--fit" ? fit : usl) = true;
+    if (a == "--film" || a == "--fit" || a == "--usl" || a == "--average" || a == "--basilisk") {
+      (a == "--film"      ? film
+       : a == "--fit"     ? fit
+       : a == "--usl"     ? usl
+       : a == "--average" ? average
+                          : basilisk) = true;
       continue;
     }
     if (i + 1 >= argc) return usage(argv[0]);
@@ -68,7 +77,7 @@ int main(int argc, char** argv) {
     else if (a == "--cell" && x >= 2e-4 && x <= 0.01)
       c.cell_size = x;
     else if (a == "--angle" && x >= 0 && x < 32)  // below mu_2's angle (32.76 deg)
-      c.theta = x * M_PI / 180;
+      c.theta = x * M_PI / 180, angle_given = true;
     else if (a == "--end" && x > 0)
       end = x;
     else if (a == "--every" && x > 0)
@@ -92,13 +101,24 @@ int main(int argc, char** argv) {
   // The film's viscosity is set from Bagnold's surface speed, which needs a flowing angle.
   if (film && c.theta <= 20.9 * M_PI / 180) return usage(argv[0]);  // mu_s = tan 20.9 deg
   omp_set_num_threads(threads);
-  WorldDef def = cases::chute(c);
+  cases::CrossChute cross;
+  cross.cell_size = c.cell_size;
+  cross.transfer = apic ? TransferScheme::kApic : TransferScheme::kAsflip;
+  if (basilisk) {
+    if (angle_given) cross.theta = c.theta;
+    c.theta = cross.theta;
+    c.depth = cross.depth;
+    c.grain = cases::crossChuteRheology(cross).grain;
+    if (film) return usage(argv[0]);
+  }
+  WorldDef def = basilisk ? cases::crossSolverChute(cross) : cases::chute(c);
+  def.solver.volumetric_average = average;
   if (apic) def.solver.transfer = TransferScheme::kApic;
   def.bodies[0].points_per_cell = ppc;
   if (relax > 0) def.solver.asflip_relaxation_time = relax;
   def.solver.volume_fit = fit;
   if (usl) def.solver.stress_update = StressUpdate::kUsl;
-  const Real surface = cases::bagnold(c, c.depth, c.depth);
+  const Real surface = cases::bagnoldProfile(def.materials[0], c.theta, c.depth, c.depth);
   if (film) {  // Nusselt's surface speed rho g sin(theta) h^2 / (2 eta) set to Bagnold's
     MaterialDef& m = def.materials[0];
     m.model = MaterialModel::kFluid;
@@ -106,12 +126,14 @@ int main(int argc, char** argv) {
     m.tensile_strength = 100;
   }
   World w(def);
+  if (basilisk) cases::startOnBagnold(w, cross);
   if (perturb > 0) perturbPositions(w.particles(), perturb, seed);
   std::printf(
-      "h %g m, %g deg, d %g m, %s%s%s, perturbed by %g m: %zu points, Bagnold's surface speed "
-      "%.4f m/s\n",
-      c.cell_size, c.theta * 180 / M_PI, c.grain, film ? "Newtonian film, " : "",
-      apic ? "APIC" : "ASFLIP", fit ? ", volume fit" : "", perturb, w.particles().size(), surface);
+      "h %g m, %g deg, d %g m, %s%s%s%s%s, perturbed by %g m: %zu points, Bagnold's surface "
+      "speed %.4f m/s\n",
+      c.cell_size, c.theta * 180 / M_PI, c.grain, basilisk ? "Basilisk's chute, " : "",
+      film ? "Newtonian film, " : "", apic ? "APIC" : "ASFLIP", fit ? ", volume fit" : "",
+      average ? ", divergence average" : "", perturb, w.particles().size(), surface);
   std::printf(
       "t (s), steps, worst layer / surface speed, top layer / Bagnold's, max |v_y| (m/s), "
       "points at J >= 1, phi min-max (mean) below the top two cells, their mean J, L2 error, "

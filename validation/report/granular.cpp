@@ -227,26 +227,39 @@ void siloGranularWith(const Options& o, Results& r, TransferScheme transfer,
   std::fprintf(table,
                "neck_m,cell_size_m,points,steps,rate_kg_s_m,beverloo_kg_s_m,window,window_start_s,"
                "window_end_s,wall_s\n");
+  // The 2D continuum's C for this sand: Basilisk's silo at the same mu(I) (issue 91).
+  const Table basilisk(std::string(MPM_SDEM_SOURCE_DIR) +
+                       "/validation/basilisk/silo_sand_discharge.csv");
+  const Real continuumC = basilisk.at(0, "c_flux_3_to_4");
   // Beverloo's law fitted to (neck, rate) pairs: the exponent with k = 0 and with k = k_c, and
   // C and k with the exponent 1.5.
   auto beverlooFits = [&](const std::vector<std::pair<Real, Real>>& points, const char* what,
                           const std::string& settings) {
     LineFit bare, shifted, linear;  // log-log with k = 0 and k = k_c; rate^(2/3) against D0
+    char q[128];
     for (const auto& [neck, rate] : points) {
       bare.add(std::log(neck), std::log(rate));
       shifted.add(std::log(cases::beverlooWidth(neck)), std::log(rate));
       linear.add(neck, std::pow(rate, Real(2) / 3));
+      // C per neck with the seed's k_c held: rate / (rho g^0.5 (D0 - 2.2 r_p)^1.5), against the
+      // continuum's C for this sand (Basilisk's silo2DCo.c, validation/basilisk/).
+      std::snprintf(q, sizeof q, "C with k fixed at the seed's 2.2 r_p, D0 %.0f cm, %s", 100 * neck,
+                    what);
+      r.add(name, q,
+            rate / (cases::siloDensityRootGravity() * std::pow(cases::beverlooWidth(neck), 1.5)),
+            continuumC, "-", "Basilisk, silo2DCo.c with this sand's mu(I) (2D continuum)", 0,
+            settings);
     }
     if (bare.n < 2) return;
-    char q[128];
     std::snprintf(q, sizeof q, "fitted exponent, W = D0, %s", what);
     r.add(name, q, bare.slope(), 1.5, "-", "2D Beverloo law", 0, settings);
     std::snprintf(q, sizeof q, "fitted exponent, W = D0 - 2.2 r_p, %s", what);
     r.add(name, q, shifted.slope(), 1.5, "-", "2D Beverloo law", 0, settings);
     const Real s = linear.slope();
     std::snprintf(q, sizeof q, "C with the exponent 1.5, %s", what);
-    r.add(name, q, std::pow(s, Real(1.5)) / cases::siloDensityRootGravity(), 0.58, "-",
-          "seed 000 Fig. 16 (2D law of Mankoc et al. 2007)", 0, settings);
+    r.add(name, q, std::pow(s, Real(1.5)) / cases::siloDensityRootGravity(), continuumC, "-",
+          "Basilisk, silo2DCo.c with this sand's mu(I) (seed 000's 0.58 is Beverloo's 3D C)", 0,
+          settings);
     std::snprintf(q, sizeof q, "k (grain diameters) with the exponent 1.5, %s", what);
     r.add(name, q, -linear.intercept() / s / d, 1.1, "d", "seed 000 Fig. 16 (k_c r_p = 1.1 d)", 0,
           settings);

@@ -135,6 +135,14 @@ void clusters(const Options& o, Results& r);
 namespace hard_cases {
 void stability(const Options& o, Results& r);
 }  // namespace hard_cases
+namespace cross_solver {
+void chute(const Options& o, Results& r);
+int chuteRuns(bool fast);
+void column(const Options& o, Results& r);
+int columnRuns(bool fast);
+void silo(const Options& o, Results& r);
+int siloRuns(bool fast);
+}  // namespace cross_solver
 namespace granular {
 void siloDischarge(const Options& o, Results& r);
 void siloConvergence(const Options& o, Results& r);
