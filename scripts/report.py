@@ -633,9 +633,13 @@ def plot_cross_solver(data, out):
                              "basilisk", "column_deposit.csv")
     if column and os.path.exists(reference):
         rows = read_csv(reference)
-        right.plot([10 * float(r["x_over_h0"]) for r in rows],
-                   [10 * float(r["thickness_over_h0"]) for r in rows], "k-", linewidth=2,
-                   label="Basilisk")  # H0 = 10 cm
+        levels = sorted({int(r["level"]) for r in rows})
+        for level in levels:  # H0 = 10 cm
+            sel = [r for r in rows if int(r["level"]) == level]
+            right.plot([10 * float(r["x_over_h0"]) for r in sel],
+                       [10 * float(r["thickness_over_h0"]) for r in sel], "k-",
+                       linewidth=2 if level == levels[-1] else 0.8,
+                       label="Basilisk, %d cells over 5 H0" % (1 << level))
     right.set_xlim(0, 50)
     right.set_xlabel("distance from the back wall (cm)")
     right.set_ylabel("deposit thickness (cm)")

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cases.hpp"
@@ -49,6 +50,18 @@ Real interpolate(const std::vector<Real>& x, const std::vector<Real>& y, Real at
   std::size_t k = 1;
   while (k + 1 < x.size() && x[k] < at) ++k;
   return y[k - 1] + (y[k] - y[k - 1]) * (at - x[k - 1]) / (x[k] - x[k - 1]);
+}
+
+// Basilisk's column deposit at `level` (validation/basilisk/column_deposit.csv), in metres for
+// the column height H0.
+cases::Deposit basiliskDeposit(const Table& t, int level, Real height) {
+  cases::Deposit d;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (static_cast<int>(t.at(k, "level")) != level) continue;
+    d.x.push_back(t.at(k, "x_over_h0") * height);
+    d.thickness.push_back(t.at(k, "thickness_over_h0") * height);
+  }
+  return d;
 }
 
 const std::vector<Real> kChuteCells = {0.005, 0.0025, 0.00125};  // h / 10, 20, 40
@@ -125,15 +138,37 @@ void chute(const Options& o, Results& r) {
 }
 
 // granular_column.c's column a = 0.5: the deposit once at rest (or at 10 sqrt(H0 / g), where
-// Basilisk's is read), against Basilisk's: the run-out (L_inf - L0) / L0 with L_inf where the
-// deposit first thins below a grain (d = H0 / 30) in both, and the deposit's greatest thickness
-// over H0.
+// Basilisk's is read), against Basilisk's at its finest level: the run-out (L_inf - L0) / L0
+// with L_inf where the deposit first thins below a grain (d = H0 / 30) in both, and the
+// deposit's greatest thickness over H0; with run 0, Basilisk's run-out at its two coarser levels.
 int columnRuns(bool fast) {
   return static_cast<int>(runList(kColumnCells, fast).size());
 }
 
 void column(const Options& o, Results& r) {
   const Table basilisk(basiliskData("column_deposit.csv"));
+  std::vector<int> levels;  // Basilisk's, in the file's order
+  for (std::size_t k = 0; k < basilisk.size(); ++k) {
+    const int level = static_cast<int>(basilisk.at(k, "level"));
+    if (std::find(levels.begin(), levels.end(), level) == levels.end()) levels.push_back(level);
+  }
+  const int finest = *std::max_element(levels.begin(), levels.end());
+  const Real h0 = cases::CrossColumn{}.height;
+  const cases::GranularColumn unit = cases::crossColumnShape({});
+  auto runout = [&](const cases::Deposit& dep) {
+    return (cases::depositFront(dep, unit.grain) - unit.length) / unit.length;
+  };
+  // Basilisk's own convergence: its run-out at each level against its finest.
+  if (o.runs(0))
+    for (const int level : levels) {
+      if (level == finest) continue;
+      char q[96];
+      std::snprintf(q, sizeof q, "Basilisk's (L_inf - L0) / L0 at LEVEL %d (%d cells over 5 H0)",
+                    level, 1 << level);
+      r.add("cross_column", q, runout(basiliskDeposit(basilisk, level, h0)),
+            runout(basiliskDeposit(basilisk, finest, h0)), "-", "Basilisk at its finest level", 0,
+            "granular_column.c, a 0.5");
+    }
   const std::vector<Run> runs = runList(kColumnCells, o.fast);
   for (std::size_t i = 0; i < runs.size(); ++i) {
     if (!o.runs(static_cast<int>(i))) continue;
@@ -141,11 +176,7 @@ void column(const Options& o, Results& r) {
     c.cell_size = runs[i].cell;
     c.transfer = runs[i].transfer;
     const cases::GranularColumn shape = cases::crossColumnShape(c);
-    cases::Deposit theirs;
-    for (std::size_t k = 0; k < basilisk.size(); ++k) {
-      theirs.x.push_back(basilisk.at(k, "x_over_h0") * c.height);
-      theirs.thickness.push_back(basilisk.at(k, "thickness_over_h0") * c.height);
-    }
+    const cases::Deposit theirs = basiliskDeposit(basilisk, finest, c.height);
     World w(cases::crossSolverColumn(c));
     const auto t0 = std::chrono::steady_clock::now();
     const cases::ColumnDeposit d =
@@ -158,9 +189,6 @@ void column(const Options& o, Results& r) {
       std::fprintf(f, "%s,%g,%.6g,%.6g\n", transferName(c.transfer), c.cell_size, ours.x[k],
                    ours.thickness[k]);
     std::fclose(f);
-    auto runout = [&](const cases::Deposit& dep) {
-      return (cases::depositFront(dep, shape.grain) - shape.length) / shape.length;
-    };
     auto tallest = [&](const cases::Deposit& dep) {
       return *std::max_element(dep.thickness.begin(), dep.thickness.end()) / c.height;
     };
@@ -171,7 +199,8 @@ void column(const Options& o, Results& r) {
                   1000 * c.cell_size, transferName(c.transfer), d.at_rest ? "at rest" : "stopped",
                   d.time);
     const long points = static_cast<long>(w.particles().size()), steps = w.stepCount();
-    const char* source = "Basilisk, granular_column.c (128 cells over 5 H0, t = 10)";
+    char source[96];
+    std::snprintf(source, sizeof source, "Basilisk, granular_column.c (LEVEL %d, t = 10)", finest);
     r.add("cross_column", std::string("(L_inf - L0) / L0, ") + settings, runout(ours),
           runout(theirs), "-", source, wall, settings, points, steps);
     r.add("cross_column", std::string("deposit's greatest thickness / H0, ") + settings,
@@ -180,7 +209,8 @@ void column(const Options& o, Results& r) {
 }
 
 // silo2DCo.c without cohesion at mu_s 0.3 and 0.5: the discharge's C = Q / (sqrt(g) W^1.5)
-// over t in [3, 4] sqrt(W / g) against Basilisk's mean flux over the same window.
+// over t in [3, 4] sqrt(W / g) against Basilisk's mean flux over the same window at its finest
+// level; with each friction's first run, Basilisk's C at its coarser level.
 int siloRuns(bool fast) {
   return static_cast<int>(runList(kSiloCells, fast).size() * (fast ? 1 : kSiloFrictions.size()));
 }
@@ -192,10 +222,25 @@ void silo(const Options& o, Results& r) {
       o.fast ? std::vector<Real>{kSiloFrictions.front()} : kSiloFrictions;
   int index = -1;
   for (const Real mu_s : frictions) {
+    // Basilisk's C at its finest level for this friction; with the first run, its coarser.
     Real reference = std::nan("");
-    for (std::size_t k = 0; k < basilisk.size(); ++k)
-      if (std::abs(basilisk.at(k, "mu_s") - mu_s) < 1e-6)
-        reference = basilisk.at(k, "c_flux_3_to_4");
+    int finest = 0;
+    std::vector<std::pair<int, Real>> levels;
+    for (std::size_t k = 0; k < basilisk.size(); ++k) {
+      if (std::abs(basilisk.at(k, "mu_s") - mu_s) > 1e-6) continue;
+      const int level = static_cast<int>(basilisk.at(k, "level"));
+      levels.emplace_back(level, basilisk.at(k, "c_flux_3_to_4"));
+      if (level > finest) finest = level, reference = levels.back().second;
+    }
+    if (o.runs(index + 1))
+      for (const auto& [level, c] : levels) {
+        if (level == finest) continue;
+        char q[96];
+        std::snprintf(q, sizeof q, "Basilisk's C at LEVEL %d (%.1f cells over W), mu_s %g", level,
+                      (1 << level) / 10.0, mu_s);
+        r.add("cross_silo", q, c, reference, "-", "Basilisk at its finest level", 0,
+              "silo2DCo.c, t in [3, 4]");
+      }
     for (const Run& run : runs) {
       if (!o.runs(++index)) continue;
       cases::CrossSilo c;
@@ -203,6 +248,9 @@ void silo(const Options& o, Results& r) {
       c.cell_size = run.cell;
       c.transfer = run.transfer;
       const Real unit = std::sqrt(c.opening / kGravity);
+      char source[96];
+      std::snprintf(source, sizeof source, "Basilisk, silo2DCo.c (LEVEL %d: %.1f cells over W)",
+                    finest, (1 << finest) / 10.0);
       World w(cases::crossSolverSilo(c));
       const auto t0 = std::chrono::steady_clock::now();
       const Real q = cases::dischargeRate(w, c, 3 * unit, 4 * unit);
@@ -213,9 +261,8 @@ void silo(const Options& o, Results& r) {
                     "cell %g mm, %s",
                     mu_s, 1000 * c.cell_size, transferName(c.transfer));
       r.add("cross_silo", std::string("C = Q / (sqrt(g) W^1.5), ") + settings,
-            q / (std::sqrt(kGravity) * std::pow(c.opening, 1.5)), reference, "-",
-            "Basilisk, silo2DCo.c (LEVEL 7: 12.8 cells over W), t in [3, 4]", wall, settings,
-            static_cast<long>(w.particles().size()), w.stepCount());
+            q / (std::sqrt(kGravity) * std::pow(c.opening, 1.5)), reference, "-", source, wall,
+            settings, static_cast<long>(w.particles().size()), w.stepCount());
     }
   }
 }
