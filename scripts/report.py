@@ -604,7 +604,8 @@ def plot_cross_solver(data, out):
     column = sorted(f for f in os.listdir(data) if f.startswith("cross_column.") and f.endswith(".csv"))
     if not chute and not column:
         return None
-    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4))
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4))
+    left = axes[0]
     for name in chute:
         rows = read_csv(os.path.join(data, name))
         if not rows:
@@ -621,30 +622,31 @@ def plot_cross_solver(data, out):
     left.set_ylabel("height (cm)")
     left.set_title("chute at 24.64 deg after 6 s")
     left.legend(fontsize=7)
-    for name in column:
-        rows = read_csv(os.path.join(data, name))
-        if not rows:
-            continue
-        label = "%s, %g mm" % (rows[0]["transfer"], 1e3 * float(rows[0]["cell_m"]))
-        style = "-" if rows[0]["transfer"] == "ASFLIP" else "--"
-        right.plot([100 * float(r["x_m"]) for r in rows],
-                   [100 * float(r["thickness_m"]) for r in rows], style, label=label)
     reference = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "validation",
                              "basilisk", "column_deposit.csv")
-    if column and os.path.exists(reference):
-        rows = read_csv(reference)
-        levels = sorted({int(r["level"]) for r in rows})
+    theirs = read_csv(reference) if os.path.exists(reference) else []
+    for ax, aspect, reach in ((axes[1], "0.5", 50), (axes[2], "1.42", 45)):
+        for name in column:
+            rows = [r for r in read_csv(os.path.join(data, name)) if r["aspect"] == aspect]
+            if not rows:
+                continue
+            label = "%s, %g mm" % (rows[0]["transfer"], 1e3 * float(rows[0]["cell_m"]))
+            style = "-" if rows[0]["transfer"] == "ASFLIP" else "--"
+            ax.plot([100 * float(r["x_m"]) for r in rows],
+                    [100 * float(r["thickness_m"]) for r in rows], style, label=label)
+        mine = [r for r in theirs if r["aspect"] == aspect]
+        levels = sorted({int(r["level"]) for r in mine})
         for level in levels:  # H0 = 10 cm
-            sel = [r for r in rows if int(r["level"]) == level]
-            right.plot([10 * float(r["x_over_h0"]) for r in sel],
-                       [10 * float(r["thickness_over_h0"]) for r in sel], "k-",
-                       linewidth=2 if level == levels[-1] else 0.8,
-                       label="Basilisk, %d cells over 5 H0" % (1 << level))
-    right.set_xlim(0, 50)
-    right.set_xlabel("distance from the back wall (cm)")
-    right.set_ylabel("deposit thickness (cm)")
-    right.set_title("column a = 0.5, H0 = 10 cm")
-    right.legend(fontsize=7)
+            sel = [r for r in mine if int(r["level"]) == level]
+            ax.plot([10 * float(r["x_over_h0"]) for r in sel],
+                    [10 * float(r["thickness_over_h0"]) for r in sel], "k-",
+                    linewidth=2 if level == levels[-1] else 0.8,
+                    label="Basilisk, %d cells over 5 H0" % (1 << level))
+        ax.set_xlim(0, reach)
+        ax.set_xlabel("distance from the back wall (cm)")
+        ax.set_ylabel("deposit thickness (cm)")
+        ax.set_title("column a = %s, H0 = 10 cm" % aspect)
+        ax.legend(fontsize=7)
     return finish(fig, out, "cross_solver.png")
 
 

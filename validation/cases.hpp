@@ -606,10 +606,13 @@ struct LayerProfile {
   std::vector<Real> z, u;  // m, m/s
 };
 LayerProfile layerProfile(const World& w, Real layer);
-// granular_column.c's first column: a = H0 / L0 = 0.5 with H0 = 10 cm, mu_s 0.32, delta mu 0.28,
-// I0 0.4, d = H0 / 30, on a sticky floor against a smooth back wall.
+// granular_column.c's columns of aspect a = H0 / L0 with H0 = 10 cm, mu_s 0.32, delta mu 0.28,
+// I0 0.4, on a sticky floor against a smooth back wall: its first, a = 0.5 with d = H0 / 30, and
+// its second, a = 1.42 with d = H0 / 65.
 struct CrossColumn {
-  Real height = 0.1;  // H0 (m)
+  Real height = 0.1;      // H0 (m)
+  Real aspect = 0.5;      // a
+  Real grain_ratio = 30;  // H0 / d
   Real cell_size = 0.005;
   TransferScheme transfer = TransferScheme::kAsflip;
 };

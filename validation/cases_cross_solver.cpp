@@ -85,10 +85,10 @@ LayerProfile layerProfile(const World& w, Real layer) {
 
 GranularColumn crossColumnShape(const CrossColumn& c) {
   GranularColumn g;
-  g.aspect = 0.5;
-  g.length = 2 * c.height;
+  g.aspect = c.aspect;
+  g.length = c.height / c.aspect;
   g.cell_size = c.cell_size;
-  g.grain = c.height / 30;
+  g.grain = c.height / c.grain_ratio;
   return g;
 }
 

@@ -52,11 +52,12 @@ Real interpolate(const std::vector<Real>& x, const std::vector<Real>& y, Real at
   return y[k - 1] + (y[k] - y[k - 1]) * (at - x[k - 1]) / (x[k] - x[k - 1]);
 }
 
-// Basilisk's column deposit at `level` (validation/basilisk/column_deposit.csv), in metres for
-// the column height H0.
-cases::Deposit basiliskDeposit(const Table& t, int level, Real height) {
+// Basilisk's deposit of the column of aspect a at `level` (validation/basilisk/
+// column_deposit.csv), in metres for the column height H0.
+cases::Deposit basiliskDeposit(const Table& t, Real aspect, int level, Real height) {
   cases::Deposit d;
   for (std::size_t k = 0; k < t.size(); ++k) {
+    if (std::abs(t.at(k, "aspect") - aspect) > 1e-6) continue;
     if (static_cast<int>(t.at(k, "level")) != level) continue;
     d.x.push_back(t.at(k, "x_over_h0") * height);
     d.thickness.push_back(t.at(k, "thickness_over_h0") * height);
@@ -137,74 +138,85 @@ void chute(const Options& o, Results& r) {
   }
 }
 
-// granular_column.c's column a = 0.5: the deposit once at rest (or at 10 sqrt(H0 / g), where
-// Basilisk's is read), against Basilisk's at its finest level: the run-out (L_inf - L0) / L0
-// with L_inf where the deposit first thins below a grain (d = H0 / 30) in both, and the
-// deposit's greatest thickness over H0; with run 0, Basilisk's run-out at its two coarser levels.
+// granular_column.c's columns a = 0.5 (d = H0 / 30) and a = 1.42 (d = H0 / 65): the deposit once
+// at rest (or at 10 sqrt(H0 / g), where Basilisk's is read), against Basilisk's at its finest
+// level: the run-out (L_inf - L0) / L0 with L_inf where the deposit first thins below a grain in
+// both, and the deposit's greatest thickness over H0 (at a = 1.42, at the back wall); with each
+// column's first run, Basilisk's run-out at its coarser level.
+const std::vector<std::pair<Real, Real>> kColumns = {{0.5, 30}, {1.42, 65}};  // a, H0 / d
+
 int columnRuns(bool fast) {
-  return static_cast<int>(runList(kColumnCells, fast).size());
+  return static_cast<int>(runList(kColumnCells, fast).size() * (fast ? 1 : kColumns.size()));
 }
 
 void column(const Options& o, Results& r) {
   const Table basilisk(basiliskData("column_deposit.csv"));
-  std::vector<int> levels;  // Basilisk's, in the file's order
-  for (std::size_t k = 0; k < basilisk.size(); ++k) {
-    const int level = static_cast<int>(basilisk.at(k, "level"));
-    if (std::find(levels.begin(), levels.end(), level) == levels.end()) levels.push_back(level);
-  }
-  const int finest = *std::max_element(levels.begin(), levels.end());
-  const Real h0 = cases::CrossColumn{}.height;
-  const cases::GranularColumn unit = cases::crossColumnShape({});
-  auto runout = [&](const cases::Deposit& dep) {
-    return (cases::depositFront(dep, unit.grain) - unit.length) / unit.length;
-  };
-  // Basilisk's own convergence: its run-out at each level against its finest.
-  if (o.runs(0))
-    for (const int level : levels) {
-      if (level == finest) continue;
-      char q[96];
-      std::snprintf(q, sizeof q, "Basilisk's (L_inf - L0) / L0 at LEVEL %d (%d cells over 5 H0)",
-                    level, 1 << level);
-      r.add("cross_column", q, runout(basiliskDeposit(basilisk, level, h0)),
-            runout(basiliskDeposit(basilisk, finest, h0)), "-", "Basilisk at its finest level", 0,
-            "granular_column.c, a 0.5");
-    }
   const std::vector<Run> runs = runList(kColumnCells, o.fast);
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    if (!o.runs(static_cast<int>(i))) continue;
-    cases::CrossColumn c;
-    c.cell_size = runs[i].cell;
-    c.transfer = runs[i].transfer;
-    const cases::GranularColumn shape = cases::crossColumnShape(c);
-    const cases::Deposit theirs = basiliskDeposit(basilisk, finest, c.height);
-    World w(cases::crossSolverColumn(c));
-    const auto t0 = std::chrono::steady_clock::now();
-    const cases::ColumnDeposit d =
-        cases::collapseColumn(w, shape, 10 * std::sqrt(c.height / kGravity));
-    const double wall = seconds(t0);
-    const cases::Deposit ours = cases::depositThickness(w, c.cell_size);
-    FILE* f = std::fopen((o.out + "/cross_column." + std::to_string(i) + ".csv").c_str(), "w");
-    std::fprintf(f, "transfer,cell_m,x_m,thickness_m\n");
-    for (std::size_t k = 0; k < ours.x.size(); ++k)
-      std::fprintf(f, "%s,%g,%.6g,%.6g\n", transferName(c.transfer), c.cell_size, ours.x[k],
-                   ours.thickness[k]);
-    std::fclose(f);
-    auto tallest = [&](const cases::Deposit& dep) {
-      return *std::max_element(dep.thickness.begin(), dep.thickness.end()) / c.height;
+  int index = -1;
+  for (const auto& [aspect, ratio] :
+       o.fast ? std::vector<std::pair<Real, Real>>{kColumns[0]} : kColumns) {
+    cases::CrossColumn column;
+    column.aspect = aspect;
+    column.grain_ratio = ratio;
+    const cases::GranularColumn unit = cases::crossColumnShape(column);
+    std::vector<int> levels;  // Basilisk's for this column, in the file's order
+    for (std::size_t k = 0; k < basilisk.size(); ++k) {
+      if (std::abs(basilisk.at(k, "aspect") - aspect) > 1e-6) continue;
+      const int level = static_cast<int>(basilisk.at(k, "level"));
+      if (std::find(levels.begin(), levels.end(), level) == levels.end()) levels.push_back(level);
+    }
+    const int finest = *std::max_element(levels.begin(), levels.end());
+    const cases::Deposit theirs = basiliskDeposit(basilisk, aspect, finest, column.height);
+    auto runout = [&](const cases::Deposit& dep) {
+      return (cases::depositFront(dep, unit.grain) - unit.length) / unit.length;
     };
-    char settings[160];
-    std::snprintf(settings, sizeof settings,
-                  "a 0.5, H0 10 cm, d H0/30, mu_s 0.32, delta mu 0.28, I0 0.4, cell %g mm, %s, "
-                  "%s at %.2f s",
-                  1000 * c.cell_size, transferName(c.transfer), d.at_rest ? "at rest" : "stopped",
-                  d.time);
-    const long points = static_cast<long>(w.particles().size()), steps = w.stepCount();
-    char source[96];
-    std::snprintf(source, sizeof source, "Basilisk, granular_column.c (LEVEL %d, t = 10)", finest);
-    r.add("cross_column", std::string("(L_inf - L0) / L0, ") + settings, runout(ours),
-          runout(theirs), "-", source, wall, settings, points, steps);
-    r.add("cross_column", std::string("deposit's greatest thickness / H0, ") + settings,
-          tallest(ours), tallest(theirs), "-", source, wall, settings, points, steps);
+    auto tallest = [&](const cases::Deposit& dep) {
+      return *std::max_element(dep.thickness.begin(), dep.thickness.end()) / column.height;
+    };
+    char tag[64];
+    std::snprintf(tag, sizeof tag, "a %g, H0 10 cm, d H0/%g", aspect, ratio);
+    if (o.runs(index + 1))  // Basilisk's own convergence: its coarser level against its finest
+      for (const int level : levels) {
+        if (level == finest) continue;
+        char q[128];
+        std::snprintf(q, sizeof q,
+                      "Basilisk's (L_inf - L0) / L0 at LEVEL %d (%d cells over 5 H0), %s", level,
+                      1 << level, tag);
+        r.add("cross_column", q, runout(basiliskDeposit(basilisk, aspect, level, column.height)),
+              runout(theirs), "-", "Basilisk at its finest level", 0, "granular_column.c");
+      }
+    for (const Run& run : runs) {
+      if (!o.runs(++index)) continue;
+      cases::CrossColumn c = column;
+      c.cell_size = run.cell;
+      c.transfer = run.transfer;
+      World w(cases::crossSolverColumn(c));
+      const auto t0 = std::chrono::steady_clock::now();
+      const cases::ColumnDeposit d =
+          cases::collapseColumn(w, unit, 10 * std::sqrt(c.height / kGravity));
+      const double wall = seconds(t0);
+      const cases::Deposit ours = cases::depositThickness(w, c.cell_size);
+      FILE* f =
+          std::fopen((o.out + "/cross_column." + std::to_string(index) + ".csv").c_str(), "w");
+      std::fprintf(f, "aspect,transfer,cell_m,x_m,thickness_m\n");
+      for (std::size_t k = 0; k < ours.x.size(); ++k)
+        std::fprintf(f, "%g,%s,%g,%.6g,%.6g\n", aspect, transferName(c.transfer), c.cell_size,
+                     ours.x[k], ours.thickness[k]);
+      std::fclose(f);
+      char settings[192];
+      std::snprintf(settings, sizeof settings,
+                    "%s, mu_s 0.32, delta mu 0.28, I0 0.4, cell %g mm, %s, %s at %.2f s", tag,
+                    1000 * c.cell_size, transferName(c.transfer), d.at_rest ? "at rest" : "stopped",
+                    d.time);
+      const long points = static_cast<long>(w.particles().size()), steps = w.stepCount();
+      char source[96];
+      std::snprintf(source, sizeof source, "Basilisk, granular_column.c (LEVEL %d, t = 10)",
+                    finest);
+      r.add("cross_column", std::string("(L_inf - L0) / L0, ") + settings, runout(ours),
+            runout(theirs), "-", source, wall, settings, points, steps);
+      r.add("cross_column", std::string("deposit's greatest thickness / H0, ") + settings,
+            tallest(ours), tallest(theirs), "-", source, wall, settings, points, steps);
+    }
   }
 }
 
