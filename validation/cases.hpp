@@ -619,7 +619,7 @@ struct CrossColumn {
 GranularColumn crossColumnShape(const CrossColumn& c);
 WorldDef crossSolverColumn(const CrossColumn& c);
 // The deposit's thickness (m) per column of cells, at the columns' centres x (m): the points'
-// volume over the column's width.
+// volume, each at most its packed volume (J capped at 1), over the column's width.
 struct Deposit {
   std::vector<Real> x, thickness;
 };

@@ -108,7 +108,9 @@ Deposit depositThickness(const World& w, Real cell) {
   for (std::size_t k = 0; k < columns; ++k) d.x.push_back((k + Real(0.5)) * cell);
   for (std::size_t p = 0; p < P.size(); ++p) {
     const auto k = static_cast<std::size_t>(std::max<Real>(0, P.x[p] / cell));
-    d.thickness[std::min(k, columns - 1)] += P.volume0[p] * P.J[p] / cell;
+    // At most its packed volume: a separated point (J > 1) flies apart with no stress, and its
+    // J grows without bound; Basilisk's fluid is incompressible.
+    d.thickness[std::min(k, columns - 1)] += P.volume0[p] * std::min<Real>(P.J[p], 1) / cell;
   }
   return d;
 }
