@@ -600,8 +600,10 @@ def plot_chute(data, out):
 
 def plot_cross_solver(data, out):
     """cross_chute and cross_column: our profiles at each cell and transfer beside Basilisk's."""
-    chute = sorted(f for f in os.listdir(data) if f.startswith("cross_chute.") and f.endswith(".csv"))
-    column = sorted(f for f in os.listdir(data) if f.startswith("cross_column.") and f.endswith(".csv"))
+    def runs(case):  # the case's tables in the order of its runs (case.N.csv)
+        found = [f for f in os.listdir(data) if f.startswith(case + ".") and f.endswith(".csv")]
+        return sorted(found, key=lambda f: int(f[len(case) + 1:-len(".csv")]))
+    chute, column = runs("cross_chute"), runs("cross_column")
     if not chute and not column:
         return None
     fig, axes = plt.subplots(1, 3, figsize=(15, 4))
