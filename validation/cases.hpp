@@ -509,6 +509,10 @@ WorldDef chute(const Chute& c);
 // Bagnold's profile u(z) = (2/3) (I_theta / d) sqrt(phi g cos theta) [h^1.5 - (h - z)^1.5],
 // I_theta = I_0 (tan theta - mu_s) / (mu_2 - tan theta), for the layer depth h (m/s).
 Real bagnold(const Chute& c, Real h, Real z);
+// Bagnold's profile of a layer of depth h at theta for granular material m (g = 9.81 m/s^2):
+// u(z) = (2/3) (I_theta / d) sqrt(phi g cos theta) [h^1.5 - (h - z)^1.5], with
+// I_theta = I_0 (tan theta - mu_s) / (mu_2 - tan theta) (m/s).
+Real bagnoldProfile(const MaterialDef& m, Real theta, Real h, Real z);
 // The points' mean speed per layer of one cell against Bagnold's at the layer's mean height, for
 // the layer's depth read from the points (the top point plus a quarter cell).
 // With them, the relative L2 error of the grid's velocity (issue 79; as Baumgarten's chute
@@ -585,10 +589,6 @@ struct CrossSolverRheology {
   Real grain = 0;                               // Basilisk's d (m)
 };
 MaterialDef crossSolverGranular(const CrossSolverRheology& r);
-// Bagnold's profile of a layer of depth h at theta for material m (granular):
-// u(z) = (2/3) (I_theta / d) sqrt(phi g cos theta) [h^1.5 - (h - z)^1.5], with
-// I_theta = I_0 (tan theta - mu_s) / (mu_2 - tan theta) (m/s).
-Real bagnoldProfile(const MaterialDef& m, Real theta, Real h, Real z);
 // bagnold_periodic.c: a periodic layer h = 5 cm deep on a sticky base at 0.43 rad (24.64 deg),
 // mu_s 0.38, delta mu 0.26, I0 0.3, d = h / 25, starting (as Basilisk's) from Bagnold's profile.
 struct CrossChute {

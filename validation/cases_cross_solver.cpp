@@ -27,17 +27,10 @@ MaterialDef crossSolverGranular(const CrossSolverRheology& r) {
   m.mu_2 = r.mu_s + r.delta_mu;
   m.inertial_i0 = r.i0;
   m.solid_fraction = kPhi;
-  // I = d gamma_dot sqrt(phi / (phi p / rho)): Basilisk's I, whose rho is the continuum's.
+  // Ours is I = d' gamma_dot / sqrt(p phi / rho); with d' = d sqrt(phi) it is Basilisk's
+  // d gamma_dot / sqrt(p / rho), whose rho is the continuum's.
   m.grain_diameter = r.grain * std::sqrt(kPhi);
   return m;
-}
-
-Real bagnoldProfile(const MaterialDef& m, Real theta, Real h, Real z) {
-  const Real t = std::tan(theta);
-  const Real i = m.inertial_i0 * (t - m.mu_s) / (m.mu_2 - t);
-  return Real(2) / 3 * i / m.grain_diameter *
-         std::sqrt(m.solid_fraction * kGravity * std::cos(theta)) *
-         (std::pow(h, Real(1.5)) - std::pow(h - z, Real(1.5)));
 }
 
 CrossSolverRheology crossChuteRheology(const CrossChute& c) {

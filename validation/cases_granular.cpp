@@ -331,6 +331,13 @@ WorldDef chute(const Chute& c) {
   return def;
 }
 
+Real bagnoldProfile(const MaterialDef& m, Real theta, Real h, Real z) {
+  const Real t = std::tan(theta);
+  const Real i = m.inertial_i0 * (t - m.mu_s) / (m.mu_2 - t);
+  return Real(2) / 3 * i / m.grain_diameter * std::sqrt(m.solid_fraction * 9.81 * std::cos(theta)) *
+         (std::pow(h, Real(1.5)) - std::pow(h - z, Real(1.5)));
+}
+
 Real bagnold(const Chute& c, Real h, Real z) {
   return bagnoldProfile(chute(c).materials.at(0), c.theta, h, z);
 }
