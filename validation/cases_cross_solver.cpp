@@ -13,23 +13,20 @@
 namespace mpm_sdem::cases {
 
 namespace {
-constexpr Real kDensity = 1500, kGravity = 9.81, kPhi = 0.6;
+constexpr Real kGravity = 9.81;
 }  // namespace
 
 MaterialDef crossSolverGranular(const CrossSolverRheology& r) {
-  MaterialDef m;
+  // The chute's stiff dense continuum (1500 kg/m^3, K 1 MPa, G 0.6 MPa, phi 0.6) with
+  // Basilisk's mu(I).
+  MaterialDef m = chute(Chute{}).materials.at(0);
   m.name = "grains";
-  m.model = MaterialModel::kGranular;
-  m.density = kDensity;
-  m.bulk_modulus = 1e6;
-  m.shear_modulus = 6e5;
   m.mu_s = r.mu_s;
   m.mu_2 = r.mu_s + r.delta_mu;
   m.inertial_i0 = r.i0;
-  m.solid_fraction = kPhi;
   // Ours is I = d' gamma_dot / sqrt(p phi / rho); with d' = d sqrt(phi) it is Basilisk's
   // d gamma_dot / sqrt(p / rho), whose rho is the continuum's.
-  m.grain_diameter = r.grain * std::sqrt(kPhi);
+  m.grain_diameter = r.grain * std::sqrt(m.solid_fraction);
   return m;
 }
 

@@ -27,7 +27,7 @@ int usage(const char* program, FILE* to = stderr) {
                "usage: %s [--cell M] [--angle DEG] [--end S] [--every S] [--perturb M]\n"
                "          [--seed N] [--transfer apic|asflip] [--film] [--threads N]\n"
                "          [--ppc N] [--relax S] [--grain M] [--fit] [--usl] [--average]\n"
-               "          [--basilisk]\n"
+               "          [--basilisk] [--step-scale S]\n"
                "  defaults: 2.5 mm cells, 27 deg, 3 s, every 0.25 s, perturbed by 1e-5 m\n"
                "  (seed 1; 0: the symmetric start), 4 mm grains (--grain: the beads' own\n"
                "  are 0.53 mm), volume fit off (--fit: on), USF (--usl: USL),\n"
@@ -38,7 +38,7 @@ int usage(const char* program, FILE* to = stderr) {
                "  and --film needs a flowing angle; --average: the divergence average\n"
                "  (solver.volumetric_average); --basilisk: the report's cross_chute instead\n"
                "  (cases::CrossChute: Basilisk's mu(I), 24.64 deg unless --angle, from Bagnold's\n"
-               "  profile)\n",
+               "  profile); --step-scale: the CFL factor times S (0.5: the step halved)\n",
                program);
   return to == stderr ? 2 : 0;
 }
@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
   cases::Chute c;
   c.cell_size = 0.0025;
   c.theta = 27 * M_PI / 180;
-  Real end = 3, every = 0.25, perturb = 1e-5, relax = 0;
+  Real end = 3, every = 0.25, perturb = 1e-5, relax = 0, step_scale = 1;
   unsigned seed = 1;
   int threads = 1, ppc = 2;
   bool film = false, apic = false, fit = false, usl = false, average = false, basilisk = false;
@@ -88,6 +88,8 @@ int main(int argc, char** argv) {
       seed = static_cast<unsigned>(x);
     else if (a == "--grain" && x >= 1e-4 && x <= 0.01)
       c.grain = x;
+    else if (a == "--step-scale" && x > 0 && x <= 1)
+      step_scale = x;
     else if (a == "--relax" && x >= 0)
       relax = x;
     else if (a == "--ppc" && x >= 1 && x <= 4 && x == std::floor(x))
@@ -113,6 +115,7 @@ int main(int argc, char** argv) {
   }
   WorldDef def = basilisk ? cases::crossSolverChute(cross) : cases::chute(c);
   def.solver.volumetric_average = average;
+  def.time_step.cfl *= step_scale;
   if (apic) def.solver.transfer = TransferScheme::kApic;
   def.bodies[0].points_per_cell = ppc;
   if (relax > 0) def.solver.asflip_relaxation_time = relax;
