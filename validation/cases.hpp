@@ -551,6 +551,10 @@ struct GranularColumn {
   // The static friction angle (rad; 0: the glass beads' 20.9 deg), the beads' mu(I) shifted in
   // angle: mu_2's angle stays 11.86 deg above it.
   Real friction_angle = 0;
+  // The channel's side walls (domain.sidewalls): width W (m; 0: none, plane strain) and the
+  // beads' friction on them.
+  Real sidewall_width = 0;
+  Real sidewall_friction = 0;
 };
 WorldDef granularColumn(const GranularColumn& c);
 // The deposit at t_max, or once every point is slower than 1 cm/s: its run-out L_inf (the first

@@ -451,6 +451,8 @@ WorldDef granularColumn(const GranularColumn& c) {
     m.mu_s = std::tan(c.friction_angle);
     m.mu_2 = std::tan(c.friction_angle + span);
   }
+  def.domain.sidewalls.width = c.sidewall_width;
+  def.domain.sidewalls.friction = c.sidewall_friction;
   BodyDef b;
   b.name = "column";
   b.shape.type = ShapeType::kRectangle;

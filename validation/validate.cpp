@@ -62,6 +62,8 @@ const std::vector<Case>& allCases() {
       {"rolling", report::contact::rolling, report::contact::rollingRuns},
       {"chute", report::granular::chuteFlow, report::granular::chuteFlowRuns},
       {"column_collapse", report::granular::columnCollapse, report::granular::columnCollapseRuns},
+      {"column_sidewalls", report::granular::columnSidewalls,
+       report::granular::columnSidewallsRuns},
       {"cross_chute", report::cross_solver::chute, report::cross_solver::chuteRuns},
       {"cross_column", report::cross_solver::column, report::cross_solver::columnRuns},
       {"cross_silo", report::cross_solver::silo, report::cross_solver::siloRuns},

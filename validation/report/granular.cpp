@@ -566,4 +566,53 @@ void columnCollapse(const Options& o, Results& r) {
   }
 }
 
+// Issue 91: the column between the channel's side walls (domain.sidewalls). Lajeunesse et al.'s
+// and Lube et al.'s collapses ran between walls whose widths are not sourced here, so a = 1 and 3
+// at 5 mm are bracketed over W = 5, 10 and 20 cm, with the wall friction angle of Lajeunesse et
+// al. 2004's glass beads (24.8 deg, as K. Kumar's PhD thesis, Cambridge 2015, tabulates it).
+// Without walls the same columns run out 2.15 (a = 1) and 7.15 (a = 3) L0: column_collapse.
+std::vector<ColumnRun> sidewallRunList(bool fast) {
+  std::vector<ColumnRun> runs;
+  char settings[120];
+  for (const Real a : {1.0, 3.0}) {
+    if (fast && a != 1.0) continue;
+    for (const Real width : {0.05, 0.1, 0.2}) {
+      if (fast && width != 0.1) continue;
+      cases::GranularColumn c;
+      c.aspect = a;
+      c.cell_size = fast ? 0.01 : 0.005;
+      c.sidewall_width = width;
+      c.sidewall_friction = std::tan(24.8 * M_PI / 180);
+      std::snprintf(settings, sizeof settings,
+                    "a %g, h %g mm, ASFLIP, side walls %g cm apart, mu_w tan 24.8 deg", a,
+                    1000 * c.cell_size, 100 * width);
+      runs.push_back({c, settings, false});
+    }
+  }
+  return runs;
+}
+int columnSidewallsRuns(bool fast) {
+  return static_cast<int>(sidewallRunList(fast).size());
+}
+
+void columnSidewalls(const Options& o, Results& r) {
+  const std::vector<ColumnRun> runs = sidewallRunList(o.fast);
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    if (!o.runs(static_cast<int>(i))) continue;
+    const cases::GranularColumn& c = runs[i].column;
+    World w(cases::granularColumn(c));
+    const auto t0 = std::chrono::steady_clock::now();
+    const cases::ColumnDeposit d = cases::collapseColumn(w, c, 3);
+    const double wall = seconds(t0);
+    const long points = static_cast<long>(w.particles().size()), steps = w.stepCount();
+    const std::string tag = ", " + runs[i].settings;
+    r.add("column_sidewalls", "(L_inf - L0) / L0" + tag, (d.runout - c.length) / c.length,
+          cases::lajeunesseRunout(c.aspect), "-",
+          "Lajeunesse et al. 2005 (glass beads, quasi-2D; as Lagree et al. 2011 eq. 3.1 quote it)",
+          wall, runs[i].settings, points, steps);
+    r.add("column_sidewalls", "H_inf / L0" + tag, d.height / c.length, cases::lubeHeight(c.aspect),
+          "-", "Lube et al. 2005 (quasi-2D fits)", wall, runs[i].settings, points, steps);
+  }
+}
+
 }  // namespace mpm_sdem::report::granular

@@ -156,6 +156,8 @@ void chuteFlow(const Options& o, Results& r);
 int chuteFlowRuns(bool fast);
 void columnCollapse(const Options& o, Results& r);
 int columnCollapseRuns(bool fast);
+void columnSidewalls(const Options& o, Results& r);
+int columnSidewallsRuns(bool fast);
 }  // namespace granular
 namespace sph {
 void bar(const Options& o, Results& r);
