@@ -531,21 +531,29 @@ int columnCollapseRuns(bool fast) {
   return static_cast<int>(columnRunList(fast).size());
 }
 
+// One column released and measured 3 s on (or at rest): its deposit and what it cost.
+struct ColumnResult {
+  cases::ColumnDeposit d;
+  double wall;
+  long points, steps;
+};
+ColumnResult runColumn(const ColumnRun& run) {
+  WorldDef def = cases::granularColumn(run.column);
+  def.solver.volume_fit = run.volume_fit;
+  World w(def);
+  const auto t0 = std::chrono::steady_clock::now();
+  const cases::ColumnDeposit d = cases::collapseColumn(w, run.column, 3);
+  return {d, seconds(t0), static_cast<long>(w.particles().size()), w.stepCount()};
+}
+
 void columnCollapse(const Options& o, Results& r) {
-  const Real t_end = 3;
   const char* source = "Lube et al. 2005 (quasi-2D fits)";
   const std::vector<ColumnRun> runs = columnRunList(o.fast);
   for (std::size_t i = 0; i < runs.size(); ++i) {
     if (!o.runs(static_cast<int>(i))) continue;
     const cases::GranularColumn& c = runs[i].column;
     const std::string& settings = runs[i].settings;
-    WorldDef def = cases::granularColumn(c);
-    def.solver.volume_fit = runs[i].volume_fit;
-    World w(def);
-    const auto t0 = std::chrono::steady_clock::now();
-    const cases::ColumnDeposit d = cases::collapseColumn(w, c, t_end);
-    const double wall = seconds(t0);
-    const long points = static_cast<long>(w.particles().size()), steps = w.stepCount();
+    const auto [d, wall, points, steps] = runColumn(runs[i]);
     const std::string tag = ", " + settings;
     const Real a = c.aspect;
     r.add("column_collapse", "(L_inf - L0) / L0" + tag, (d.runout - c.length) / c.length,
@@ -600,11 +608,7 @@ void columnSidewalls(const Options& o, Results& r) {
   for (std::size_t i = 0; i < runs.size(); ++i) {
     if (!o.runs(static_cast<int>(i))) continue;
     const cases::GranularColumn& c = runs[i].column;
-    World w(cases::granularColumn(c));
-    const auto t0 = std::chrono::steady_clock::now();
-    const cases::ColumnDeposit d = cases::collapseColumn(w, c, 3);
-    const double wall = seconds(t0);
-    const long points = static_cast<long>(w.particles().size()), steps = w.stepCount();
+    const auto [d, wall, points, steps] = runColumn(runs[i]);
     const std::string tag = ", " + runs[i].settings;
     r.add("column_sidewalls", "(L_inf - L0) / L0" + tag, (d.runout - c.length) / c.length,
           cases::lajeunesseRunout(c.aspect), "-",
