@@ -72,7 +72,7 @@ CASES = [
                         "aspect 0.5 to 8, two cells) against the quasi-2D fits of Lube et al. "
                         "2005", True),
     ("column_sidewalls", "Issue 91: the column of `column_collapse` between the channel's side "
-                         "walls (a = 1 and 3, 5 mm, walls 5, 10 and 20 cm apart with the beads' "
+                         "walls (a = 1 and 3, 5 and 2.5 mm, walls 5, 10 and 20 cm apart with the beads' "
                          "wall friction angle of 24.8 deg) against Lajeunesse et al.'s beads",
      True),
     ("blade", "Issue 20: an excavator blade (vertical, kinematic, 5 cm/s) through a layer of sand "

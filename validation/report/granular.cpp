@@ -576,26 +576,28 @@ void columnCollapse(const Options& o, Results& r) {
 
 // Issue 91: the column between the channel's side walls (domain.sidewalls). Lajeunesse et al.'s
 // and Lube et al.'s collapses ran between walls whose widths are not sourced here, so a = 1 and 3
-// at 5 mm are bracketed over W = 5, 10 and 20 cm, with the wall friction angle of Lajeunesse et
-// al. 2004's glass beads (24.8 deg, as K. Kumar's PhD thesis, Cambridge 2015, tabulates it).
-// Without walls the same columns run out 2.15 (a = 1) and 7.15 (a = 3) L0: column_collapse.
+// at 5 and 2.5 mm are bracketed over W = 5, 10 and 20 cm, with the wall friction angle of
+// Lajeunesse et al. 2004's glass beads (24.8 deg, as K. Kumar's PhD thesis, Cambridge 2015,
+// tabulates it). Without walls the same columns run out 2.15 (a = 1) and 7.15 (a = 3) L0 at 5 mm:
+// column_collapse.
 std::vector<ColumnRun> sidewallRunList(bool fast) {
   std::vector<ColumnRun> runs;
   char settings[120];
   for (const Real a : {1.0, 3.0}) {
     if (fast && a != 1.0) continue;
-    for (const Real width : {0.05, 0.1, 0.2}) {
-      if (fast && width != 0.1) continue;
-      cases::GranularColumn c;
-      c.aspect = a;
-      c.cell_size = fast ? 0.01 : 0.005;
-      c.sidewall_width = width;
-      c.sidewall_friction = std::tan(24.8 * M_PI / 180);
-      std::snprintf(settings, sizeof settings,
-                    "a %g, h %g mm, ASFLIP, side walls %g cm apart, mu_w tan 24.8 deg", a,
-                    1000 * c.cell_size, 100 * width);
-      runs.push_back({c, settings, false});
-    }
+    for (const Real h : fast ? std::vector<Real>{0.01} : std::vector<Real>{0.005, 0.0025})
+      for (const Real width : {0.05, 0.1, 0.2}) {
+        if (fast && width != 0.1) continue;
+        cases::GranularColumn c;
+        c.aspect = a;
+        c.cell_size = h;
+        c.sidewall_width = width;
+        c.sidewall_friction = std::tan(24.8 * M_PI / 180);
+        std::snprintf(settings, sizeof settings,
+                      "a %g, h %g mm, ASFLIP, side walls %g cm apart, mu_w tan 24.8 deg", a,
+                      1000 * c.cell_size, 100 * width);
+        runs.push_back({c, settings, false});
+      }
   }
   return runs;
 }
